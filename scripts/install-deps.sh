@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages Vantage builds against. Idempotent: quiet and quick when all
+# are present. Usage: scripts/install-deps.sh [core|full]   (default: full)
+set -euo pipefail
+
+core=(cmake g++ make pkg-config libeigen3-dev libtbb-dev libgtest-dev libbenchmark-dev
+      libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libyaml-cpp-dev
+      python3-matplotlib)
+edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev npm)
+
+wanted=("${core[@]}")
+[[ "${1:-full}" == "full" ]] && wanted+=("${edge[@]}")
+
+missing=()
+for pkg in "${wanted[@]}"; do
+  dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" ||
+    missing+=("$pkg")
+done
+[[ ${#missing[@]} -eq 0 ]] && exit 0
+
+sudo=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  sudo="sudo"
+fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

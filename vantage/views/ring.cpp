@@ -1,0 +1,67 @@
+#include "vantage/views/ring.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "vantage/util/text.hpp"
+
+namespace vantage {
+
+void RingConfig::validate() const {
+  if (!center.allFinite()) throw std::invalid_argument("ring.center must be finite");
+  if (!(radius > 0.0 && std::isfinite(radius))) {
+    throw std::invalid_argument(cat("ring.radius must be positive, got ", radius));
+  }
+  if (!std::isfinite(height)) throw std::invalid_argument("ring.height must be finite");
+  if (positions < 1) {
+    throw std::invalid_argument(cat("ring.positions must be >= 1, got ", positions));
+  }
+  if (yaw_offsets.empty()) throw std::invalid_argument("ring.yaw_offsets must not be empty");
+  for (const double yaw : yaw_offsets) {
+    if (!std::isfinite(yaw)) throw std::invalid_argument("ring.yaw_offsets must be finite");
+  }
+}
+
+Eigen::Isometry3d look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {
+  const Eigen::Vector3d x = target - eye;
+  if (x.norm() < 1e-12) throw std::invalid_argument("look_at: eye and target coincide");
+  const Eigen::Vector3d forward = x.normalized();
+  Eigen::Vector3d left = Eigen::Vector3d::UnitZ().cross(forward);
+  if (left.norm() < 1e-9) left = Eigen::Vector3d::UnitY();  // looking straight up or down
+  left.normalize();
+  Eigen::Matrix3d R;
+  R.col(0) = forward;
+  R.col(1) = left;
+  R.col(2) = forward.cross(left);
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = R;
+  T.translation() = eye;
+  return T;
+}
+
+std::vector<Eigen::Isometry3d> ring_poses(const RingConfig& config) {
+  config.validate();
+  std::vector<Eigen::Isometry3d> poses;
+  poses.reserve(static_cast<std::size_t>(config.positions) * config.yaw_offsets.size());
+  for (int k = 0; k < config.positions; ++k) {
+    const double bearing = config.start_angle + 2.0 * std::numbers::pi * k / config.positions;
+    const Eigen::Vector3d eye(config.center.x() + config.radius * std::cos(bearing),
+                              config.center.y() + config.radius * std::sin(bearing), config.height);
+    const Eigen::Isometry3d centred = look_at(eye, config.center);
+    for (const double yaw : config.yaw_offsets) {
+      Eigen::Isometry3d pose = centred;
+      pose.linear() = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * centred.linear();
+      poses.push_back(pose);
+    }
+  }
+  return poses;
+}
+
+std::vector<Frustum> make_views(const std::vector<Eigen::Isometry3d>& poses, const SensorFov& fov) {
+  std::vector<Frustum> views;
+  views.reserve(poses.size());
+  for (const Eigen::Isometry3d& pose : poses) views.emplace_back(pose, fov);
+  return views;
+}
+
+}  // namespace vantage
