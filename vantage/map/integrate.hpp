@@ -10,6 +10,7 @@
 
 #include "vantage/map/hole_filling.hpp"
 #include "vantage/map/occupancy_grid.hpp"
+#include "vantage/map/point_cloud.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
@@ -40,7 +41,7 @@ struct IntegrationConfig {
 
 /// One scan in the world frame: the points and the frustum of the sensor that took them.
 struct Scan {
-  std::vector<Eigen::Vector3d> points_world;  ///< [m]
+  PointCloud points_world;  ///< [m]
   Frustum view;                               ///< sensor pose and field of view
 };
 
