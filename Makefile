@@ -11,6 +11,7 @@ all: build
 
 deps:
 	@scripts/install-deps.sh
+	@scripts/fetch-models.sh
 
 configure: deps
 	@cmake --preset $(PRESET) >/dev/null

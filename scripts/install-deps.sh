@@ -13,6 +13,8 @@ wanted=("${core[@]}")
 
 missing=()
 for pkg in "${wanted[@]}"; do
+  # NOTE: a Node.js from elsewhere (NodeSource) brings its own npm and conflicts with Debian's.
+  [[ "$pkg" == npm ]] && command -v npm >/dev/null && continue
   dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed" ||
     missing+=("$pkg")
 done
