@@ -1,0 +1,30 @@
+#pragma once
+/// @file
+/// Point clouds on disk: PCD (v0.7) and PLY, chosen by the file's extension.
+
+#include <filesystem>
+
+#include "vantage/map/point_cloud.hpp"
+
+namespace vantage {
+
+/// Reads the x, y, z of every point of a `.pcd` (DATA ascii, binary or binary_compressed) or
+/// `.ply` (ascii, binary_little_endian or binary_big_endian; the `vertex` element) file [m].
+/// Other fields and elements are ignored; the extension is matched without regard to case.
+///
+/// Throws std::invalid_argument for any other extension, and std::runtime_error with one line
+/// that names the file when it cannot be read, is malformed (with the line or point where),
+/// holds no point, or holds a non-finite coordinate (with the point's index). Nothing partial is
+/// ever returned.
+PointCloud read_point_cloud(const std::filesystem::path& path);
+
+/// Writes `points` as binary PCD (`.pcd`) or binary little-endian PLY (`.ply`) with float32
+/// x, y, z, the layout PCL's `pcl::PointXYZ` readers and viewers expect. Coordinates are
+/// rounded to float (about 0.1 µm at 1 m). The file is written atomically: whole or not at all.
+///
+/// Throws std::invalid_argument naming the file for another extension, an empty cloud, or a
+/// point that is not finite in float (naming the point's index), before anything is written;
+/// std::runtime_error naming the file when writing fails.
+void write_point_cloud(const std::filesystem::path& path, const PointCloud& points);
+
+}  // namespace vantage
