@@ -60,6 +60,7 @@ TEST(ExactGain, ProbabilisticIsTheSumOfRayModelGains) {
   for (const std::size_t j : {5, 6, 7, 9, 10, 11}) expected += states[j].gain();
   GainConfig config;
   config.alpha = alpha;
+  config.epsilon = 0.0;  // the literal model, no early stop
   const ViewGain gain = exact_view_gain(grid, looking_along_x({0.05, 0.0, 0.0}), config);
   EXPECT_EQ(gain.targets, 6u);
   EXPECT_NEAR(gain.gain, expected, 1e-12);

@@ -1,0 +1,67 @@
+#pragma once
+/// @file
+/// The next-best-view decision: score every candidate by a method, choose the best (eq. 1).
+/// Every method of the paper — its own and the baselines — goes through this one interface.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "vantage/gain/view_gain.hpp"
+#include "vantage/map/occupancy_grid.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage {
+
+/// How the next view is chosen.
+enum class PlannerMethod {
+  kProbabilistic,  ///< highest expected gain under the paper's visibility model
+  kGreedy,         ///< highest simple-greedy gain (infinite visibility)
+  kRandom,         ///< a uniformly random candidate, seeded
+  kLatombe,        ///< González-Baños & Latombe: greedy gain * exp(-lambda * travel)
+  kYamauchi,       ///< the candidate nearest by travel distance
+};
+
+std::string_view to_string(PlannerMethod method);
+/// Parses probabilistic, greedy, random, latombe or yamauchi; throws std::invalid_argument.
+PlannerMethod parse_planner_method(std::string_view name);
+
+/// Settings of the decision.
+struct PlannerConfig {
+  PlannerMethod method = PlannerMethod::kProbabilistic;
+  /// Gain evaluation settings; `gain.method` is set from `method` (probabilistic for
+  /// kProbabilistic, greedy for the others).
+  GainConfig gain;
+  double lambda = 0.5;  ///< kLatombe's travel penalty [1/m]
+  /// Also predict every candidate's greedy gain when the method uses another, so predictions can
+  /// be compared on the same poses (the paper's Fig. 11).
+  bool greedy_reference = false;
+
+  /// Throws std::invalid_argument naming the field.
+  void validate() const;
+};
+
+/// A candidate view and what it costs to get there.
+struct Candidate {
+  Frustum view;
+  double travel = 0.0;    ///< travel distance from the robot [m]; 0 where motion is free
+  bool reachable = true;  ///< false: the robot can only get close (the paper's fallback)
+};
+
+/// The decision and everything behind it.
+struct Plan {
+  std::size_t best = 0;              ///< index of the chosen candidate
+  std::vector<ViewGain> gains;       ///< each candidate's predicted gain under the method's model
+  std::vector<double> greedy_gains;  ///< each candidate's greedy gain (when requested or used)
+  std::vector<double> scores;        ///< what was maximised
+  double seconds = 0.0;              ///< wall time of the decision [s]
+};
+
+/// Scores the candidates and chooses one. Ties go to the lower index; kRandom uses `seed`.
+/// Throws std::invalid_argument when there are no candidates.
+Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candidates,
+                    const PlannerConfig& config, std::uint64_t seed = 0);
+
+}  // namespace vantage
