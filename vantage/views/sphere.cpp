@@ -1,0 +1,45 @@
+#include "vantage/views/sphere.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "vantage/util/text.hpp"
+#include "vantage/views/ring.hpp"
+
+namespace vantage {
+
+void SphereConfig::validate() const {
+  if (!center.allFinite()) throw std::invalid_argument("sphere.center must be finite");
+  if (!(radius > 0.0 && std::isfinite(radius))) {
+    throw std::invalid_argument(cat("sphere.radius must be positive, got ", radius));
+  }
+  if (views < 1) throw std::invalid_argument(cat("sphere.views must be >= 1, got ", views));
+  const double half_pi = std::numbers::pi / 2.0;
+  if (!(min_elevation >= -half_pi && min_elevation < max_elevation && max_elevation <= half_pi)) {
+    throw std::invalid_argument(cat("sphere elevations must satisfy -90 <= min (",
+                                    min_elevation * 180.0 / std::numbers::pi, ") < max (",
+                                    max_elevation * 180.0 / std::numbers::pi, ") <= 90 degrees"));
+  }
+}
+
+std::vector<Eigen::Isometry3d> sphere_poses(const SphereConfig& config) {
+  config.validate();
+  // Fibonacci lattice: heights uniform in sin(elevation) (equal areas), azimuths by the golden
+  // angle.
+  const double golden_angle = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  const double z_lo = std::sin(config.min_elevation);
+  const double z_hi = std::sin(config.max_elevation);
+  std::vector<Eigen::Isometry3d> poses;
+  poses.reserve(static_cast<std::size_t>(config.views));
+  for (int i = 0; i < config.views; ++i) {
+    const double z = z_lo + (z_hi - z_lo) * (i + 0.5) / config.views;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    const double azimuth = golden_angle * i;
+    const Eigen::Vector3d direction(r * std::cos(azimuth), r * std::sin(azimuth), z);
+    poses.push_back(look_at(config.center + config.radius * direction, config.center));
+  }
+  return poses;
+}
+
+}  // namespace vantage
