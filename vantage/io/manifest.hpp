@@ -1,0 +1,108 @@
+#pragma once
+/// @file
+/// The manifest that describes real data for `vantage plan`: point clouds and their poses, the
+/// sensor, the region of interest and the options. The format is documented in docs/manifest.md.
+/// This reads and checks the description only; the perception module reads the clouds.
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "vantage/map/grid_spec.hpp"
+#include "vantage/map/integrate.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage {
+
+/// The axes of the frame the clouds' points and poses are given in.
+enum class CloudFrame {
+  kOptical,   ///< camera optical frame: z forward, x right, y down (OpenCV, ROS *_optical_frame,
+              ///< TUM)
+  kXForward,  ///< x forward, y left, z up (REP 103; Vantage's sensor frame)
+};
+
+std::string_view to_string(CloudFrame frame);
+/// Parses "optical" or "x_forward"; throws std::invalid_argument naming the value.
+CloudFrame parse_cloud_frame(std::string_view name);
+
+/// Rotation that takes Vantage's sensor axes (x forward, y left, z up) into a cloud frame, so
+/// that T_world_sensor = T_world_cloud * R_cloud_sensor.
+Eigen::Matrix3d R_cloud_sensor(CloudFrame frame);
+
+/// Pinhole intrinsics of a depth camera [pixels].
+struct PinholeIntrinsics {
+  double fx = 0.0, fy = 0.0;  ///< focal lengths [px]
+  double cx = 0.0, cy = 0.0;  ///< principal point [px], pixel centres at integer coordinates
+  int width = 0, height = 0;  ///< image size [px]
+
+  /// Throws std::invalid_argument naming the field: positive focal lengths and size, principal
+  /// point inside the image.
+  void validate() const;
+  bool operator==(const PinholeIntrinsics&) const = default;
+};
+
+/// The symmetric field of view that lies inside the image: on each axis twice the smaller of the
+/// angles from the principal point to the image's two edges (pixel edges at -0.5 and
+/// width - 0.5), so that the frustum never claims cells the camera cannot see. For a centred
+/// principal point this is 2 atan(width / (2 fx)).
+SensorFov fov_from_intrinsics(const PinholeIntrinsics& intrinsics, double min_range,
+                              double max_range);
+
+/// How trajectory poses are paired with clouds.
+enum class PoseMatch {
+  kOrder,      ///< the i-th pose with the i-th cloud; the counts must be equal
+  kTimestamp,  ///< each cloud with the pose nearest its stamp, within max_time_difference
+};
+
+/// One cloud of the data set.
+struct ManifestCloud {
+  std::filesystem::path file;  ///< PCD or PLY, resolved against the manifest's folder
+  /// Pose of the cloud's frame: points_world = T_world_cloud * points_cloud.
+  Eigen::Isometry3d T_world_cloud = Eigen::Isometry3d::Identity();
+  /// The same pose with Vantage's sensor axes, for Frustum: T_world_cloud * R_cloud_sensor.
+  Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+  std::optional<double> stamp;  ///< [s], when given or used for matching
+};
+
+/// Processing switches the manifest sets.
+struct ManifestOptions {
+  bool table_segmentation = false;  ///< remove the support plane before integration
+  bool icp = false;                 ///< refine each cloud's pose by ICP against the map
+  IntegrationMode integration = IntegrationMode::kPaper;
+  bool operator==(const ManifestOptions&) const = default;
+};
+
+/// A checked manifest: plain values, nothing read from the clouds yet.
+struct Manifest {
+  std::filesystem::path file;  ///< the manifest that was read
+  std::vector<ManifestCloud> clouds;
+  CloudFrame frame = CloudFrame::kOptical;
+  SensorFov fov;                                    ///< from `fov_deg` or from `intrinsics`
+  std::optional<PinholeIntrinsics> intrinsics;      ///< when the manifest gives them
+  std::optional<std::filesystem::path> trajectory;  ///< the TUM file the poses came from, if any
+  PoseMatch match = PoseMatch::kOrder;
+  double max_time_difference = 0.02;  ///< [s], for PoseMatch::kTimestamp
+  Eigen::AlignedBox3d roi;            ///< region of interest as given [m]
+  /// The smallest box of whole cells on the lattice through the world origin (OctoMap's) that
+  /// holds the ROI: origin = floor(min / resolution) * resolution, likewise ceil for the max.
+  GridSpec grid;
+  ManifestOptions options;
+};
+
+/// The grid for a region of interest, by Manifest::grid's rule. Throws std::invalid_argument for
+/// an empty or non-finite box, a non-positive resolution or a grid over kMaxGridCells.
+GridSpec grid_for_roi(const Eigen::AlignedBox3d& roi, double resolution);
+
+/// Reads and checks a manifest: a YAML file, or a folder holding `manifest.yaml`. When the
+/// manifest lists no clouds, every `.pcd` and `.ply` file beside it is taken, sorted by name.
+/// Every problem throws std::runtime_error with one line "file:line: key: what".
+Manifest read_manifest(const std::filesystem::path& path);
+
+/// Writes a manifest that read_manifest reads back to the same clouds, poses (one 4x4 matrix per
+/// cloud, never a trajectory), sensor, ROI and options; cloud paths are written relative to the
+/// manifest's folder. Atomic.
+void write_manifest(const std::filesystem::path& path, const Manifest& manifest);
+
+}  // namespace vantage
