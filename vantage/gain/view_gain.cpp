@@ -3,9 +3,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include <optional>
+#include <cmath>
 #include <stdexcept>
 
+#include "vantage/gain/fast_gain.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/traversal.hpp"
@@ -15,36 +16,82 @@
 namespace vantage {
 namespace {
 
-/// Per-view evaluation context for the probabilistic model: the model and the table of states
-/// after the free cells outside the grid.
-struct ProbabilisticRay {
-  RayModel model;
-  UniformPrefix outside;
-
-  ProbabilisticRay(const OccupancyGrid& grid, const Eigen::Vector3d& origin, double alpha)
-      : model(alpha), outside(model, grid.params().p_min, max_ray_cells(grid.spec(), origin)) {}
-
-  double gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
-              const Index3& target) const {
-    RayState state;
-    bool first = true;
-    const TraversalResult walk =
-        traverse(grid.spec(), origin, grid.spec().center(target),
-                 [&](const Index3&, std::size_t linear, int m) {
-                   const double p = grid.probability(linear);
-                   if (!first) {
-                     state = model.step(state, p);
-                   } else {
-                     state = m == 0 ? RayModel::start(p) : model.step(outside.at(m), p);
-                     first = false;
-                   }
-                 });
-    return walk.reached_end ? state.gain() : 0.0;
+/// Cell values read straight from the grid, for one-off rays where a snapshot would cost more
+/// than it saves.
+struct GridCells {
+  const OccupancyGrid& grid;
+  const GridSpec& spec() const { return grid.spec(); }
+  const OccupancyParams& params() const { return grid.params(); }
+  GainMap::Value value(std::size_t i) const {
+    GainMap::Value v;
+    v.p = grid.probability(i);
+    v.entropy = entropy_bits(v.p);
+    v.state = grid.state(i);
+    return v;
   }
 };
 
-double greedy_gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin, const Index3& target) {
-  return line_of_sight(grid, origin, target) ? 1.0 : 0.0;
+/// The probabilistic model on one target ray, with the table of states after the free cells
+/// outside the grid. `Cells` is GainMap or GridCells.
+template <typename Cells>
+class ProbabilisticRay {
+ public:
+  ProbabilisticRay(const Cells& map, const Eigen::Vector3d& origin, double alpha, double epsilon)
+      : map_(map),
+        origin_(origin),
+        model_(alpha),
+        outside_(RayModel(alpha), map.params().p_min, max_ray_cells(map.spec(), origin)),
+        epsilon_(epsilon) {}
+
+  /// Gain of the target cell; 0 when the ray stops early (GainConfig::epsilon) before it.
+  double gain(const Index3& target) const {
+    const GridSpec& spec = map_.spec();
+    const std::size_t target_linear = spec.linear(target);
+    detail::Filter state;
+    double gain = 0.0;
+    bool first = true;
+    traverse(spec, origin_, spec.center(target), [&](const Index3&, std::size_t linear, int m) {
+      const auto cell = map_.value(linear);
+      if (!first) {
+        state = model_.step(state, cell.p);
+      } else {
+        state = m == 0 ? detail::Filter::start(cell.p)
+                       : model_.step(detail::Filter(outside_.at(m)), cell.p);
+        first = false;
+      }
+      if (linear == target_linear) {
+        gain = cell.entropy - entropy_bits(state.q);  // eq. (4)
+        return false;
+      }
+      // The fast mode's early stop: a ray stops once it is hidden.
+      return !(state.v < epsilon_);
+    });
+    return gain;
+  }
+
+ private:
+  const Cells& map_;
+  Eigen::Vector3d origin_;
+  detail::ModelStep model_;
+  UniformPrefix outside_;
+  double epsilon_;
+};
+
+/// Whether nothing occupied lies on the ray before the target (the simple greedy gain).
+template <typename Cells>
+double greedy_gain(const Cells& map, const Eigen::Vector3d& origin, const Index3& target) {
+  const GridSpec& spec = map.spec();
+  const std::size_t target_linear = spec.linear(target);
+  bool clear = true;
+  traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int) {
+    if (linear == target_linear) return false;
+    if (map.value(linear).state == CellState::kOccupied) {
+      clear = false;
+      return false;
+    }
+    return true;
+  });
+  return clear ? 1.0 : 0.0;
 }
 
 /// Index box of the grid cells that may lie inside the frustum.
@@ -61,11 +108,12 @@ CellBox cells_under(const GridSpec& spec, const Frustum& view) {
   return cells;
 }
 
-/// Sums a per-target gain over the unobserved cells inside the frustum. Rows (fixed y, z) run in
-/// parallel; the row sums are added in row order, so the result does not depend on threads.
+/// Sums a per-target gain over the unobserved cells inside the frustum. The frustum and the
+/// cell's class are tested before any traversal. Rows (fixed y, z) run in parallel; the row sums
+/// are added in row order, so the result does not depend on threads.
 template <typename CellGain>
-ViewGain sum_over_targets(const OccupancyGrid& grid, const Frustum& view, CellGain&& cell_gain) {
-  const GridSpec& spec = grid.spec();
+ViewGain sum_over_targets(const GainMap& map, const Frustum& view, CellGain&& cell_gain) {
+  const GridSpec& spec = map.spec();
   const CellBox box = cells_under(spec, view);
   if (box.empty()) return {};
   const int ny = box.hi.y() - box.lo.y() + 1;
@@ -79,7 +127,10 @@ ViewGain sum_over_targets(const OccupancyGrid& grid, const Frustum& view, CellGa
                   box.lo.z() + static_cast<int>(row / static_cast<std::size_t>(ny)));
       for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
         const std::size_t linear = spec.linear(cell);
-        if (!grid.is_unobserved(linear) || !view.contains(spec.center(cell))) continue;
+        if (map.value(linear).state != CellState::kUnobserved ||
+            !view.contains(spec.center(cell))) {
+          continue;
+        }
         sum.gain += cell_gain(cell);
         ++sum.targets;
       }
@@ -94,17 +145,16 @@ ViewGain sum_over_targets(const OccupancyGrid& grid, const Frustum& view, CellGa
   return total;
 }
 
-ViewGain evaluate_one(const OccupancyGrid& grid, const Frustum& view, const GainConfig& config) {
+ViewGain evaluate_one(const GainMap& map, const Frustum& view, const GainConfig& config) {
   const Eigen::Vector3d origin = view.origin();
   switch (config.method) {
     case GainMethod::kProbabilistic: {
-      const ProbabilisticRay ray(grid, origin, config.alpha);
-      return sum_over_targets(grid, view,
-                              [&](const Index3& target) { return ray.gain(grid, origin, target); });
+      const ProbabilisticRay<GainMap> ray(map, origin, config.alpha, config.epsilon);
+      return sum_over_targets(map, view, [&](const Index3& target) { return ray.gain(target); });
     }
     case GainMethod::kGreedy:
       return sum_over_targets(
-          grid, view, [&](const Index3& target) { return greedy_gain(grid, origin, target); });
+          map, view, [&](const Index3& target) { return greedy_gain(map, origin, target); });
   }
   return {};
 }
@@ -128,13 +178,47 @@ GainMethod parse_gain_method(std::string_view name) {
       cat("unknown gain method '", name, "' (expected probabilistic or greedy)"));
 }
 
+std::string_view to_string(GainEvaluation evaluation) {
+  switch (evaluation) {
+    case GainEvaluation::kExact:
+      return "exact";
+    case GainEvaluation::kFast:
+      return "fast";
+  }
+  return "unknown";
+}
+
+GainEvaluation parse_gain_evaluation(std::string_view name) {
+  if (name == "exact") return GainEvaluation::kExact;
+  if (name == "fast") return GainEvaluation::kFast;
+  throw std::invalid_argument(cat("unknown gain evaluation '", name, "' (expected exact or fast)"));
+}
+
 void GainConfig::validate() const {
   if (!(alpha > 0.0 && alpha <= 1.0)) {
     throw std::invalid_argument(cat("gain.alpha must lie in (0, 1], got ", alpha));
   }
+  if (!(epsilon >= 0.0 && epsilon < 0.5)) {
+    throw std::invalid_argument(cat("gain.epsilon must lie in [0, 0.5), got ", epsilon));
+  }
+  if (!(ray_spacing > 0.0 && ray_spacing <= 1.0)) {
+    throw std::invalid_argument(
+        cat("gain.ray_spacing must lie in (0, 1] cells, got ", ray_spacing));
+  }
   if (num_threads < 0) {
     throw std::invalid_argument(cat("gain.num_threads must be >= 0, got ", num_threads));
   }
+}
+
+std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const Frustum> views,
+                                     const GainConfig& config) {
+  switch (config.evaluation) {
+    case GainEvaluation::kExact:
+      return exact_view_gains(grid, views, config);
+    case GainEvaluation::kFast:
+      return fast_view_gains(grid, views, config);
+  }
+  throw std::invalid_argument("gain.evaluation is not a known evaluation");
 }
 
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
@@ -142,8 +226,9 @@ std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<cons
   config.validate();
   std::vector<ViewGain> gains(views.size());
   run_with_threads(config.num_threads, [&] {
+    const GainMap map(grid);
     tbb::parallel_for(std::size_t{0}, views.size(),
-                      [&](std::size_t i) { gains[i] = evaluate_one(grid, views[i], config); });
+                      [&](std::size_t i) { gains[i] = evaluate_one(map, views[i], config); });
   });
   return gains;
 }
@@ -159,8 +244,9 @@ double exact_cell_gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
     throw std::out_of_range(cat("target cell (", target.x(), ", ", target.y(), ", ", target.z(),
                                 ") is outside the grid"));
   }
-  if (config.method == GainMethod::kGreedy) return greedy_gain(grid, origin, target);
-  return ProbabilisticRay(grid, origin, config.alpha).gain(grid, origin, target);
+  const GridCells cells{grid};
+  if (config.method == GainMethod::kGreedy) return greedy_gain(cells, origin, target);
+  return ProbabilisticRay<GridCells>(cells, origin, config.alpha, 0.0).gain(target);
 }
 
 }  // namespace vantage

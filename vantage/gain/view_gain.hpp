@@ -24,11 +24,34 @@ std::string_view to_string(GainMethod method);
 /// Parses "probabilistic" or "greedy"; throws std::invalid_argument naming the value.
 GainMethod parse_gain_method(std::string_view name);
 
+/// How a view's gain is computed from the per-cell model.
+enum class GainEvaluation {
+  /// One ray from the sensor to the centre of every unobserved cell in the frustum: the paper's
+  /// definition and the reference.
+  kExact,
+  /// Rays cast outward through the frustum, each carrying the model's state along itself and
+  /// crediting the cells it owns (vantage/gain/fast_gain.hpp, docs/fast-gain.md).
+  kFast,
+};
+
+std::string_view to_string(GainEvaluation evaluation);
+/// Parses "exact" or "fast"; throws std::invalid_argument naming the value.
+GainEvaluation parse_gain_evaluation(std::string_view name);
+
 /// Settings of a gain evaluation.
 struct GainConfig {
   GainMethod method = GainMethod::kProbabilistic;
-  double alpha = 0.997;  ///< observability parameter a, in (0, 1]
-  int num_threads = 0;   ///< 0 = all cores; results are identical for any count
+  GainEvaluation evaluation = GainEvaluation::kFast;  ///< used by evaluate_views
+  double alpha = 0.997;                               ///< observability parameter a, in (0, 1]
+  /// Early stop of a ray, in [0, 0.5): a ray stops once its visibility falls below epsilon, or once
+  /// its posterior lies within epsilon of 0.5 in an unobserved cell. 0 never stops early and gives
+  /// the literal model of MODEL.md.
+  double epsilon = 1e-3;
+  /// Fast mode: spacing of neighbouring rays at the farthest cell in view [cells], in (0, 1].
+  /// At most 1/sqrt(2) (the default) guarantees that every cell in view is crossed by the ray
+  /// that owns it.
+  double ray_spacing = 0.7071;
+  int num_threads = 0;  ///< 0 = all cores; results are identical for any count
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -36,12 +59,19 @@ struct GainConfig {
 
 /// The predicted gain of one view.
 struct ViewGain {
-  double gain = 0.0;        ///< expected number of unobserved cells the view turns known [bits]
-  std::size_t targets = 0;  ///< unobserved cells inside the frustum
+  double gain = 0.0;  ///< expected number of unobserved cells the view turns known [bits]
+  /// Exact mode: unobserved cells inside the frustum. Fast mode: those a ray reached before it
+  /// stopped early.
+  std::size_t targets = 0;
 };
 
+/// Gains of all views, by the evaluation `config.evaluation` names. The grid is only read.
+std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const Frustum> views,
+                                     const GainConfig& config);
+
 /// Exact evaluation: every unobserved cell inside the frustum on its own ray from the sensor
-/// origin to the cell's centre, summed. The reference for every faster evaluation.
+/// origin to the cell's centre, summed. The reference for every faster evaluation; with
+/// `config.epsilon` = 0 it is the literal model. Ignores `config.evaluation`.
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                        const GainConfig& config);
 
@@ -49,7 +79,8 @@ std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<cons
 ViewGain exact_view_gain(const OccupancyGrid& grid, const Frustum& view, const GainConfig& config);
 
 /// Predicted gain of one target cell seen from `origin`, whatever its state (known cells are
-/// evaluated too; the view sums skip them).
+/// evaluated too; the view sums skip them). Follows the literal model whatever `config.epsilon`
+/// says.
 double exact_cell_gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
                        const Index3& target, const GainConfig& config);
 

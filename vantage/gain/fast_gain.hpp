@@ -1,0 +1,120 @@
+#pragma once
+/// @file
+/// Fast gain evaluation (docs/fast-gain.md): rays cast outward through each candidate's frustum,
+/// every ray carrying the model's state (MODEL.md "One ray") along itself, and every unobserved
+/// cell credited once per view, by the ray that owns it.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "vantage/gain/ray_model.hpp"
+#include "vantage/gain/view_gain.hpp"
+#include "vantage/map/occupancy_grid.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage {
+
+/// A read-only snapshot of an occupancy grid, laid out for gain evaluation: per cell a small code
+/// into a table of the distinct log-odds values the grid holds, each with its probability,
+/// entropy and class. A grid updated by hits and misses holds few distinct values, so the codes
+/// are usually one byte (a 129 x 129 x 65 grid fits in 1 MiB of cache).
+///
+/// Probabilities and classes are computed from the stored log-odds exactly as OccupancyGrid does,
+/// so a model run on the snapshot gives the same numbers as one run on the grid.
+class GainMap {
+ public:
+  /// What the evaluation needs to know about a cell.
+  struct Value {
+    double p = 0.5;        ///< occupancy probability
+    double entropy = 1.0;  ///< H(p) [bits]
+    CellState state = CellState::kUnobserved;
+  };
+
+  /// Takes the snapshot; `num_threads` as everywhere (0 = all cores).
+  explicit GainMap(const OccupancyGrid& grid, int num_threads = 0);
+
+  const GridSpec& spec() const { return spec_; }
+  const OccupancyParams& params() const { return params_; }
+  std::size_t size() const { return spec_.num_cells(); }
+
+  /// Bytes per cell code: 1, 2 or 4.
+  int code_width() const { return code_width_; }
+  /// The table of distinct values, ascending in log-odds.
+  std::span<const Value> values() const { return values_; }
+  /// Codes of width `Code` (which must match code_width()), one per cell in linear order.
+  template <typename Code>
+  const Code* codes() const {
+    return reinterpret_cast<const Code*>(codes_.data());
+  }
+  /// The value of cell `i`, whatever the code width.
+  const Value& value(std::size_t i) const;
+
+ private:
+  GridSpec spec_;
+  OccupancyParams params_;
+  int code_width_ = 1;
+  std::vector<Value> values_;
+  std::vector<std::uint32_t> codes_;  // storage for codes of code_width_ bytes, aligned
+};
+
+namespace detail {
+
+/// The model's state along a ray, as RayState without the index; see RayModel.
+struct Filter {
+  double t = 1.0;  ///< a^m
+  double v = 1.0;  ///< visibility v_m
+  double q = 0.5;  ///< posterior q_m
+  double p = 0.5;  ///< occupancy p_m of the current cell
+
+  Filter() = default;
+  explicit Filter(const RayState& s) : t(s.t), v(s.visibility), q(s.posterior), p(s.occupancy) {}
+  /// The origin's cell, as RayModel::start.
+  static Filter start(double p0) {
+    Filter s;
+    s.q = p0;
+    s.p = p0;
+    return s;
+  }
+};
+
+/// RayModel::step inlined for the hot loops, the same arithmetic in the same order, so that it
+/// gives bit-identical states (tests/gain/fast_gain_test.cpp pins this).
+class ModelStep {
+ public:
+  explicit ModelStep(double alpha) : alpha_(alpha) {}
+
+  Filter step(const Filter& prev, double p_m) const {
+    Filter s;
+    s.t = prev.t * alpha_;  // eq. (10)
+    const double v = prev.v;
+    double vis = s.t * v + 0.1 * (1.0 - v);  // eqs. (5), (9)
+    double hid = (1.0 - s.t) * v + 0.9 * (1.0 - v);
+    vis *= 1.0 - prev.p;  // eqs. (6)-(7)
+    hid *= prev.p;
+    s.v = (vis + hid) > 0.0 ? vis / (vis + hid) : 0.0;
+    const double tau = 0.5 + s.v / 2.0;                               // eq. (15)
+    const double pred = tau * prev.q + (1.0 - tau) * (1.0 - prev.q);  // eq. (14)
+    const double occ = pred * p_m;                                    // eq. (12)
+    const double free = (1.0 - pred) * (1.0 - p_m);
+    s.q = (occ + free) > 0.0 ? occ / (occ + free) : 0.5;
+    s.p = p_m;
+    return s;
+  }
+
+ private:
+  double alpha_;
+};
+
+}  // namespace detail
+
+/// Fast evaluation of every view (GainEvaluation::kFast). The grid is only read.
+std::vector<ViewGain> fast_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
+                                      const GainConfig& config);
+
+/// The same on a snapshot taken earlier, for callers that evaluate one map state repeatedly.
+std::vector<ViewGain> fast_view_gains(const GainMap& map, std::span<const Frustum> views,
+                                      const GainConfig& config);
+
+}  // namespace vantage
