@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include "temp_dir.hpp"
@@ -107,6 +108,30 @@ TEST_F(ManifestTest, ReadsCloudsPosesSensorRegionAndOptions) {
   EXPECT_TRUE(m.options.icp);
   EXPECT_EQ(m.options.integration, IntegrationMode::kEndpoint);
   EXPECT_FALSE(m.trajectory);
+}
+
+// The example in docs/manifest.md is a valid manifest and means what the page says.
+TEST_F(ManifestTest, DocumentedExampleReads) {
+  const char* source = std::getenv("VANTAGE_SOURCE_DIR");
+  ASSERT_NE(source, nullptr);
+  const std::string page = test::read_file(std::filesystem::path(source) / "docs/manifest.md");
+  const std::size_t begin = page.find("```yaml\n");
+  ASSERT_NE(begin, std::string::npos);
+  const std::size_t end = page.find("```", begin + 8);
+  test::write_file(dir_ / "scans/000.pcd", "");
+  test::write_file(dir_ / "scans/001.ply", "");
+  const Manifest m = read_manifest(write(page.substr(begin + 8, end - begin - 8)));
+  ASSERT_EQ(m.clouds.size(), 2u);
+  for (const ManifestCloud& c : m.clouds) {
+    const Eigen::Vector3d eye = c.T_world_sensor.translation();
+    EXPECT_NEAR(eye.head<2>().norm(), 0.9, 1e-12);
+    EXPECT_NEAR(eye.z(), 0.75, 1e-12);
+    const Eigen::Vector3d forward = c.T_world_sensor.linear().col(0);  // towards the z axis
+    EXPECT_TRUE(forward.isApprox(-Eigen::Vector3d(eye.x(), eye.y(), 0).normalized()));
+    EXPECT_TRUE(c.T_world_sensor.linear().col(2).isApprox(Eigen::Vector3d::UnitZ()));  // up
+  }
+  EXPECT_EQ(m.grid.dims, Index3(128, 128, 64));
+  EXPECT_EQ(m.options, ManifestOptions{});
 }
 
 TEST_F(ManifestTest, DefaultsOptionsAndTakesFovInDegrees) {

@@ -42,7 +42,7 @@ class Reader {
                          const std::string& what) const {
     const YAML::Mark mark = at.Mark();
     const std::string line = mark.line >= 0 ? cat(":", mark.line + 1) : std::string();
-    throw std::runtime_error(cat(file_.string(), line, ": ", key, ": ", what));
+    throw std::runtime_error(cat(file_.string(), line, ": ", key, key.empty() ? "" : ": ", what));
   }
 
   // A map with only the allowed keys.
@@ -344,7 +344,7 @@ Manifest read_manifest(const fs::path& path) {
     try {
       manifest.grid = grid_for_roi(manifest.roi, res);
     } catch (const std::invalid_argument& e) {
-      in.fail(roi, "roi", e.what());
+      in.fail(roi, "", e.what());  // the message names roi or resolution
     }
   }
 
