@@ -30,6 +30,11 @@ foreach(header IN LISTS headers)
     if(line MATCHES "[<\"](octomap|yaml-cpp|pcl|embree3|assimp|fmt|spdlog)/")
       message(FATAL_ERROR "install_example_test: ${header} leaks a third-party header: ${line}")
     endif()
+    # Every Vantage header an installed header includes is installed too.
+    if(line MATCHES "[<\"](vantage/[^>\"]+)[>\"]" AND NOT EXISTS ${prefix}/include/${CMAKE_MATCH_1})
+      message(FATAL_ERROR "install_example_test: ${header} includes ${CMAKE_MATCH_1}, "
+                          "which is not installed")
+    endif()
   endforeach()
 endforeach()
 
