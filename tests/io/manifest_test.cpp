@@ -251,6 +251,20 @@ TEST_F(ManifestTest, MissingPoseForACloud) {
       "clouds[1].pose", "b.PLY has no pose");
 }
 
+TEST_F(ManifestTest, FolderWithoutPoses) {
+  write(kSensor + kRegion, "scans/manifest.yaml");
+  try {
+    read_manifest(dir_ / "scans");
+    ADD_FAILURE() << "no error for a folder without poses";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("clouds[0].pose: missing: cloud a.pcd has no pose"),
+              std::string::npos)
+        << e.what();
+  }
+  write(kSensor + kRegion);  // beside it, no cloud at all
+  expect_error(kSensor + kRegion, "clouds", "holds no .pcd or .ply file");
+}
+
 TEST_F(ManifestTest, CloudCountDiffersFromPoseCount) {
   test::write_file(dir_ / "poses.txt", "0 0 0 0 0 0 0 1\n1 0 0 0 0 0 0 1\n2 0 0 0 0 0 0 1\n");
   expect_error(

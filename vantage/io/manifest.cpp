@@ -365,7 +365,9 @@ Manifest read_manifest(const fs::path& path) {
   }
 
   // Clouds: listed, or every .pcd/.ply beside the manifest.
-  std::vector<YAML::Node> entries;  // the YAML entry of each cloud, for poses and errors
+  // The YAML entry of each cloud, for poses and errors; a null node for clouds found in the folder.
+  std::vector<YAML::Node> entries;
+  const auto listed = [&](std::size_t i) -> const YAML::Node& { return entries[i]; };
   if (const YAML::Node clouds = root["clouds"]) {
     if (!clouds.IsSequence()) in.fail(clouds, "clouds", "must be a list");
     if (clouds.size() == 0) in.fail(clouds, "clouds", "is empty");
@@ -410,8 +412,8 @@ Manifest read_manifest(const fs::path& path) {
   if (const YAML::Node trajectory = root["trajectory"]) {
     in.check_map(trajectory, "trajectory", {"file", "match", "max_time_difference"});
     for (std::size_t i = 0; i < entries.size(); ++i) {
-      if (entries[i] && entries[i]["pose"]) {
-        in.fail(entries[i]["pose"], cat("clouds[", i, "].pose"),
+      if (listed(i).IsMap() && listed(i)["pose"]) {
+        in.fail(listed(i)["pose"], cat("clouds[", i, "].pose"),
                 "give poses per cloud or a trajectory, not both");
       }
     }
@@ -459,7 +461,7 @@ Manifest read_manifest(const fs::path& path) {
         const std::string key = cat("clouds[", i, "]");
         if (!cloud.stamp) cloud.stamp = stamp_from_name(cloud.file);
         if (!cloud.stamp) {
-          in.fail(entries[i] ? entries[i] : root, key,
+          in.fail(listed(i).IsMap() ? listed(i) : root, key,
                   cat("no stamp to match the trajectory by: give ", key,
                       ".stamp, or name the file by its time stamp (",
                       cloud.file.filename().string(), ")"));
@@ -476,7 +478,7 @@ Manifest read_manifest(const fs::path& path) {
         }
         const double dt = std::abs(best->stamp - t);
         if (dt > manifest.max_time_difference) {
-          in.fail(entries[i] ? entries[i] : trajectory, key,
+          in.fail(listed(i).IsMap() ? listed(i) : trajectory, key,
                   cat("no pose in ", traj, " within ", manifest.max_time_difference, " s of stamp ",
                       t, " (the nearest is ", dt, " s away)"));
         }
@@ -486,12 +488,12 @@ Manifest read_manifest(const fs::path& path) {
   } else {
     for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
       const std::string key = cat("clouds[", i, "]");
-      if (!entries[i] || !entries[i]["pose"]) {
-        in.fail(entries[i] ? entries[i] : root, key + ".pose",
+      if (!listed(i).IsMap() || !listed(i)["pose"]) {
+        in.fail(listed(i).IsMap() ? listed(i) : root, key + ".pose",
                 cat("missing: cloud ", manifest.clouds[i].file.filename().string(),
                     " has no pose (give a pose per cloud, or a trajectory)"));
       }
-      manifest.clouds[i].T_world_cloud = in.rigid(entries[i]["pose"], key + ".pose");
+      manifest.clouds[i].T_world_cloud = in.rigid(listed(i)["pose"], key + ".pose");
     }
   }
 
