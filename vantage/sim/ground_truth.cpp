@@ -212,7 +212,7 @@ bool overlaps_grid(const Eigen::AlignedBox3d& box, const GridSpec& grid) {
 /// Up to kMaxProbePoints points of the surface inside a cell, found by short probe rays across
 /// the cell along each axis, both ways, on a 3 x 3 lattice of lines. Probes start a hair outside
 /// the cell so that a face lying on its boundary is found too.
-constexpr std::size_t kMaxProbePoints = 8;
+constexpr std::size_t kMaxProbePoints = 4;
 
 std::vector<Eigen::Vector3d> surface_points(const World& world, const GridSpec& grid,
                                             const Index3& cell) {
@@ -321,21 +321,23 @@ std::vector<std::uint32_t> observable_cells(const World& world, const GridSpec& 
     reach.push_back(r + grid.resolution);
   }
   const double nudge = grid.resolution * 1e-4;
+  // NOTE: the ray stops this short of p: far more than the float rounding of Embree's hits, far
+  // less than any feature of a scene.
+  const double clearance = grid.resolution * 1e-3;
   std::vector<std::uint8_t> seen(cells.size(), 0);
 
-  // Whether one viewpoint's ray to surface point p first hits the surface inside `cell`.
+  // Whether one viewpoint sees surface point p of `cell`: p lies in one of its frusta and nothing
+  // lies on the ray before p, so that the ray's first hit is p.
   auto sees = [&](const Viewpoint& v, const Index3& cell, const Eigen::Vector3d& p) {
     for (const Frustum& f : v.frusta) {
       if (!f.contains(p)) continue;
       const Eigen::Vector3d o = f.origin();
-      const Eigen::Vector3d dir = (p - o).normalized();
-      const auto t = world.cast(o, dir, (p - o).norm() + grid.resolution);
-      if (!t) continue;
-      // NOTE: the hit is nudged into the surface, so that a face lying exactly on a cell boundary
+      const double distance = (p - o).norm();
+      const Eigen::Vector3d dir = (p - o) / distance;
+      // NOTE: a hit is nudged into the surface, so that a face lying exactly on a cell boundary
       // belongs to the solid's cell, as the voxelization has it.
-      if (grid.lattice_index(o + (*t + nudge) * dir) == cell && f.contains(o + *t * dir)) {
-        return true;
-      }
+      if (grid.lattice_index(p + nudge * dir) != cell) continue;
+      if (!world.occluded(o, dir, distance - clearance)) return true;
     }
     return false;
   };

@@ -140,6 +140,32 @@ std::optional<double> World::cast(const Eigen::Vector3d& origin, const Eigen::Ve
   return static_cast<double>(t);
 }
 
+bool World::occluded(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                     double distance) const {
+  const double n = direction.norm();
+  if (!(n > 0.0) || !origin.allFinite() || !direction.allFinite() || !(distance >= 0.0)) {
+    throw std::invalid_argument(
+        "World::occluded needs a finite origin, a non-zero direction and distance >= 0");
+  }
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay ray{};
+  ray.org_x = static_cast<float>(origin.x());
+  ray.org_y = static_cast<float>(origin.y());
+  ray.org_z = static_cast<float>(origin.z());
+  const Eigen::Vector3d d = direction / n;
+  ray.dir_x = static_cast<float>(d.x());
+  ray.dir_y = static_cast<float>(d.y());
+  ray.dir_z = static_cast<float>(d.z());
+  ray.tnear = 0.0f;
+  ray.tfar = static_cast<float>(std::min(distance, 1e30));
+  ray.mask = 0xFFFFFFFFu;
+  ray.flags = 0;
+  rtcOccluded1(embree_->scene, &context, &ray);
+  // NOTE: Embree marks an occluded ray by setting tfar to -inf.
+  return ray.tfar < 0.0f;
+}
+
 Eigen::Isometry3d World::noisy_pose(const Eigen::Isometry3d& T_world_sensor,
                                     std::uint64_t seed) const {
   const PoseNoise& noise = scene_.pose_noise;

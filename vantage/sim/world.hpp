@@ -87,6 +87,10 @@ class World {
   std::optional<double> cast(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
                              double max_range) const;
 
+  /// Whether any surface lies on the ray within [0, distance] (cheaper than cast) [m].
+  bool occluded(const Eigen::Vector3d& origin, const Eigen::Vector3d& direction,
+                double distance) const;
+
   /// The true pose with the scene's pose noise for `seed` applied (itself when noise is off).
   Eigen::Isometry3d noisy_pose(const Eigen::Isometry3d& T_world_sensor, std::uint64_t seed) const;
 
