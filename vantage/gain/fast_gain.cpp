@@ -117,36 +117,257 @@ const GainMap::Value& GainMap::value(std::size_t i) const {
 namespace {
 
 // ---------------------------------------------------------------------------------------------
+// What the rays read: per code the cell's occupancy and class; per block of kBlock^3 cells its
+// code when all its cells share one, and how far around it every block does too.
+
+constexpr int kBlockShift = 2;
+constexpr int kBlock = 1 << kBlockShift;
+constexpr std::uint16_t kMixed = 0xffff;
+
+/// Cells of the exact ray replayed before a credited cell (docs/fast-gain.md).
+constexpr int kReplayCells = 8;
+/// States kept along a ray for the replays, a power of two above kReplayCells.
+constexpr int kHistory = 16;
+/// A ray jumps a uniform region only once its state lies this close to the region's steady state.
+constexpr double kSteadyTolerance = 1e-5;
+
+struct Code {
+  double p, q;  // occupancy and 1 - p
+  double entropy;
+  CellState state;
+};
+
+struct Blocks {
+  Index3 dims;
+  std::vector<std::uint16_t> code;       // the code all cells share, or kMixed
+  std::vector<std::uint8_t> radius;      // the cube of blocks within this distance shares `code`
+  std::vector<std::uint8_t> unobserved;  // the block holds an unobserved cell
+
+  std::size_t index(const Index3& cell) const {
+    return static_cast<std::size_t>(cell.x() >> kBlockShift) +
+           static_cast<std::size_t>(dims.x()) *
+               (static_cast<std::size_t>(cell.y() >> kBlockShift) +
+                static_cast<std::size_t>(dims.y()) *
+                    static_cast<std::size_t>(cell.z() >> kBlockShift));
+  }
+};
+
+template <typename CodeT>
+Blocks summarize_blocks(const GridSpec& spec, const CodeT* codes, const std::vector<Code>& table) {
+  Blocks blocks;
+  blocks.dims = (spec.dims.array() + (kBlock - 1)) / kBlock;
+  const Index3& bd = blocks.dims;
+  const std::size_t n = static_cast<std::size_t>(bd.x()) * bd.y() * bd.z();
+  blocks.code.assign(n, kMixed);
+  blocks.radius.assign(n, 0);
+  blocks.unobserved.assign(n, 0);
+  tbb::parallel_for(0, bd.z(), [&](int bz) {
+    for (int by = 0; by < bd.y(); ++by) {
+      for (int bx = 0; bx < bd.x(); ++bx) {
+        const Index3 lo(bx * kBlock, by * kBlock, bz * kBlock);
+        const Index3 hi = (lo.array() + kBlock).min(spec.dims.array());
+        const std::size_t first = spec.linear(lo);
+        const auto code = static_cast<std::uint32_t>(codes[first]);
+        bool uniform = code < kMixed;
+        bool unobserved = false;
+        for (int z = lo.z(); z < hi.z(); ++z) {
+          for (int y = lo.y(); y < hi.y(); ++y) {
+            const std::size_t row = spec.linear(Index3(lo.x(), y, z));
+            for (int x = 0; x < hi.x() - lo.x(); ++x) {
+              const auto c = codes[row + static_cast<std::size_t>(x)];
+              uniform = uniform && c == codes[first];
+              unobserved = unobserved || table[c].state == CellState::kUnobserved;
+            }
+          }
+        }
+        const std::size_t b =
+            static_cast<std::size_t>(bx) +
+            bd.x() * (static_cast<std::size_t>(by) + bd.y() * static_cast<std::size_t>(bz));
+        if (uniform) blocks.code[b] = static_cast<std::uint16_t>(code);
+        blocks.unobserved[b] = unobserved ? 1 : 0;
+      }
+    }
+  });
+  // A block is on a border when it is mixed or a neighbour holds another code. The radius is the
+  // chessboard distance to the nearest border block (two chamfer passes, 26 neighbours): all
+  // blocks within it share the block's code, because blocks off the border share their
+  // neighbours' codes.
+  constexpr std::uint8_t kFar = 255;
+  std::vector<std::uint8_t> dist(n, kFar);
+  auto at = [&](int x, int y, int z) {
+    return static_cast<std::size_t>(x) +
+           bd.x() * (static_cast<std::size_t>(y) + bd.y() * static_cast<std::size_t>(z));
+  };
+  for (int z = 0; z < bd.z(); ++z) {
+    for (int y = 0; y < bd.y(); ++y) {
+      for (int x = 0; x < bd.x(); ++x) {
+        const std::uint16_t c = blocks.code[at(x, y, z)];
+        bool border = c == kMixed;
+        for (int dz = -1; dz <= 1 && !border; ++dz) {
+          for (int dy = -1; dy <= 1 && !border; ++dy) {
+            for (int dx = -1; dx <= 1 && !border; ++dx) {
+              const int nx = x + dx, ny = y + dy, nz = z + dz;
+              if (nx < 0 || ny < 0 || nz < 0 || nx >= bd.x() || ny >= bd.y() || nz >= bd.z()) {
+                continue;
+              }
+              border = blocks.code[at(nx, ny, nz)] != c;
+            }
+          }
+        }
+        if (border) dist[at(x, y, z)] = 0;
+      }
+    }
+  }
+  for (const int dir : {1, -1}) {
+    const int z0 = dir > 0 ? 0 : bd.z() - 1, y0 = dir > 0 ? 0 : bd.y() - 1,
+              x0 = dir > 0 ? 0 : bd.x() - 1;
+    for (int z = z0; z >= 0 && z < bd.z(); z += dir) {
+      for (int y = y0; y >= 0 && y < bd.y(); y += dir) {
+        for (int x = x0; x >= 0 && x < bd.x(); x += dir) {
+          std::uint8_t& d = dist[at(x, y, z)];
+          for (int dz = -1; dz <= 1; ++dz) {
+            for (int dy = -1; dy <= 1; ++dy) {
+              for (int dx = -1; dx <= 1; ++dx) {
+                // Only the neighbours this pass has already visited.
+                const int order = dir * (dz * 9 + dy * 3 + dx);
+                if (order >= 0) continue;
+                const int nx = x + dx, ny = y + dy, nz = z + dz;
+                if (nx < 0 || ny < 0 || nz < 0 || nx >= bd.x() || ny >= bd.y() || nz >= bd.z()) {
+                  continue;
+                }
+                const std::uint8_t nd = dist[at(nx, ny, nz)];
+                if (nd < kFar && nd + 1 < d) d = static_cast<std::uint8_t>(nd + 1);
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    blocks.radius[i] = blocks.code[i] == kMixed ? 0 : dist[i];
+  }
+  return blocks;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Rays
 
-/// How one view's rays are laid out: a pinhole image whose pixel (col, row) has its ray through
-/// u = u0 + (col + 0.5) du, v = v0 + (row + 0.5) du on the plane x = 1 of the sensor frame. The
-/// window is the field of view cut to the grid's image.
-struct ViewRays {
-  const Frustum* view = nullptr;
-  Eigen::Matrix3d R;  // world <- sensor rotation
-  Eigen::Vector3d origin;
+/// Views share rays when they share an origin; a group holds at most this many.
+constexpr int kMaxGroup = 8;
+/// A group's pinhole image reaches at most this far off its axis (tan 70 deg).
+constexpr double kMaxImageTan = 2.7474774194546216;
+
+/// The rays of views that share an origin: a pinhole image in the group's frame whose pixel
+/// (col, row) has its ray through u = u0 + (col + 0.5) du, v = v0 + (row + 0.5) du on the plane
+/// x = 1. The window covers every member's field of view, cut to the grid's image.
+struct RayGroup {
+  std::vector<std::size_t> members;  // view indices
+  std::vector<const Frustum*> views;
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();   // world <- group frame
+  Eigen::Matrix3d Rt = Eigen::Matrix3d::Identity();  // group frame <- world
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();
   double u0 = 0, v0 = 0, du = 1;
   int cols = 0, rows = 0;
   double reach = 0;  // farthest distance a credited cell's point can lie from the origin [m]
-  Index3 origin_cell;
+  Index3 origin_cell = Index3::Zero();
   bool origin_inside = false;
 };
 
-ViewRays lay_out_rays(const GridSpec& spec, const Frustum& view, double ray_spacing) {
-  ViewRays rays;
-  rays.view = &view;
-  rays.R = view.T_world_sensor().linear();
-  rays.origin = view.origin();
+/// The image corners (u, v) of a view's field of view in the frame `Rt`; false when one lies
+/// too far off the axis.
+bool fov_corners(const Frustum& view, const Eigen::Matrix3d& Rt, double& u_lo, double& u_hi,
+                 double& v_lo, double& v_hi) {
+  const double th = std::tan(view.fov().h_fov / 2.0), tv = std::tan(view.fov().v_fov / 2.0);
+  const Eigen::Matrix3d R = Rt * view.T_world_sensor().linear();
+  for (const double sy : {-1.0, 1.0}) {
+    for (const double sz : {-1.0, 1.0}) {
+      const Eigen::Vector3d d = R * Eigen::Vector3d(1.0, sy * th, sz * tv);
+      if (d.x() <= 0.0) return false;
+      const double u = d.y() / d.x(), v = d.z() / d.x();
+      if (std::abs(u) > kMaxImageTan || std::abs(v) > kMaxImageTan) return false;
+      u_lo = std::min(u_lo, u);
+      u_hi = std::max(u_hi, u);
+      v_lo = std::min(v_lo, v);
+      v_hi = std::max(v_hi, v);
+    }
+  }
+  return true;
+}
+
+/// The frame looking along the mean of the members' axes.
+Eigen::Matrix3d group_frame(std::span<const Frustum* const> views) {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero(), z = Eigen::Vector3d::Zero();
+  for (const Frustum* v : views) {
+    x += v->T_world_sensor().linear().col(0);
+    z += v->T_world_sensor().linear().col(2);
+  }
+  if (x.norm() < 1e-9) return views.front()->T_world_sensor().linear();
+  x.normalize();
+  z -= z.dot(x) * x;
+  if (z.norm() < 1e-9) return views.front()->T_world_sensor().linear();
+  z.normalize();
+  Eigen::Matrix3d R;
+  R.col(0) = x;
+  R.col(1) = z.cross(x);
+  R.col(2) = z;
+  return R;
+}
+
+/// Whether the views fit one pinhole image in their mean frame.
+bool fits(std::span<const Frustum* const> views) {
+  const Eigen::Matrix3d Rt = group_frame(views).transpose();
+  double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
+  for (const Frustum* v : views) {
+    if (!fov_corners(*v, Rt, u_lo, u_hi, v_lo, v_hi)) return false;
+  }
+  return true;
+}
+
+/// Views grouped by origin, in order of first appearance.
+std::vector<RayGroup> group_views(std::span<const Frustum> views) {
+  std::vector<RayGroup> groups;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    bool placed = false;
+    for (RayGroup& g : groups) {
+      if (g.members.size() >= static_cast<std::size_t>(kMaxGroup) ||
+          g.views.front()->origin() != views[i].origin() ||
+          g.views.front()->fov().max_range != views[i].fov().max_range) {
+        continue;
+      }
+      std::vector<const Frustum*> trial = g.views;
+      trial.push_back(&views[i]);
+      if (!fits(trial)) continue;
+      g.views = std::move(trial);
+      g.members.push_back(i);
+      placed = true;
+      break;
+    }
+    if (!placed) {
+      RayGroup g;
+      g.members = {i};
+      g.views = {&views[i]};
+      groups.push_back(std::move(g));
+    }
+  }
+  return groups;
+}
+
+void lay_out_rays(const GridSpec& spec, double ray_spacing, RayGroup& rays) {
+  rays.R = group_frame(rays.views);
+  rays.Rt = rays.R.transpose();
+  rays.origin = rays.views.front()->origin();
   rays.origin_cell = spec.lattice_index(rays.origin);
   rays.origin_inside = spec.contains(rays.origin_cell);
-  const SensorFov& fov = view.fov();
-  const double tan_h = std::tan(fov.h_fov / 2.0);
-  const double tan_v = std::tan(fov.v_fov / 2.0);
+  double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
+  double max_range = 0.0;
+  for (const Frustum* v : rays.views) {
+    fov_corners(*v, rays.Rt, u_lo, u_hi, v_lo, v_hi);
+    max_range = std::max(max_range, v->fov().max_range);
+  }
 
-  // The grid's corners in the sensor frame: the deepest one sets the ray pitch, and when all lie
+  // The grid's corners in the group frame: the deepest one sets the ray pitch, and when all lie
   // in front of the sensor their image bounds the window.
-  double u_lo = -tan_h, u_hi = tan_h, v_lo = -tan_v, v_hi = tan_v;
   double depth = 0.0;
   bool all_in_front = true;
   double cu_lo = 1e300, cu_hi = -1e300, cv_lo = 1e300, cv_hi = -1e300;
@@ -154,7 +375,7 @@ ViewRays lay_out_rays(const GridSpec& spec, const Frustum& view, double ray_spac
   for (int k = 0; k < 8; ++k) {
     const Eigen::Vector3d corner((k & 1) ? hi.x() : lo.x(), (k & 2) ? hi.y() : lo.y(),
                                  (k & 4) ? hi.z() : lo.z());
-    const Eigen::Vector3d p = rays.R.transpose() * (corner - rays.origin);
+    const Eigen::Vector3d p = rays.Rt * (corner - rays.origin);
     depth = std::max(depth, p.x());
     if (p.x() <= 1e-9) {
       all_in_front = false;
@@ -171,8 +392,8 @@ ViewRays lay_out_rays(const GridSpec& spec, const Frustum& view, double ray_spac
     v_lo = std::max(v_lo, cv_lo);
     v_hi = std::min(v_hi, cv_hi);
   }
-  depth = std::min(depth, fov.max_range);
-  if (depth <= 0.0 || u_hi <= u_lo || v_hi <= v_lo) return rays;  // no rays
+  depth = std::min(depth, max_range);
+  if (depth <= 0.0 || u_hi <= u_lo || v_hi <= v_lo) return;  // no rays
 
   // NOTE: at depth x neighbouring rays lie x * du apart; a cell's inscribed ball has radius
   // res / 2, and the ray nearest a cell's centre passes within x * du / sqrt(2) of it. So
@@ -182,57 +403,157 @@ ViewRays lay_out_rays(const GridSpec& spec, const Frustum& view, double ray_spac
   rays.v0 = v_lo;
   rays.cols = static_cast<int>(std::ceil((u_hi - u_lo) / rays.du));
   rays.rows = static_cast<int>(std::ceil((v_hi - v_lo) / rays.du));
-  rays.reach = fov.max_range + spec.resolution * 0.8660254037844386;
-  return rays;
+  rays.reach = max_range + spec.resolution * 0.8660254037844386;
 }
 
-/// The pixel that owns a point: the one whose footprint holds the point's image.
-struct Pixel {
-  int col, row;
-};
-inline Pixel owner(const ViewRays& rays, const Eigen::Vector3d& p_world) {
-  const Eigen::Vector3d p = rays.R.transpose() * (p_world - rays.origin);
-  const double u = (p.y() / p.x() - rays.u0) / rays.du;
-  const double v = (p.z() / p.x() - rays.v0) / rays.du;
-  return {std::clamp(static_cast<int>(std::floor(u)), 0, rays.cols - 1),
-          std::clamp(static_cast<int>(std::floor(v)), 0, rays.rows - 1)};
+/// Rays are cast by tiles of kTile x kTile pixels, and only in tiles whose pixels may own an
+/// unobserved cell.
+constexpr int kTile = 8;
+
+/// Marks the tiles of a group's image that the image of some block holding an unobserved cell
+/// touches: a credited cell lies in its owner's pixel, so rays elsewhere cannot credit anything.
+std::vector<std::uint8_t> live_tiles(const GridSpec& spec, const Blocks& blocks,
+                                     const RayGroup& rays) {
+  const int tiles_x = (rays.cols + kTile - 1) / kTile, tiles_y = (rays.rows + kTile - 1) / kTile;
+  std::vector<std::uint8_t> live(static_cast<std::size_t>(tiles_x) * tiles_y, 0);
+  if (live.empty()) return live;
+  // Boxes of 2 x 2 x 2 blocks keep the projections few.
+  const Index3 bd = blocks.dims;
+  const double edge = kBlock * spec.resolution;
+  for (int z = 0; z < bd.z(); z += 2) {
+    for (int y = 0; y < bd.y(); y += 2) {
+      for (int x = 0; x < bd.x(); x += 2) {
+        bool any = false;
+        for (int k = 0; k < 8 && !any; ++k) {
+          const int bx = x + (k & 1), by = y + ((k >> 1) & 1), bz = z + ((k >> 2) & 1);
+          if (bx >= bd.x() || by >= bd.y() || bz >= bd.z()) continue;
+          any = blocks.unobserved[static_cast<std::size_t>(bx) +
+                                  bd.x() * (static_cast<std::size_t>(by) +
+                                            bd.y() * static_cast<std::size_t>(bz))] != 0;
+        }
+        if (!any) continue;
+        const Eigen::Vector3d lo = spec.origin + Eigen::Vector3d(x, y, z) * edge;
+        double c_lo = 1e300, c_hi = -1e300, r_lo = 1e300, r_hi = -1e300;
+        for (int k = 0; k < 8; ++k) {
+          const Eigen::Vector3d corner =
+              lo + 2.0 * edge * Eigen::Vector3d(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+          const Eigen::Vector3d p = rays.Rt * (corner - rays.origin);
+          if (p.x() <= 1e-9) {  // too close to call: every tile
+            std::fill(live.begin(), live.end(), std::uint8_t{1});
+            return live;
+          }
+          const double u = (p.y() / p.x() - rays.u0) / rays.du;
+          const double v = (p.z() / p.x() - rays.v0) / rays.du;
+          c_lo = std::min(c_lo, u);
+          c_hi = std::max(c_hi, u);
+          r_lo = std::min(r_lo, v);
+          r_hi = std::max(r_hi, v);
+        }
+        if (c_hi < -1.0 || c_lo > rays.cols + 1.0 || r_hi < -1.0 || r_lo > rays.rows + 1.0) {
+          continue;
+        }
+        const auto tile = [](double pixel, int n) {
+          return std::clamp(static_cast<int>(std::floor(pixel)), 0, n - 1) / kTile;
+        };
+        const int tx0 = tile(c_lo - 1.0, rays.cols), tx1 = tile(c_hi + 1.0, rays.cols);
+        const int ty0 = tile(r_lo - 1.0, rays.rows), ty1 = tile(r_hi + 1.0, rays.rows);
+        for (int ty = ty0; ty <= ty1; ++ty) {
+          std::fill_n(live.begin() + static_cast<std::ptrdiff_t>(ty) * tiles_x + tx0, tx1 - tx0 + 1,
+                      std::uint8_t{1});
+        }
+      }
+    }
+  }
+  return live;
 }
 
-/// The model's state where a ray enters the grid, as a table: the free cells before the entry
-/// all have occupancy p_min (MODEL.md), so the state depends only on how many there were.
-struct EntryTable {
-  EntryTable(const RayModel& model, double p_min, int max_cells)
-      : prefix(model, p_min, std::max(max_cells, 1)) {}
-  UniformPrefix prefix;
+/// Everything the rays of one evaluation share.
+struct Shared {
+  const GainMap* map = nullptr;
+  const GridSpec* spec = nullptr;
+  const Code* codes = nullptr;
+  Blocks blocks;
+  std::vector<double> t;              // a^m
+  std::vector<detail::Odds> outside;  // outside[k]: the state after k cells of p_min, k >= 1
+  std::vector<std::vector<detail::Odds>> steady;  // per code, the state after m + 1 cells of it
+  double p_min = 0.12;
+  double epsilon = 0.0;
+  bool greedy = false;
 };
 
-constexpr int kHistory = 64;  // states kept along a ray, a power of two
-/// Cells of the exact ray replayed before a credited cell (docs/fast-gain.md).
-constexpr int kReplayCells = 8;
-
-/// One ray's contribution.
+/// One ray's contribution to each member of its group.
 struct RaySum {
-  double gain = 0.0;
-  std::size_t targets = 0;
+  double gain[kMaxGroup] = {};
+  std::size_t targets[kMaxGroup] = {};
+
+  void add(const RaySum& o, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      gain[i] += o.gain[i];
+      targets[i] += o.targets[i];
+    }
+  }
 };
 
-template <typename Code, bool kGreedy>
-RaySum cast_ray(const GainMap& map, const Code* codes, const ViewRays& rays,
-                const UniformPrefix& entry, const GainConfig& config, int col, int row) {
-  RaySum sum;
-  const GridSpec& spec = map.spec();
-  const GainMap::Value* values = map.values().data();
-  const Eigen::Vector3d dir = rays.R * Eigen::Vector3d(1.0, rays.u0 + (col + 0.5) * rays.du,
-                                                       rays.v0 + (row + 0.5) * rays.du);
-  const Eigen::Vector3d& o = rays.origin;
+/// An exact Amanatides–Woo walk along o + s * dir between two cells, with m counted from the
+/// origin's cell.
+struct Walk {
+  Index3 cell;
+  std::ptrdiff_t linear = 0;
+  int m = 0;
+  double t_max[3], t_delta[3];
+  int step[3], remaining[3];
+  std::ptrdiff_t stride[3];
 
-  // Clip the ray to the grid's box and to the range a credited cell can reach.
-  double s_in = 0.0;
-  double s_out = rays.reach / dir.norm();
+  /// Starts in `cell`, which the ray crosses, and ends in `last`.
+  void start(const GridSpec& spec, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+             const Index3& first, const Index3& last, const Index3& origin_cell) {
+    cell = first;
+    const std::ptrdiff_t strides[3] = {1, spec.dims.x(),
+                                       static_cast<std::ptrdiff_t>(spec.dims.x()) * spec.dims.y()};
+    for (int a = 0; a < 3; ++a) {
+      step[a] = dir[a] > 0.0 ? 1 : -1;
+      stride[a] = step[a] * strides[a];
+      remaining[a] = std::max(0, (last[a] - cell[a]) * step[a]);
+      if (dir[a] == 0.0 || remaining[a] == 0) {
+        t_max[a] = std::numeric_limits<double>::infinity();
+        t_delta[a] = 0.0;
+        remaining[a] = 0;
+        continue;
+      }
+      t_delta[a] = spec.resolution / std::abs(dir[a]);
+      const double boundary = spec.origin[a] + (cell[a] + (step[a] > 0 ? 1 : 0)) * spec.resolution;
+      t_max[a] = (boundary - o[a]) / dir[a];
+    }
+    m = (cell - origin_cell).cwiseAbs().sum();
+    linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
+  }
+
+  /// Moves to the next cell; false at the end.
+  bool advance() {
+    const int a01 = t_max[1] < t_max[0] ? 1 : 0;
+    const int axis = t_max[2] < t_max[a01] ? 2 : a01;
+    if (remaining[axis] == 0) return false;  // every t_max is infinite
+    cell[axis] += step[axis];
+    linear += stride[axis];
+    ++m;
+    if (--remaining[axis] == 0) {
+      t_max[axis] = std::numeric_limits<double>::infinity();
+    } else {
+      t_max[axis] += t_delta[axis];
+    }
+    return true;
+  }
+};
+
+/// The ray parameter range [s_in, s_out] inside the grid's box, clipped to [0, s_max].
+bool clip_to_grid(const GridSpec& spec, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
+                  double s_max, double& s_in, double& s_out) {
+  s_in = 0.0;
+  s_out = s_max;
   const Eigen::Vector3d lo = spec.origin, hi = spec.max_corner();
   for (int a = 0; a < 3; ++a) {
     if (dir[a] == 0.0) {
-      if (o[a] < lo[a] || o[a] >= hi[a]) return sum;
+      if (o[a] < lo[a] || o[a] >= hi[a]) return false;
       continue;
     }
     double t0 = (lo[a] - o[a]) / dir[a];
@@ -241,176 +562,272 @@ RaySum cast_ray(const GainMap& map, const Code* codes, const ViewRays& rays,
     s_in = std::max(s_in, t0);
     s_out = std::min(s_out, t1);
   }
-  if (s_in >= s_out) return sum;
+  return s_in < s_out;
+}
 
-  const Index3 clamp_hi = spec.dims - Index3::Ones();
-  Index3 cell =
-      rays.origin_inside
-          ? rays.origin_cell
-          : spec.lattice_index(o + s_in * dir).cwiseMax(Index3::Zero()).cwiseMin(clamp_hi);
-  const Index3 last =
-      spec.lattice_index(o + s_out * dir).cwiseMax(Index3::Zero()).cwiseMin(clamp_hi);
-  Index3 step, remaining;
-  Eigen::Vector3d t_max, t_delta;
-  for (int a = 0; a < 3; ++a) {
-    step[a] = dir[a] > 0.0 ? 1 : -1;
-    remaining[a] = std::max(0, (last[a] - cell[a]) * step[a]);
-    if (dir[a] == 0.0 || remaining[a] == 0) {
-      t_max[a] = std::numeric_limits<double>::infinity();
-      t_delta[a] = 0.0;
-      remaining[a] = 0;
-      continue;
-    }
-    t_delta[a] = spec.resolution / std::abs(dir[a]);
-    const double boundary = spec.origin[a] + (cell[a] + (step[a] > 0 ? 1 : 0)) * spec.resolution;
-    t_max[a] = (boundary - o[a]) / dir[a];
+Index3 cell_at(const GridSpec& spec, const Eigen::Vector3d& p) {
+  return spec.lattice_index(p).cwiseMax(Index3::Zero()).cwiseMin(spec.dims - Index3::Ones());
+}
+
+/// A state along the carrying ray, kept for the replays.
+struct Kept {
+  detail::Odds odds;
+  double p;  // occupancy of the cell
+};
+
+/// The gain of a credited cell: the exact ray to its centre, replayed over its last cells from the
+/// state the carrying ray had there (docs/fast-gain.md).
+template <typename CodeT>
+double replay(const Shared& sh, const CodeT* codes, const RayGroup& rays, const Kept* history,
+              int ray_m0, const Index3& target, int m_target) {
+  const GridSpec& spec = *sh.spec;
+  const Eigen::Vector3d c = spec.center(target);
+  const Eigen::Vector3d delta = c - rays.origin;
+  const double cells = delta.cwiseAbs().sum() / spec.resolution;
+  double s_from = m_target <= kReplayCells ? 0.0 : std::max(0.0, 1.0 - kReplayCells / cells);
+  double s_in = 0.0, s_out = 1.0;
+  clip_to_grid(spec, rays.origin, delta, 1.0, s_in, s_out);
+  bool from_outside = false;
+  if (s_from < s_in) {  // the window starts before the grid: free cells, a table lookup
+    s_from = s_in;
+    from_outside = true;
   }
-  const int m0 = (cell - rays.origin_cell).cwiseAbs().sum();
-  const std::ptrdiff_t stride[3] = {1, spec.dims.x(),
-                                    static_cast<std::ptrdiff_t>(spec.dims.x()) * spec.dims.y()};
-  auto linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
-
-  const double eps = config.epsilon;
-  const detail::ModelStep model(config.alpha);
-  detail::Filter state;
-  detail::Filter history[kHistory];
-  constexpr int K = kReplayCells;
-  bool first = true;
-
-  // The gain of a credited cell: its last cells replayed along the exact ray to its centre, from
-  // the state this ray carried there (docs/fast-gain.md).
-  auto replay = [&](const Index3& target, int m_target) {
-    const Eigen::Vector3d c = spec.center(target);
-    const Eigen::Vector3d delta = c - o;
-    const double cells = delta.cwiseAbs().sum() / spec.resolution;
-    const double s = K >= m_target ? 0.0 : std::max(0.0, 1.0 - K / cells);
-    const Eigen::Vector3d from = o + s * delta;
-    const int m_from = (spec.lattice_index(from) - rays.origin_cell).cwiseAbs().sum();
-    const std::size_t target_linear = spec.linear(target);
-    detail::Filter st;
-    double g = 0.0;
-    bool start = true;
-    traverse(spec, from, c, [&](const Index3&, std::size_t lin, int m_rel) {
-      const GainMap::Value& val = values[codes[lin]];
-      const int m = m_from + m_rel;
-      if (start) {
-        start = false;
-        if (m == 0) {
-          st = detail::Filter::start(val.p);
-        } else {
-          const int prev = m - 1;
-          const bool outside = m_rel > 0 || !spec.contains(spec.lattice_index(from));
-          const detail::Filter before = (outside || prev < m0 || m_target - prev >= kHistory)
-                                            ? detail::Filter(entry.at(m))
-                                            : history[prev & (kHistory - 1)];
-          st = model.step(before, val.p);
-        }
-      } else {
-        st = model.step(st, val.p);
-      }
-      if (lin == target_linear) {
-        g = val.entropy - entropy_bits(st.q);
-        return false;
-      }
-      return true;
-    });
-    return g;
-  };
-
-  for (int m = m0;; ++m) {
-    const GainMap::Value& value = values[codes[linear]];
-    if constexpr (kGreedy) {
-      if (value.state == CellState::kUnobserved) {
-        const Eigen::Vector3d c = spec.center(cell);
-        const Pixel px = owner(rays, c);
-        if (px.col == col && px.row == row && rays.view->contains(c)) {
-          sum.gain += 1.0;
-          ++sum.targets;
-        }
-      } else if (value.state == CellState::kOccupied) {
-        break;  // every cell behind is hidden
-      }
+  Walk walk;
+  walk.start(spec, rays.origin, delta, cell_at(spec, rays.origin + s_from * delta), target,
+             rays.origin_cell);
+  detail::Odds odds;
+  double p_prev = sh.p_min;
+  bool first = walk.m == 0;
+  if (!first) {
+    const int before = walk.m - 1;
+    if (from_outside || before < ray_m0 || m_target - before >= kHistory) {
+      odds = sh.outside[static_cast<std::size_t>(walk.m)];
     } else {
-      if (first) {
-        state = m == 0 ? detail::Filter::start(value.p)
-                       : model.step(detail::Filter(entry.at(m)), value.p);
-        first = false;
+      const Kept& kept = history[before & (kHistory - 1)];
+      odds = kept.odds;
+      p_prev = kept.p;
+    }
+  }
+  const Code* code = nullptr;
+  for (;;) {
+    code = &sh.codes[codes[walk.linear]];
+    if (first) {
+      odds = detail::Odds(1.0, code->p);  // the origin's cell
+      first = false;
+    } else {
+      odds.step(sh.t[static_cast<std::size_t>(walk.m)], p_prev, code->p);
+    }
+    p_prev = code->p;
+    if (!walk.advance()) break;
+  }
+  return code->entropy - entropy_bits(odds.posterior());  // eq. (4)
+}
+
+/// The pixel that owns a point: the one whose footprint holds the point's image.
+inline bool owns(const RayGroup& rays, const Eigen::Vector3d& p_world, int col, int row) {
+  const Eigen::Vector3d p = rays.Rt * (p_world - rays.origin);
+  if (p.x() <= 0.0) return false;
+  const double inv = 1.0 / p.x();
+  const int c =
+      std::clamp(static_cast<int>(std::floor((p.y() * inv - rays.u0) / rays.du)), 0, rays.cols - 1);
+  const int r =
+      std::clamp(static_cast<int>(std::floor((p.z() * inv - rays.v0) / rays.du)), 0, rays.rows - 1);
+  return c == col && r == row;
+}
+
+template <typename CodeT>
+RaySum cast_ray(const Shared& sh, const CodeT* codes, const RayGroup& rays, int col, int row) {
+  RaySum sum;
+  const GridSpec& spec = *sh.spec;
+  const Eigen::Vector3d dir = rays.R * Eigen::Vector3d(1.0, rays.u0 + (col + 0.5) * rays.du,
+                                                       rays.v0 + (row + 0.5) * rays.du);
+  const Eigen::Vector3d& o = rays.origin;
+  double s_in, s_out;
+  if (!clip_to_grid(spec, o, dir, rays.reach / dir.norm(), s_in, s_out)) return sum;
+  const Index3 last = cell_at(spec, o + s_out * dir);
+  Walk walk;
+  walk.start(spec, o, dir, rays.origin_inside ? rays.origin_cell : cell_at(spec, o + s_in * dir),
+             last, rays.origin_cell);
+  const int m0 = walk.m;
+
+  const double eps = sh.epsilon;
+  Kept history[kHistory];
+  detail::Odds odds;
+  double p_prev = sh.p_min;
+  if (m0 > 0) odds = sh.outside[static_cast<std::size_t>(m0)];
+  bool blocked = false;  // greedy: an occupied cell was passed
+  for (;;) {
+    const auto code_index = static_cast<std::size_t>(codes[walk.linear]);
+    const Code& code = sh.codes[code_index];
+    if (sh.greedy) {
+      if (blocked) break;
+      if (code.state == CellState::kOccupied) blocked = true;
+    } else {
+      if (walk.m == 0) {
+        odds = detail::Odds(1.0, code.p);  // the origin's cell: v_0 = 1, q_0 = p_0
       } else {
-        state = model.step(state, value.p);
+        odds.step(sh.t[static_cast<std::size_t>(walk.m)], p_prev, code.p);
+        if ((walk.m & 7) == 0) odds.renormalize();
       }
-      history[m & (kHistory - 1)] = state;
-      if (value.state == CellState::kUnobserved) {
-        const Eigen::Vector3d c = spec.center(cell);
-        const Pixel px = owner(rays, c);
-        if (std::abs(state.q - 0.5) >= eps && px.col == col && px.row == row &&
-            rays.view->contains(c)) {
-          sum.gain += K > 0 ? replay(cell, m) : value.entropy - entropy_bits(state.q);  // eq. (4)
-          ++sum.targets;
+      p_prev = code.p;
+      history[walk.m & (kHistory - 1)] = {odds, code.p};
+    }
+    if (code.state == CellState::kUnobserved && (sh.greedy || !odds.pinned(eps))) {
+      const Eigen::Vector3d c = spec.center(walk.cell);
+      if (owns(rays, c, col, row)) {
+        double g = -1.0;  // replayed once, for the first member that holds the cell
+        for (std::size_t k = 0; k < rays.views.size(); ++k) {
+          if (!rays.views[k]->contains(c)) continue;
+          if (g < 0.0)
+            g = sh.greedy ? 1.0 : replay(sh, codes, rays, history, m0, walk.cell, walk.m);
+          sum.gain[k] += g;
+          ++sum.targets[k];
         }
       }
-      if (state.v < eps) break;  // hidden
     }
-    int axis = t_max[0] < t_max[1] ? 0 : 1;
-    if (t_max[2] < t_max[axis]) axis = 2;
-    if (remaining[axis] == 0) break;  // all axes exhausted: t_max is infinite everywhere
-    cell[axis] += step[axis];
-    linear += step[axis] * stride[axis];
-    if (--remaining[axis] == 0) {
-      t_max[axis] = std::numeric_limits<double>::infinity();
-    } else {
-      t_max[axis] += t_delta[axis];
+    if (!sh.greedy && odds.hidden(eps)) break;
+
+    // A uniform region the state has settled in predicts nothing new until it ends: jump to its
+    // last cell along the ray, with the state the table holds there.
+    const std::size_t block = sh.blocks.index(walk.cell);
+    if (sh.blocks.code[block] == code_index && code.state != CellState::kOccupied &&
+        (sh.greedy ? code.state == CellState::kFree
+                   : (code.state == CellState::kFree || odds.pinned(eps)))) {
+      const auto& steady = sh.steady[code_index];
+      bool settled = sh.greedy;
+      if (!settled && !steady.empty()) {
+        // |v - v_f| and |q - q_f| below the tolerance; f sums to 1 in both pairs.
+        const detail::Odds& f = steady[static_cast<std::size_t>(walk.m)];
+        settled = std::abs(odds.n * f.d - odds.d * f.n) < kSteadyTolerance * (odds.n + odds.d) &&
+                  std::abs(odds.a * f.b - odds.b * f.a) < kSteadyTolerance * (odds.a + odds.b);
+      }
+      if (settled) {
+        const int r = sh.blocks.radius[block];
+        double s_exit = s_out;
+        for (int a = 0; a < 3; ++a) {
+          if (dir[a] == 0.0) continue;
+          const int b = (walk.cell[a] >> kBlockShift) + (dir[a] > 0.0 ? r + 1 : -r);
+          const double plane =
+              spec.origin[a] + std::clamp(b * kBlock, 0, spec.dims[a]) * spec.resolution;
+          s_exit = std::min(s_exit, (plane - o[a]) / dir[a]);
+        }
+        const double s_land = s_exit - 1e-9 * (s_exit - s_in + 1.0);
+        Index3 land = cell_at(spec, o + s_land * dir);
+        // Stay within the uniform cube and never step back.
+        for (int a = 0; a < 3; ++a) {
+          land[a] = walk.step[a] > 0 ? std::clamp(land[a], walk.cell[a], last[a])
+                                     : std::clamp(land[a], last[a], walk.cell[a]);
+        }
+        const int m_land = (land - rays.origin_cell).cwiseAbs().sum();
+        if (m_land > walk.m + 1 && codes[spec.linear(land)] == code_index) {
+          walk.start(spec, o, dir, land, last, rays.origin_cell);
+          if (!sh.greedy) {
+            odds = steady[static_cast<std::size_t>(walk.m)];
+            for (int k = 0; k < kHistory; ++k) {
+              const int m = walk.m - k;
+              if (m < m0) break;
+              history[m & (kHistory - 1)] = {steady[static_cast<std::size_t>(m)], code.p};
+            }
+          }
+          continue;  // the landing cell is of the same code: no new contribution there
+        }
+      }
     }
+    if (!walk.advance()) break;
   }
   return sum;
 }
 
-template <typename Code>
+template <typename CodeT>
 std::vector<ViewGain> evaluate(const GainMap& map, std::span<const Frustum> views,
                                const GainConfig& config) {
   const GridSpec& spec = map.spec();
   const RayModel model(config.alpha);
-  std::vector<ViewRays> layouts;
-  layouts.reserve(views.size());
+  std::vector<RayGroup> groups = group_views(views);
   int max_cells = 1;
-  for (const Frustum& view : views) {
-    layouts.push_back(lay_out_rays(spec, view, config.ray_spacing));
-    max_cells = std::max(max_cells, max_ray_cells(spec, view.origin()));
+  for (RayGroup& g : groups) {
+    lay_out_rays(spec, config.ray_spacing, g);
+    max_cells = std::max(max_cells, max_ray_cells(spec, g.origin));
   }
-  const UniformPrefix entry(model, map.params().p_min, max_cells);
 
-  // One task per image row of every view; row sums are added per view in row order.
-  std::vector<std::size_t> first_row(views.size() + 1, 0);
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    first_row[i + 1] = first_row[i] + static_cast<std::size_t>(layouts[i].rows);
+  Shared sh;
+  sh.map = &map;
+  sh.spec = &spec;
+  sh.p_min = map.params().p_min;
+  sh.epsilon = config.epsilon;
+  sh.greedy = config.method == GainMethod::kGreedy;
+  std::vector<Code> code_table;
+  for (const GainMap::Value& v : map.values())
+    code_table.push_back({v.p, 1.0 - v.p, v.entropy, v.state});
+  sh.codes = code_table.data();
+  const CodeT* codes = map.codes<CodeT>();
+  sh.blocks = summarize_blocks(spec, codes, code_table);
+  sh.t.resize(static_cast<std::size_t>(max_cells) + 1);
+  sh.t[0] = 1.0;
+  for (std::size_t m = 1; m < sh.t.size(); ++m) sh.t[m] = sh.t[m - 1] * config.alpha;
+  {
+    const UniformPrefix outside(model, sh.p_min, max_cells + 1);
+    sh.outside.resize(static_cast<std::size_t>(max_cells) + 1);
+    for (int k = 1; k <= max_cells; ++k)
+      sh.outside[static_cast<std::size_t>(k)] = detail::Odds(outside.at(k));
+  }
+  // Steady states of the codes that fill whole blocks.
+  sh.steady.resize(code_table.size());
+  if (!sh.greedy) {
+    std::vector<bool> wanted(code_table.size(), false);
+    for (const std::uint16_t c : sh.blocks.code) {
+      if (c != kMixed && code_table[c].state != CellState::kOccupied) wanted[c] = true;
+    }
+    for (std::size_t c = 0; c < code_table.size(); ++c) {
+      if (!wanted[c]) continue;
+      const UniformPrefix run(model, code_table[c].p, max_cells + 1);
+      auto& table = sh.steady[c];
+      table.resize(static_cast<std::size_t>(max_cells) + 1);
+      for (int m = 0; m <= max_cells; ++m)
+        table[static_cast<std::size_t>(m)] = detail::Odds(run.at(m + 1));
+    }
+  }
+
+  std::vector<std::vector<std::uint8_t>> live(groups.size());
+  tbb::parallel_for(std::size_t{0}, groups.size(),
+                    [&](std::size_t g) { live[g] = live_tiles(spec, sh.blocks, groups[g]); });
+
+  // One task per image row of every group; row sums are added per view in row order.
+  std::vector<std::size_t> first_row(groups.size() + 1, 0);
+  for (std::size_t i = 0; i < groups.size(); ++i) {
+    first_row[i + 1] = first_row[i] + static_cast<std::size_t>(groups[i].rows);
   }
   std::vector<RaySum> row_sums(first_row.back());
-  const Code* codes = map.codes<Code>();
-  const bool greedy = config.method == GainMethod::kGreedy;
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, row_sums.size()), [&](const auto& range) {
     std::size_t view = static_cast<std::size_t>(
         std::upper_bound(first_row.begin(), first_row.end(), range.begin()) - first_row.begin() -
         1);
     for (std::size_t r = range.begin(); r != range.end(); ++r) {
       while (r >= first_row[view + 1]) ++view;
-      const ViewRays& rays = layouts[view];
+      const RayGroup& rays = groups[view];
       const int row = static_cast<int>(r - first_row[view]);
       RaySum sum;
+      const std::uint8_t* tiles = live[view].data() + static_cast<std::ptrdiff_t>(row / kTile) *
+                                                          ((rays.cols + kTile - 1) / kTile);
       for (int col = 0; col < rays.cols; ++col) {
-        const RaySum ray = greedy
-                               ? cast_ray<Code, true>(map, codes, rays, entry, config, col, row)
-                               : cast_ray<Code, false>(map, codes, rays, entry, config, col, row);
-        sum.gain += ray.gain;
-        sum.targets += ray.targets;
+        if (tiles[col / kTile] == 0) {
+          col += kTile - 1 - col % kTile;  // the rest of this tile
+          continue;
+        }
+        sum.add(cast_ray(sh, codes, rays, col, row), rays.members.size());
       }
       row_sums[r] = sum;
     }
   });
 
   std::vector<ViewGain> gains(views.size());
-  for (std::size_t i = 0; i < views.size(); ++i) {
+  for (std::size_t i = 0; i < groups.size(); ++i) {
     for (std::size_t r = first_row[i]; r < first_row[i + 1]; ++r) {
-      gains[i].gain += row_sums[r].gain;
-      gains[i].targets += row_sums[r].targets;
+      for (std::size_t k = 0; k < groups[i].members.size(); ++k) {
+        ViewGain& g = gains[groups[i].members[k]];
+        g.gain += row_sums[r].gain[k];
+        g.targets += row_sums[r].targets[k];
+      }
     }
   }
   return gains;

@@ -4,6 +4,7 @@
 /// every ray carrying the model's state (MODEL.md "One ray") along itself, and every unobserved
 /// cell credited once per view, by the ray that owns it.
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -105,6 +106,47 @@ class ModelStep {
 
  private:
   double alpha_;
+};
+
+/// The same model in odds form, without divisions: visibility v = n / (n + d) and posterior
+/// q = a / (a + b), each pair scaled freely. One step is a few multiply-adds, so a long ray costs
+/// no division per cell; renormalize() keeps the pairs in range.
+struct Odds {
+  double n = 1.0, d = 0.0;  ///< visibility odds
+  double a = 0.5, b = 0.5;  ///< occupancy odds
+
+  Odds() = default;
+  Odds(double v, double q) : n(v), d(1.0 - v), a(q), b(1.0 - q) {}
+  explicit Odds(const RayState& s) : Odds(s.visibility, s.posterior) {}
+
+  double visibility() const { return n / (n + d); }
+  double posterior() const { return a / (a + b); }
+
+  /// Folds in cell c_m: `t` = a^m, `p_prev` the occupancy of c_{m-1}, `p` that of c_m.
+  void step(double t, double p_prev, double p) {
+    const double n1 = (t * n + 0.1 * d) * (1.0 - p_prev);  // eqs. (5)-(7), (9)
+    const double d1 = ((1.0 - t) * n + 0.9 * d) * p_prev;
+    // tau = (2n + d) / 2(n + d) and 1 - tau = d / 2(n + d), eq. (15); the common factor cancels.
+    const double keep = 2.0 * n1 + d1;
+    const double a1 = (keep * a + d1 * b) * p;  // eqs. (12), (14)
+    const double b1 = (d1 * a + keep * b) * (1.0 - p);
+    n = n1;
+    d = d1;
+    a = a1;
+    b = b1;
+  }
+  /// Scales both pairs back to sum 1; call every few steps.
+  void renormalize() {
+    const double sv = 1.0 / (n + d), sq = 1.0 / (a + b);
+    n *= sv;
+    d *= sv;
+    a *= sq;
+    b *= sq;
+  }
+  /// v < epsilon.
+  bool hidden(double epsilon) const { return n < epsilon * (n + d); }
+  /// |q - 0.5| < epsilon.
+  bool pinned(double epsilon) const { return std::abs(a - b) < 2.0 * epsilon * (a + b); }
 };
 
 }  // namespace detail

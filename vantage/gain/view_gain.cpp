@@ -37,34 +37,48 @@ template <typename Cells>
 class ProbabilisticRay {
  public:
   ProbabilisticRay(const Cells& map, const Eigen::Vector3d& origin, double alpha, double epsilon)
-      : map_(map),
-        origin_(origin),
-        model_(alpha),
-        outside_(RayModel(alpha), map.params().p_min, max_ray_cells(map.spec(), origin)),
-        epsilon_(epsilon) {}
+      : map_(map), origin_(origin), epsilon_(epsilon) {
+    const int cells = max_ray_cells(map.spec(), origin);
+    const RayModel model(alpha);
+    const UniformPrefix outside(model, map.params().p_min, cells + 1);
+    outside_.resize(static_cast<std::size_t>(cells) + 1);
+    t_.resize(static_cast<std::size_t>(cells) + 1);
+    t_[0] = 1.0;
+    for (int k = 1; k <= cells; ++k) {
+      outside_[static_cast<std::size_t>(k)] = detail::Odds(outside.at(k));
+      t_[static_cast<std::size_t>(k)] = t_[static_cast<std::size_t>(k) - 1] * alpha;
+    }
+  }
 
   /// Gain of the target cell; 0 when the ray stops early (GainConfig::epsilon) before it.
   double gain(const Index3& target) const {
     const GridSpec& spec = map_.spec();
     const std::size_t target_linear = spec.linear(target);
-    detail::Filter state;
+    // NOTE: the model in odds form (detail::Odds): the same numbers as RayModel to rounding,
+    // without the two divisions per cell that would dominate a long ray.
+    detail::Odds state;
+    double p_prev = 0.0;
     double gain = 0.0;
     bool first = true;
     traverse(spec, origin_, spec.center(target), [&](const Index3&, std::size_t linear, int m) {
       const auto cell = map_.value(linear);
       if (!first) {
-        state = model_.step(state, cell.p);
+        state.step(t_[static_cast<std::size_t>(m)], p_prev, cell.p);
+        if ((m & 7) == 0) state.renormalize();
+      } else if (m == 0) {
+        state = detail::Odds(1.0, cell.p);  // the origin's cell: v_0 = 1, q_0 = p_0
       } else {
-        state = m == 0 ? detail::Filter::start(cell.p)
-                       : model_.step(detail::Filter(outside_.at(m)), cell.p);
-        first = false;
+        state = outside_[static_cast<std::size_t>(m)];  // the free cells before the grid
+        state.step(t_[static_cast<std::size_t>(m)], map_.params().p_min, cell.p);
       }
+      first = false;
+      p_prev = cell.p;
       if (linear == target_linear) {
-        gain = cell.entropy - entropy_bits(state.q);  // eq. (4)
+        gain = cell.entropy - entropy_bits(state.posterior());  // eq. (4)
         return false;
       }
       // The fast mode's early stop: a ray stops once it is hidden.
-      return !(state.v < epsilon_);
+      return !state.hidden(epsilon_);
     });
     return gain;
   }
@@ -72,9 +86,9 @@ class ProbabilisticRay {
  private:
   const Cells& map_;
   Eigen::Vector3d origin_;
-  detail::ModelStep model_;
-  UniformPrefix outside_;
   double epsilon_;
+  std::vector<detail::Odds> outside_;  // outside_[k]: the state after k free cells
+  std::vector<double> t_;              // a^m
 };
 
 /// Whether nothing occupied lies on the ray before the target (the simple greedy gain).

@@ -43,10 +43,11 @@ struct GainConfig {
   GainMethod method = GainMethod::kProbabilistic;
   GainEvaluation evaluation = GainEvaluation::kFast;  ///< used by evaluate_views
   double alpha = 0.997;                               ///< observability parameter a, in (0, 1]
-  /// Early stop of a ray, in [0, 0.5): a ray stops once its visibility falls below epsilon, or once
-  /// its posterior lies within epsilon of 0.5 in an unobserved cell. 0 never stops early and gives
-  /// the literal model of MODEL.md.
-  double epsilon = 1e-3;
+  /// Early stop, in [0, 0.5): a ray stops once its visibility falls below epsilon. In the fast
+  /// mode an unobserved cell whose posterior lies within epsilon of 0.5 ("pinned", gain below
+  /// 3 epsilon^2 bits) is not credited, and a pinned ray crosses uniform unobserved space in one
+  /// jump. 0 gives the literal model of MODEL.md.
+  double epsilon = 1e-6;
   /// Fast mode: spacing of neighbouring rays at the farthest cell in view [cells], in (0, 1].
   /// At most 1/sqrt(2) (the default) guarantees that every cell in view is crossed by the ray
   /// that owns it.
