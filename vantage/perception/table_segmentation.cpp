@@ -1,0 +1,227 @@
+#include "vantage/perception/table_segmentation.hpp"
+
+#include <pcl/ModelCoefficients.h>
+#include <pcl/PointIndices.h>
+#include <pcl/sample_consensus/method_types.h>
+#include <pcl/sample_consensus/model_types.h>
+#include <pcl/segmentation/sac_segmentation.h>
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+#include <stdexcept>
+
+#include "vantage/perception/detail/pcl_bridge.hpp"
+#include "vantage/perception/normals.hpp"
+#include "vantage/perception/voxel_filter.hpp"
+#include "vantage/util/text.hpp"
+
+namespace vantage::perception {
+namespace {
+
+/// One horizontal plane found by RANSAC, with its inliers (indices into the searched cloud).
+struct Plane {
+  Eigen::Vector4d coefficients;
+  std::vector<int> inliers;
+};
+
+double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  return a.x() * b.y() - a.y() * b.x();
+}
+
+/// Convex hull, counter-clockwise, without collinear points (Andrew's monotone chain).
+std::vector<Eigen::Vector2d> convex_hull(std::vector<Eigen::Vector2d> points) {
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  if (points.size() < 3) return points;
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {  // lower chain
+    while (k >= 2 && cross(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {  // upper chain
+    while (k >= lower && cross(hull[k - 1] - hull[k - 2], points[i] - hull[k - 2]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);  // the last point repeats the first
+  return hull;
+}
+
+/// Whether `p` lies inside the convex counter-clockwise polygon with every edge moved outward
+/// by `margin`.
+bool inside(const std::vector<Eigen::Vector2d>& hull,
+            const std::vector<Eigen::Vector2d>& unit_edges, const Eigen::Vector2d& p,
+            double margin) {
+  for (std::size_t e = 0; e < hull.size(); ++e) {
+    if (cross(unit_edges[e], p - hull[e]) < -margin) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void TableConfig::validate() const {
+  const auto fail = [](const char* field, const char* rule, double value) {
+    throw std::invalid_argument(cat("table.", field, " must be ", rule, ", got ", value));
+  };
+  const auto finite_at_least = [](double v, double low) { return std::isfinite(v) && v >= low; };
+  if (!finite_at_least(voxel_size, 0.0)) fail("voxel_size", ">= 0", voxel_size);
+  if (normal_neighbours < 0) fail("normal_neighbours", ">= 0", normal_neighbours);
+  if (normal_neighbours == 0 && !(normal_radius > 0.0 && std::isfinite(normal_radius))) {
+    fail("normal_radius", "> 0 when normal_neighbours is 0", normal_radius);
+  }
+  if (!(distance_threshold > 0.0 && std::isfinite(distance_threshold))) {
+    fail("distance_threshold", "> 0", distance_threshold);
+  }
+  if (!(max_angle > 0.0 && max_angle < std::numbers::pi / 2)) {
+    fail("max_angle", "in (0, pi/2) rad", max_angle);
+  }
+  if (!(normal_distance_weight >= 0.0 && normal_distance_weight <= 1.0)) {
+    fail("normal_distance_weight", "in [0, 1]", normal_distance_weight);
+  }
+  if (max_iterations < 1) fail("max_iterations", ">= 1", max_iterations);
+  if (min_inliers < 3) fail("min_inliers", ">= 3", static_cast<double>(min_inliers));
+  if (max_planes < 1) fail("max_planes", ">= 1", max_planes);
+  if (std::isnan(min_table_z) || std::isnan(max_table_z) || !(min_table_z <= max_table_z)) {
+    fail("max_table_z", ">= table.min_table_z", max_table_z);
+  }
+  if (!finite_at_least(min_height, 0.0)) fail("min_height", ">= 0", min_height);
+  if (!(max_height > min_height && std::isfinite(max_height))) {
+    fail("max_height", "> table.min_height", max_height);
+  }
+  if (!finite_at_least(margin, 0.0)) fail("margin", ">= 0", margin);
+  if (num_threads < 0) fail("num_threads", ">= 0", num_threads);
+}
+
+TableSegmentation segment_table(const PointCloud& points_world, const TableConfig& config) {
+  config.validate();
+  for (std::size_t i = 0; i < points_world.size(); ++i) {
+    if (!points_world[i].allFinite()) {
+      throw std::invalid_argument(cat("segment_table: point ", i, " is not finite"));
+    }
+  }
+  TableSegmentation result;
+  const PointCloud sample = voxel_downsample(points_world, config.voxel_size);
+  if (sample.size() < config.min_inliers) return result;
+
+  // Normals oriented up, toward a viewpoint high above the cloud (only their angle to +z is used).
+  Eigen::Vector3d top = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : sample) top += p;
+  top = top / static_cast<double>(sample.size()) + Eigen::Vector3d(0.0, 0.0, 1e3);
+  const std::vector<Eigen::Vector3d> normals =
+      estimate_normals(sample,
+                       {.k_neighbours = config.normal_neighbours,
+                        .radius = config.normal_radius,
+                        .num_threads = config.num_threads},
+                       top);
+
+  const pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = to_pcl(sample, "segment_table");
+  auto pcl_normals = std::make_shared<pcl::PointCloud<pcl::Normal>>();
+  auto remaining = std::make_shared<pcl::Indices>();
+  const double min_cos = std::cos(config.max_angle);
+  for (std::size_t i = 0; i < normals.size(); ++i) {
+    const Eigen::Vector3f n = normals[i].cast<float>();
+    pcl_normals->push_back(pcl::Normal(n.x(), n.y(), n.z()));
+    // NOTE: only points whose normal is within max_angle of vertical can lie on a horizontal
+    // surface; the rest (sides of objects, points without a normal, whose angle PCL would
+    // compare as NaN) are left out of the search, which cuts RANSAC's work several times over.
+    if (std::abs(normals[i].z()) >= min_cos) remaining->push_back(static_cast<int>(i));
+  }
+
+  std::vector<Plane> planes;
+  std::size_t most_inliers = 0;  // of an eligible plane so far
+  const auto eligible = [&](const Plane& plane) {
+    double z = 0.0;
+    for (const int i : plane.inliers) z += sample[static_cast<std::size_t>(i)].z();
+    z /= static_cast<double>(plane.inliers.size());
+    return z >= config.min_table_z && z <= config.max_table_z;
+  };
+  // NOTE: once fewer points remain than the largest eligible plane holds, no later plane can
+  // beat it, so the search stops: usually after the table, or the floor and then the table.
+  for (int k = 0; k < config.max_planes && remaining->size() >= config.min_inliers &&
+                  remaining->size() > most_inliers;
+       ++k) {
+    // NOTE: constructed with random = false, PCL seeds its sample consensus with the fixed seed
+    // 12345, and the default thread count (-1) keeps RANSAC serial: the search is repeatable.
+    pcl::SACSegmentationFromNormals<pcl::PointXYZ, pcl::Normal> sac(false);
+    sac.setModelType(pcl::SACMODEL_NORMAL_PARALLEL_PLANE);
+    sac.setMethodType(pcl::SAC_RANSAC);
+    sac.setAxis(Eigen::Vector3f::UnitZ());
+    sac.setEpsAngle(config.max_angle);
+    sac.setNormalDistanceWeight(config.normal_distance_weight);
+    sac.setDistanceThreshold(config.distance_threshold);
+    sac.setMaxIterations(config.max_iterations);
+    sac.setOptimizeCoefficients(true);
+    sac.setInputCloud(cloud);
+    sac.setInputNormals(pcl_normals);
+    sac.setIndices(remaining);
+    pcl::PointIndices inliers;
+    pcl::ModelCoefficients coefficients;
+    sac.segment(inliers, coefficients);
+    if (inliers.indices.size() < config.min_inliers || coefficients.values.size() != 4) break;
+
+    Plane plane;
+    for (int a = 0; a < 4; ++a)
+      plane.coefficients[a] = coefficients.values[static_cast<std::size_t>(a)];
+    plane.coefficients /= plane.coefficients.head<3>().norm();
+    if (plane.coefficients.z() < 0.0) plane.coefficients = -plane.coefficients;
+    plane.inliers.assign(inliers.indices.begin(), inliers.indices.end());
+    std::sort(plane.inliers.begin(), plane.inliers.end());
+    auto rest = std::make_shared<pcl::Indices>();
+    std::set_difference(remaining->begin(), remaining->end(), plane.inliers.begin(),
+                        plane.inliers.end(), std::back_inserter(*rest));
+    remaining = rest;
+    if (eligible(plane)) most_inliers = std::max(most_inliers, plane.inliers.size());
+    planes.push_back(std::move(plane));
+  }
+
+  // The table: the eligible plane with the most inliers, the first found on a tie.
+  const Plane* table = nullptr;
+  for (const Plane& plane : planes) {
+    if (eligible(plane) && (!table || plane.inliers.size() > table->inliers.size())) {
+      table = &plane;
+    }
+  }
+  if (!table) return result;
+
+  const Eigen::Vector3d n = table->coefficients.head<3>();
+  const double d = table->coefficients[3];
+  const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
+  std::vector<Eigen::Vector2d> projected;
+  projected.reserve(table->inliers.size());
+  for (const int i : table->inliers) {
+    const Eigen::Vector3d& p = sample[static_cast<std::size_t>(i)];
+    projected.emplace_back(u.dot(p), v.dot(p));
+  }
+  const std::vector<Eigen::Vector2d> hull = convex_hull(std::move(projected));
+  if (hull.size() < 3) return result;
+  std::vector<Eigen::Vector2d> unit_edges;
+  for (std::size_t e = 0; e < hull.size(); ++e) {
+    unit_edges.push_back((hull[(e + 1) % hull.size()] - hull[e]).normalized());
+  }
+
+  result.found = true;
+  result.plane = table->coefficients;
+  // (u, v, n) is right-handed with n up, so counter-clockwise in (u, v) is counter-clockwise
+  // seen from above.
+  for (const Eigen::Vector2d& q : hull) result.table_hull.push_back(q.x() * u + q.y() * v - d * n);
+  for (std::size_t i = 0; i < points_world.size(); ++i) {
+    const Eigen::Vector3d& p = points_world[i];
+    const double height = n.dot(p) + d;
+    const bool near_plane = std::abs(height) <= config.distance_threshold;
+    const bool above = height > config.min_height && height <= config.max_height;
+    if (!near_plane && !above) continue;
+    if (!inside(hull, unit_edges, {u.dot(p), v.dot(p)}, config.margin)) continue;
+    if (near_plane) ++result.table_inliers;
+    if (above) {
+      result.objects.push_back(p);
+      result.object_indices.push_back(i);
+    }
+  }
+  return result;
+}
+
+}  // namespace vantage::perception
