@@ -1,0 +1,105 @@
+// A short exploration end to end: what it records and writes, and that it is deterministic.
+
+#include "vantage/experiment/exploration.hpp"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "test_scene.hpp"
+#include "vantage/experiment/results.hpp"
+#include "vantage/io/octomap_io.hpp"
+#include "vantage/perception/cloud_io.hpp"
+
+namespace vantage {
+namespace {
+
+using testing::parse_csv;
+using testing::read_text;
+
+struct ShortRun {
+  ExplorationResult result;
+  std::string csv;
+};
+
+ShortRun short_run(int threads, const std::filesystem::path* dir = nullptr) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  ExplorationConfig config;
+  config.scans = 2;
+  config.seed = 7;
+  config.planner.gain.num_threads = threads;
+  config.mapper = default_mapper_config(scene);
+  config.mapper.integration.num_threads = threads;
+  Mapper mapper(scene.grid, config.mapper);
+  ShortRun run;
+  run.result = explore(scene, config, mapper);
+  run.csv = std::string(kScansCsvHeader) + "\n" +
+            scans_csv_rows({scene.name, config.planner.method, config.planner.gain.alpha, 0},
+                           run.result.scans);
+  if (dir != nullptr) write_run_files(*dir, scene, config, run.result, mapper);
+  return run;
+}
+
+TEST(Exploration, ShortRunRecordsConsistentFigures) {
+  const std::filesystem::path dir = testing::fresh_dir("explore");
+  const ShortRun run = short_run(0, &dir);
+  const auto& scans = run.result.scans;
+  ASSERT_EQ(scans.size(), 2u);
+  EXPECT_FALSE(scans[0].predicted_gain.has_value());
+  ASSERT_TRUE(scans[1].predicted_gain.has_value());
+  EXPECT_GT(*scans[1].predicted_gain, 0.0);
+  EXPECT_GT(run.result.observable_cells, 0u);
+
+  const std::size_t cells = 32u * 32u * 17u;
+  std::size_t previous = cells;
+  for (const ScanRecord& r : scans) {
+    EXPECT_LE(r.unobserved, previous) << "scan " << r.scan;  // never increases
+    // A cell can re-enter the unobserved band, so the actual gain is the drop plus re-entries.
+    EXPECT_EQ(r.actual_gain, previous - r.unobserved + r.reentered) << "scan " << r.scan;
+    EXPECT_GE(r.actual_gain, previous - r.unobserved);
+    EXPECT_GT(r.object_points, 0u);
+    EXPECT_LT(r.object_points, r.points);  // the table's points were segmented out
+    EXPECT_GE(r.coverage, 0.0);
+    EXPECT_LE(r.coverage, 1.0);
+    previous = r.unobserved;
+  }
+  EXPECT_GT(scans[1].coverage, scans[0].coverage);
+  EXPECT_GT(scans[1].pose_error_before, 0.0);  // the second pose was believed with noise
+
+  // The files parse and say the same.
+  const auto rows = parse_csv(read_text(dir / "scans.csv"));
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(read_text(dir / "scans.csv").substr(0, kScansCsvHeader.size()), kScansCsvHeader);
+  EXPECT_EQ(rows[2][4], "2");                                   // scan
+  EXPECT_EQ(rows[2][8], std::to_string(scans[1].actual_gain));  // actual_gain
+  EXPECT_EQ(rows[1][6], "");                                    // no prediction yet
+  const auto json = nlohmann::json::parse(read_text(dir / "run.json"));
+  EXPECT_EQ(json["scans"].size(), 2u);
+  EXPECT_EQ(json["config"]["method"], "probabilistic");
+  const OctomapImport map = read_octomap(dir / "map.bt", OctomapImportConfig{});
+  EXPECT_GT(map.known_voxels, 0u);
+  EXPECT_FALSE(read_point_cloud(dir / "cloud.pcd").empty());
+}
+
+TEST(Exploration, SameSeedSameCsvForOneAndTwoThreads) {
+  const ShortRun one = short_run(1);
+  const ShortRun two = short_run(2);
+  // plan_seconds is the one wall-clock column; every other figure must match exactly.
+  EXPECT_EQ(testing::without_timing(one.csv), testing::without_timing(two.csv));
+  EXPECT_EQ(one.result.scans[1].view, two.result.scans[1].view);
+}
+
+TEST(Exploration, RejectsBadSettings) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  ExplorationConfig config;
+  config.mapper = default_mapper_config(scene);
+  Mapper mapper(scene.grid, config.mapper);
+  config.scans = 0;
+  EXPECT_THROW(explore(scene, config, mapper), std::invalid_argument);
+  config.scans = 2;
+  config.start = 99;
+  EXPECT_THROW(explore(scene, config, mapper), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vantage

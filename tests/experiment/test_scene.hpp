@@ -1,0 +1,65 @@
+#pragma once
+// The small test scene and helpers shared by the experiment tests.
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "vantage/sim/scene.hpp"
+
+namespace vantage::testing {
+
+inline std::filesystem::path source_dir() {
+  const char* dir = std::getenv("VANTAGE_SOURCE_DIR");
+  return dir != nullptr ? dir : ".";
+}
+
+inline std::string small_scene_path() {
+  return (source_dir() / "tests/experiment/small_tabletop.yaml").string();
+}
+
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// CSV rows split into fields.
+inline std::vector<std::vector<std::string>> parse_csv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> fields;
+    std::size_t start = 0;
+    for (;;) {
+      const std::size_t comma = line.find(',', start);
+      fields.push_back(line.substr(start, comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    rows.push_back(fields);
+  }
+  return rows;
+}
+
+/// The CSV without its last column (plan_seconds, the only wall-clock figure in it).
+inline std::string without_timing(const std::string& csv) {
+  std::string out;
+  std::istringstream lines(csv);
+  for (std::string line; std::getline(lines, line);) out += line.substr(0, line.rfind(',')) + "\n";
+  return out;
+}
+
+/// A fresh, empty temporary folder.
+inline std::filesystem::path fresh_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("vantage-test-" + name);
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace vantage::testing

@@ -1,0 +1,195 @@
+#include "vantage/experiment/bench.hpp"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "vantage/experiment/results.hpp"
+#include "vantage/io/atomic_file.hpp"
+#include "vantage/sim/scene.hpp"
+
+namespace vantage {
+namespace fs = std::filesystem;
+namespace {
+
+std::uint64_t fnv1a(std::string_view text) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
+  return h;
+}
+
+std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot read", path.string()));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Trial files in a folder's trials/, by key.
+std::map<std::string, fs::path> trial_files(const fs::path& dir) {
+  std::map<std::string, fs::path> files;
+  const fs::path trials = dir / "trials";
+  if (!fs::is_directory(trials)) return files;
+  for (const auto& entry : fs::directory_iterator(trials)) {
+    if (entry.path().extension() == ".csv") files[entry.path().stem().string()] = entry.path();
+  }
+  return files;
+}
+
+std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
+  const sim::Scene scene = sim::load_scene(spec.source);
+  ExplorationConfig exploration = config.exploration;
+  exploration.planner.method = spec.method;
+  exploration.planner.gain.alpha = spec.alpha;
+  exploration.start = spec.trial % static_cast<int>(scene.start_poses.size());
+  // NOTE: the seed depends on scene and trial only, so every method of a trial meets the same
+  // sensor and pose noise where it takes the same views.
+  exploration.seed = config.exploration.seed ^ fnv1a(fmt::format("{}#{}", spec.scene, spec.trial));
+  if (config.mapper_from_scene) {
+    const MapperConfig given = exploration.mapper;
+    exploration.mapper = default_mapper_config(scene);
+    exploration.mapper.integration = given.integration;
+    exploration.mapper.register_scans = given.register_scans;
+    exploration.mapper.segment_table = exploration.mapper.segment_table && given.segment_table;
+  }
+  Mapper mapper(scene.grid, exploration.mapper);
+  const ExplorationResult result = explore(scene, exploration, mapper);
+  return scans_csv_rows({spec.scene, spec.method, spec.alpha, spec.trial}, result.scans);
+}
+
+}  // namespace
+
+std::string TrialSpec::key() const {
+  const std::string alpha_part =
+      method == PlannerMethod::kProbabilistic ? fmt::format("__a{}", alpha) : std::string();
+  return fmt::format("{}__{}{}__t{}", scene, to_string(method), alpha_part, trial);
+}
+
+void BenchConfig::validate() const {
+  if (scenes.empty()) throw std::invalid_argument("bench.scenes must not be empty");
+  if (methods.empty()) throw std::invalid_argument("bench.methods must not be empty");
+  if (alphas.empty()) throw std::invalid_argument("bench.alphas must not be empty");
+  for (const double a : alphas) {
+    if (!(a > 0.0 && a <= 1.0)) {
+      throw std::invalid_argument(fmt::format("bench.alphas: {} is not in (0, 1]", a));
+    }
+  }
+  if (trials < 1)
+    throw std::invalid_argument(fmt::format("bench.trials must be >= 1, got {}", trials));
+  if (jobs < 1) throw std::invalid_argument(fmt::format("bench.jobs must be >= 1, got {}", jobs));
+  if (shard_count < 1 || shard_index < 0 || shard_index >= shard_count) {
+    throw std::invalid_argument(
+        fmt::format("bench.shard {}/{} is not a shard: need 0 <= I < N", shard_index, shard_count));
+  }
+  exploration.validate();
+}
+
+std::vector<TrialSpec> bench_trials(const BenchConfig& config) {
+  std::vector<TrialSpec> specs;
+  for (const std::string& source : config.scenes) {
+    const std::string scene = sim::load_scene(source).name;
+    for (const PlannerMethod method : config.methods) {
+      const std::vector<double> alphas = method == PlannerMethod::kProbabilistic
+                                             ? config.alphas
+                                             : std::vector<double>{config.alphas.front()};
+      for (const double alpha : alphas) {
+        for (int t = 0; t < config.trials; ++t) specs.push_back({scene, source, method, alpha, t});
+      }
+    }
+  }
+  return specs;
+}
+
+std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
+                      const std::function<void(const TrialEvent&)>& on_trial) {
+  config.validate();
+  const std::vector<TrialSpec> all = bench_trials(config);  // fails on a bad scene before any work
+  fs::create_directories(dir / "trials");
+  const std::map<std::string, fs::path> done = trial_files(dir);
+
+  std::vector<TrialSpec> mine;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (static_cast<int>(k % static_cast<std::size_t>(config.shard_count)) == config.shard_index) {
+      mine.push_back(all[k]);
+    }
+  }
+
+  std::mutex report;
+  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> finished{0};
+  std::atomic<std::size_t> ran{0};
+  std::exception_ptr failure;
+  auto worker = [&] {
+    for (std::size_t k = next++; k < mine.size(); k = next++) {
+      const TrialSpec& spec = mine[k];
+      TrialEvent event{spec, done.count(spec.key()) > 0, 0.0, 0, mine.size()};
+      try {
+        if (!event.skipped) {
+          const auto start = std::chrono::steady_clock::now();
+          const std::string rows = run_trial(spec, config);
+          write_atomically(dir / "trials" / (spec.key() + ".csv"), rows);
+          event.seconds =
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          ++ran;
+        }
+        event.done = ++finished;
+        if (on_trial) {
+          const std::lock_guard lock(report);
+          on_trial(event);
+        }
+      } catch (...) {
+        const std::lock_guard lock(report);
+        if (!failure) failure = std::current_exception();
+        next = mine.size();  // stop handing out trials; finished ones are kept
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 1; j < config.jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (std::thread& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+  write_bench_csv(dir);
+  return ran;
+}
+
+void write_bench_csv(const fs::path& dir) {
+  std::string csv = std::string(kScansCsvHeader) + "\n";
+  for (const auto& [key, path] : trial_files(dir)) csv += read_file(path);
+  write_atomically(dir / "scans.csv", csv);
+}
+
+void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
+  if (dirs.empty()) throw std::invalid_argument("bench merge needs at least one folder");
+  std::map<std::string, std::string> trials;
+  for (const fs::path& dir : dirs) {
+    const auto files = trial_files(dir);
+    if (files.empty()) {
+      throw std::runtime_error(fmt::format("{}: no trials/ with trial files", dir.string()));
+    }
+    for (const auto& [key, path] : files) {
+      const std::string rows = read_file(path);
+      const auto [it, inserted] = trials.emplace(key, rows);
+      if (!inserted && it->second != rows) {
+        throw std::runtime_error(
+            fmt::format("{}: trial {} differs from the same trial in "
+                        "another folder",
+                        path.string(), key));
+      }
+    }
+  }
+  fs::create_directories(out / "trials");
+  for (const auto& [key, rows] : trials) write_atomically(out / "trials" / (key + ".csv"), rows);
+  write_bench_csv(out);
+}
+
+}  // namespace vantage

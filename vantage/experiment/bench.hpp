@@ -1,0 +1,73 @@
+#pragma once
+/// @file
+/// The paper's experiments as a sweep: scenes x methods x trials, each trial an exploration from
+/// its own start. Trials run in parallel, can be split into shards for a cluster, and are written
+/// one file each, atomically, so an interrupted sweep resumes where it stopped.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "vantage/experiment/exploration.hpp"
+
+namespace vantage {
+
+/// One trial of a sweep.
+struct TrialSpec {
+  std::string scene;   ///< the scene's name
+  std::string source;  ///< what to load it from: a built-in name or a YAML path
+  PlannerMethod method = PlannerMethod::kProbabilistic;
+  double alpha = 0.997;
+  int trial = 0;  ///< starts from the scene's start pose `trial` (mod the number of starts)
+
+  /// File-name key, e.g. "tabletop-1__probabilistic__a0.997__t3".
+  std::string key() const;
+};
+
+/// Settings of a sweep.
+struct BenchConfig {
+  std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
+  std::vector<PlannerMethod> methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy,
+                                        PlannerMethod::kRandom};
+  std::vector<double> alphas = {0.997};  ///< for the probabilistic method; one trial set each
+  int trials = 10;
+  ExplorationConfig exploration;  ///< method, alpha, start and seed are set per trial
+  bool mapper_from_scene = true;  ///< table segmentation where the scene has a table
+  int jobs = 1;                   ///< trials run at once
+  int shard_index = 0;            ///< this process runs trials k with k % shard_count == index
+  int shard_count = 1;
+
+  /// Throws std::invalid_argument naming the field.
+  void validate() const;
+};
+
+/// Every trial of the sweep in its fixed order, before sharding. Loads each scene once, to name
+/// it; throws what load_scene throws.
+std::vector<TrialSpec> bench_trials(const BenchConfig& config);
+
+/// How a trial went, for progress output.
+struct TrialEvent {
+  TrialSpec spec;
+  bool skipped = false;  ///< already done by an earlier run
+  double seconds = 0.0;
+  std::size_t done = 0;   ///< trials of this shard finished so far, skipped ones included
+  std::size_t total = 0;  ///< trials of this shard
+};
+
+/// Runs this shard's trials that `dir/trials/` does not hold yet, then writes `dir/scans.csv`
+/// from all trial files present. Returns the number of trials run now. `on_trial` is called from
+/// the worker threads, one call at a time.
+std::size_t run_bench(const std::filesystem::path& dir, const BenchConfig& config,
+                      const std::function<void(const TrialEvent&)>& on_trial = {});
+
+/// Joins the trial files of several sweep folders (e.g. shards) into `out/trials/` and writes
+/// `out/scans.csv`. Throws std::runtime_error when two folders hold the same trial with different
+/// contents.
+void merge_bench(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out);
+
+/// Writes `dir/scans.csv`: the header and every trial file's rows, in key order.
+void write_bench_csv(const std::filesystem::path& dir);
+
+}  // namespace vantage

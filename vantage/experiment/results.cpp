@@ -1,0 +1,146 @@
+#include "vantage/experiment/results.hpp"
+
+#include <fmt/core.h>
+#include <fmt/os.h>
+
+#include <Eigen/Geometry>
+#include <nlohmann/json.hpp>
+
+#include "vantage/io/atomic_file.hpp"
+#include "vantage/io/octomap_io.hpp"
+#include "vantage/perception/cloud_io.hpp"
+
+namespace vantage {
+namespace {
+
+using nlohmann::json;
+
+std::string optional_number(const std::optional<double>& value) {
+  return value ? fmt::format("{:.15g}", *value) : std::string();
+}
+
+json pose_json(const Eigen::Isometry3d& T) {
+  const Eigen::Quaterniond q(T.linear());
+  return {{"position", {T.translation().x(), T.translation().y(), T.translation().z()}},
+          {"quaternion_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
+}
+
+json config_json(const ExplorationConfig& config) {
+  const GainConfig& gain = config.planner.gain;
+  const MapperConfig& mapper = config.mapper;
+  return {
+      {"method", to_string(config.planner.method)},
+      {"alpha", gain.alpha},
+      {"evaluation", to_string(gain.evaluation)},
+      {"epsilon", gain.epsilon},
+      {"lambda", config.planner.lambda},
+      {"scans", config.scans},
+      {"min_gain", config.min_gain},
+      {"start", config.start},
+      {"seed", config.seed},
+      {"num_threads", gain.num_threads},
+      {"integration", to_string(mapper.integration.mode)},
+      {"hole_filling",
+       {{"enabled", mapper.integration.hole_filling.enabled},
+        {"beta", mapper.integration.hole_filling.beta},
+        {"eta", mapper.integration.hole_filling.eta}}},
+      {"occupancy",
+       {{"p_hit", mapper.occupancy.p_hit},
+        {"p_miss", mapper.occupancy.p_miss},
+        {"p_min", mapper.occupancy.p_min},
+        {"p_max", mapper.occupancy.p_max}}},
+      {"icp",
+       {{"enabled", mapper.register_scans},
+        {"metric", perception::to_string(mapper.icp.metric)},
+        {"max_correspondence_distance", mapper.icp.max_correspondence_distance},
+        {"initial_correspondence_distance", mapper.icp.initial_correspondence_distance},
+        {"max_iterations", mapper.icp.max_iterations},
+        {"voxel_size", mapper.icp.voxel_size}}},
+      {"table_segmentation", mapper.segment_table},
+  };
+}
+
+json scan_json(const ScanRecord& r) {
+  json j = {{"scan", r.scan},
+            {"view", r.view},
+            {"pose", pose_json(r.T_world_sensor)},
+            {"actual_gain", r.actual_gain},
+            {"reentered", r.reentered},
+            {"unobserved", r.unobserved},
+            {"coverage", r.coverage},
+            {"points", r.points},
+            {"object_points", r.object_points},
+            {"pose_error",
+             {{"before_m", r.pose_error_before},
+              {"after_m", r.pose_error_after},
+              {"before_rad", r.yaw_error_before},
+              {"after_rad", r.yaw_error_after}}},
+            {"seconds",
+             {{"scan", r.seconds.scan},
+              {"register", r.seconds.register_scan},
+              {"segment", r.seconds.segment},
+              {"integrate", r.seconds.integrate},
+              {"plan", r.seconds.plan}}}};
+  j["predicted_gain"] = r.predicted_gain ? json(*r.predicted_gain) : json(nullptr);
+  j["greedy_predicted_gain"] =
+      r.greedy_predicted_gain ? json(*r.greedy_predicted_gain) : json(nullptr);
+  return j;
+}
+
+}  // namespace
+
+std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>& scans) {
+  const std::string alpha = label.method == PlannerMethod::kProbabilistic
+                                ? fmt::format("{:.15g}", label.alpha)
+                                : std::string();
+  std::string rows;
+  for (const ScanRecord& r : scans) {
+    rows += fmt::format("{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g}\n", label.scene,
+                        to_string(label.method), alpha, label.trial, r.scan, r.view,
+                        optional_number(r.predicted_gain), optional_number(r.greedy_predicted_gain),
+                        r.actual_gain, r.unobserved, r.coverage, r.seconds.plan);
+  }
+  return rows;
+}
+
+void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
+                     const ExplorationConfig& config, const ExplorationResult& result,
+                     const Mapper& mapper) {
+  const RunLabel label{scene.name, config.planner.method, config.planner.gain.alpha, config.start};
+  write_atomically(dir / "scans.csv",
+                   std::string(kScansCsvHeader) + "\n" + scans_csv_rows(label, result.scans));
+
+  const OccupancyGrid& grid = mapper.grid();
+  const GridSpec& spec = grid.spec();
+  json run = {{"vantage_version", VANTAGE_VERSION},
+              {"scene",
+               {{"name", scene.name},
+                {"source", scene.source},
+                {"grid",
+                 {{"origin", {spec.origin.x(), spec.origin.y(), spec.origin.z()}},
+                  {"resolution", spec.resolution},
+                  {"dims", {spec.dims.x(), spec.dims.y(), spec.dims.z()}}}}}},
+              {"config", config_json(config)},
+              {"stop_reason", result.stop_reason},
+              {"observable_cells", result.observable_cells},
+              {"scans", json::array()},
+              {"candidates", json::array()}};
+  for (const ScanRecord& r : result.scans) run["scans"].push_back(scan_json(r));
+  for (const Eigen::Isometry3d& pose : result.candidates) {
+    run["candidates"].push_back(pose_json(pose));
+  }
+  write_atomically(dir / "run.json", run.dump(2) + "\n");
+
+  write_octomap(dir / "map.bt", grid);
+  if (!mapper.object_cloud().empty()) write_point_cloud(dir / "cloud.pcd", mapper.object_cloud());
+
+  std::string cells = "x,y,z\n";
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    if (grid.state(i) != CellState::kOccupied) continue;
+    const Eigen::Vector3d c = spec.center(spec.unravel(i));
+    cells += fmt::format("{:.5f},{:.5f},{:.5f}\n", c.x(), c.y(), c.z());
+  }
+  write_atomically(dir / "map_cells.csv", cells);
+}
+
+}  // namespace vantage
