@@ -13,7 +13,12 @@ int main(int argc, char** argv) {
   CLI::App app("Vantage: next-best-view planning in cluttered 3D scenes", "vantage");
   app.set_version_flag("--version", VANTAGE_VERSION);
   app.require_subcommand(1);
+  vantage::cli::add_explore_command(app);
+  vantage::cli::add_bench_command(app);
+  vantage::cli::add_plan_command(app);
   vantage::cli::add_ray_command(app);
+  vantage::cli::add_scan_command(app);
+  vantage::cli::add_scene_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

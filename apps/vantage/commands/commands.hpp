@@ -7,5 +7,10 @@
 namespace vantage::cli {
 
 void add_ray_command(CLI::App& app);
+void add_explore_command(CLI::App& app);
+void add_bench_command(CLI::App& app);
+void add_plan_command(CLI::App& app);
+void add_scan_command(CLI::App& app);
+void add_scene_command(CLI::App& app);
 
 }  // namespace vantage::cli

@@ -1,0 +1,131 @@
+/// `vantage bench`: the paper's experiments as resumable, shardable sweeps, and `merge` to join
+/// shards.
+
+#include "vantage/experiment/bench.hpp"
+
+#include <fmt/core.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands/commands.hpp"
+#include "commands/options.hpp"
+#include "shell.hpp"
+
+namespace vantage::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BenchOptions {
+  std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
+  std::vector<std::string> methods = {"probabilistic", "greedy", "random"};
+  std::string alphas = "0.997";
+  int trials = 10;
+  int scans = 10;
+  std::uint64_t seed = 1;
+  int jobs = 1;
+  std::string shard = "0/1";
+  std::string out = "results/bench-tabletop";
+  bool plots = true;
+  PlanningOptions planning;
+  MappingOptions mapping;
+};
+
+void parse_shard(const std::string& text, BenchConfig& config) {
+  const auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    std::size_t used = 0;
+    config.shard_index = std::stoi(text.substr(0, slash), &used);
+    if (used != slash) throw std::invalid_argument("index");
+    config.shard_count = std::stoi(text.substr(slash + 1), &used);
+    if (used != text.size() - slash - 1) throw std::invalid_argument("count");
+  } catch (const std::exception&) {
+    throw std::invalid_argument(fmt::format("--shard '{}' is not of the form I/N", text));
+  }
+}
+
+void run(const BenchOptions& o) {
+  BenchConfig config;
+  config.scenes = o.scenes;
+  config.methods.clear();
+  for (const std::string& m : o.methods) config.methods.push_back(parse_planner_method(m));
+  config.alphas = parse_numbers(o.alphas, "--alphas");
+  config.trials = o.trials;
+  config.exploration.planner = o.planning.planner_config();
+  config.exploration.mapper.integration.mode = parse_integration_mode(o.mapping.integration);
+  config.exploration.mapper.integration.hole_filling.enabled = o.mapping.hole_filling;
+  config.exploration.mapper.integration.num_threads = o.planning.threads;
+  config.exploration.mapper.register_scans = o.mapping.icp;
+  config.exploration.mapper.segment_table = o.mapping.segmentation;
+  config.exploration.scans = o.scans;
+  config.exploration.seed = o.seed;
+  config.jobs = o.jobs;
+  parse_shard(o.shard, config);
+  config.validate();
+
+  const std::size_t total = bench_trials(config).size();
+  fmt::print("bench: {} trials in all, shard {}, {} job(s), into {}\n", total, o.shard, o.jobs,
+             o.out);
+  const std::size_t ran = run_bench(o.out, config, [](const TrialEvent& e) {
+    fmt::print(
+        "[{:3}/{}] {:<48} {}\n", e.done, e.total, e.spec.key(),
+        e.skipped ? std::string("done before, skipped") : fmt::format("{:.1f} s", e.seconds));
+    std::fflush(stdout);
+  });
+  fmt::print("ran {} trial(s); {}\n", ran, (fs::path(o.out) / "scans.csv").string());
+  if (o.plots && config.shard_count == 1) {
+    run_plot_script("plot_bench.py", {o.out});
+    fmt::print("plots and summary: {}/unobserved.png, prediction_error.png, summary.md\n", o.out);
+  }
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+  CLI::App* bench = app.add_subcommand("bench", "The paper's experiments as sweeps");
+  bench->require_subcommand(1);
+
+  auto o = std::make_shared<BenchOptions>();
+  CLI::App* tabletop = bench->add_subcommand(
+      "tabletop", "Table-top sweep: scenes x methods x trials (the paper's Figs. 10 and 11)");
+  tabletop->add_option("--scenes", o->scenes, "scenes")->delimiter(',')->capture_default_str();
+  tabletop->add_option("--methods", o->methods, "methods")->delimiter(',')->capture_default_str();
+  tabletop->add_option("--alphas", o->alphas, "a values of the probabilistic method, a,b,...")
+      ->capture_default_str();
+  tabletop
+      ->add_option("--trials", o->trials,
+                   "trials per scene and method; trial i starts "
+                   "from ring position i")
+      ->capture_default_str();
+  tabletop->add_option("--scans,-n", o->scans, "scans per trial")->capture_default_str();
+  tabletop->add_option("--seed", o->seed, "base seed")->capture_default_str();
+  tabletop->add_option("--jobs", o->jobs, "trials run in parallel")->capture_default_str();
+  tabletop->add_option("--shard", o->shard, "run slice I of N (0-based), e.g. 2/8")
+      ->capture_default_str();
+  tabletop->add_option("--out,-o", o->out, "sweep folder; rerunning resumes it")
+      ->capture_default_str();
+  tabletop->add_flag("!--no-plots", o->plots, "skip plots and summary");
+  o->planning.add_to(*tabletop);
+  o->mapping.add_to(*tabletop);
+  // A sweep runs trials in parallel; one thread per trial unless told otherwise.
+  tabletop->get_option("--threads")->default_val(1);
+  tabletop->callback([o] { run(*o); });
+
+  auto dirs = std::make_shared<std::vector<std::string>>();
+  auto out = std::make_shared<std::string>();
+  CLI::App* merge = bench->add_subcommand("merge", "Join the trial files of shard folders");
+  merge->add_option("dirs", *dirs, "sweep folders to join")->required();
+  merge->add_option("--out,-o", *out, "folder to write (default: the first folder)");
+  merge->callback([dirs, out] {
+    std::vector<fs::path> paths(dirs->begin(), dirs->end());
+    const fs::path target = out->empty() ? paths.front() : fs::path(*out);
+    merge_bench(paths, target);
+    fmt::print("merged {} folder(s) into {}\n", paths.size(), (target / "scans.csv").string());
+  });
+}
+
+}  // namespace vantage::cli

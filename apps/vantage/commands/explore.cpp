@@ -1,0 +1,131 @@
+/// `vantage explore`: the main job. Explores a simulated scene scan by scan with a chosen method,
+/// shows live progress, and leaves a results folder with the data and the pictures.
+
+#include <fmt/chrono.h>
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "commands/commands.hpp"
+#include "commands/options.hpp"
+#include "shell.hpp"
+#include "vantage/experiment/exploration.hpp"
+#include "vantage/experiment/results.hpp"
+#include "vantage/io/atomic_file.hpp"
+#include "vantage/sim/scene.hpp"
+
+namespace vantage::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ExploreOptions {
+  std::string scene = "tabletop-3";
+  PlanningOptions planning;
+  MappingOptions mapping;
+  int scans = 10;
+  double min_gain = 0.0;
+  int start = 0;
+  std::uint64_t seed = 1;
+  std::string out;
+  bool plots = true;
+  bool quiet = false;
+};
+
+fs::path default_out(const ExploreOptions& o) {
+  const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  return fs::path("results") / fmt::format("explore-{}-{}-{:%Y%m%d-%H%M%S}", o.scene,
+                                           o.planning.method, fmt::localtime(now));
+}
+
+void print_scan(const ScanRecord& r, int total) {
+  const std::string predicted = r.predicted_gain
+                                    ? fmt::format("{:8.1f} (greedy {:8.1f})", *r.predicted_gain,
+                                                  r.greedy_predicted_gain.value_or(0.0))
+                                    : fmt::format("{:>8} {:>16}", "-", "");
+  const double seconds = r.seconds.scan + r.seconds.register_scan + r.seconds.segment +
+                         r.seconds.integrate + r.seconds.plan;
+  fmt::print(
+      "scan {:2}/{}  view {:2}  predicted {}  actual {:7}  unobserved {:8}  "
+      "coverage {:5.1f}%  icp {:4.1f}->{:4.1f} mm  {:5.2f} s\n",
+      r.scan, total, r.view, predicted, r.actual_gain, r.unobserved, 100.0 * r.coverage,
+      1e3 * r.pose_error_before, 1e3 * r.pose_error_after, seconds);
+  std::fflush(stdout);
+}
+
+void run(const ExploreOptions& o) {
+  const sim::Scene scene = sim::load_scene(o.scene);
+  ExplorationConfig config;
+  config.planner = o.planning.planner_config();
+  config.mapper = o.mapping.mapper_config(scene);
+  config.mapper.integration.num_threads = o.planning.threads;
+  config.scans = o.scans;
+  config.min_gain = o.min_gain;
+  config.start = o.start;
+  config.seed = o.seed;
+  config.validate();
+
+  const fs::path out = o.out.empty() ? default_out(o) : fs::path(o.out);
+  if (fs::exists(out) && !fs::is_empty(out)) {
+    throw std::invalid_argument(fmt::format("--out {} exists and is not empty", out.string()));
+  }
+  if (!o.quiet) {
+    fmt::print(
+        "exploring {} with {} ({} evaluation{}), {} scans from start {}, seed {}\n", scene.name,
+        o.planning.method, o.planning.evaluation,
+        o.planning.method == "probabilistic" ? fmt::format(", a = {}", o.planning.alpha) : "",
+        o.scans, o.start, o.seed);
+  }
+  Mapper mapper(scene.grid, config.mapper);
+  const ExplorationResult result =
+      explore(scene, config, mapper, o.quiet ? ScanCallback{} : ScanCallback(print_scan));
+
+  // Everything goes into a temporary sibling first, so the folder appears whole or not at all.
+  const fs::path partial = out.string() + fmt::format(".partial-{}", ::getpid());
+  fs::remove_all(partial);
+  fs::create_directories(partial);
+  try {
+    write_run_files(partial, scene, config, result, mapper);
+    if (o.plots) run_plot_script("plot_run.py", {partial.string()});
+    if (fs::exists(out)) fs::remove(out);  // an empty folder the user made
+    commit_atomically(partial, out);
+  } catch (...) {
+    fs::remove_all(partial);
+    throw;
+  }
+  const ScanRecord& last = result.scans.back();
+  fmt::print(
+      "{}: {} scans, {} unobserved cells left, coverage {:.1f}% of {} observable surface "
+      "cells\nresults: {}\n",
+      result.stop_reason, result.scans.size(), last.unobserved, 100.0 * last.coverage,
+      result.observable_cells, out.string());
+}
+
+}  // namespace
+
+void add_explore_command(CLI::App& app) {
+  auto o = std::make_shared<ExploreOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "explore", "Explore a simulated scene scan by scan, choosing each next view (the main job)");
+  cmd->add_option("--scene,-s", o->scene, "built-in scene name or scene YAML file")
+      ->capture_default_str();
+  o->planning.add_to(*cmd);
+  o->mapping.add_to(*cmd);
+  cmd->add_option("--scans,-n", o->scans, "number of scans to take")->capture_default_str();
+  cmd->add_option("--min-gain", o->min_gain,
+                  "stop early when the best predicted gain falls below this [cells]")
+      ->capture_default_str();
+  cmd->add_option("--start", o->start, "start pose index of the scene")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "seed of sensor noise, pose noise and random choice")
+      ->capture_default_str();
+  cmd->add_option("--out,-o", o->out, "results folder (default: a fresh folder under results/)");
+  cmd->add_flag("!--no-plots", o->plots, "skip the pictures");
+  cmd->add_flag("--quiet,-q", o->quiet, "no per-scan progress");
+  cmd->callback([o] { run(*o); });
+}
+
+}  // namespace vantage::cli

@@ -1,0 +1,42 @@
+#pragma once
+/// @file
+/// Options that several subcommands share (explore, bench, plan): how to choose a view and how
+/// to build the map.
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "vantage/perception/mapper.hpp"
+#include "vantage/planner/planner.hpp"
+#include "vantage/sim/scene.hpp"
+
+namespace vantage::cli {
+
+/// --method, --alpha, --evaluation, --epsilon, --lambda, --threads.
+struct PlanningOptions {
+  std::string method = "probabilistic";
+  double alpha = 0.997;
+  std::string evaluation = "fast";
+  double epsilon = GainConfig{}.epsilon;
+  double lambda = PlannerConfig{}.lambda;
+  int threads = 0;
+
+  void add_to(CLI::App& cmd);
+  /// Throws std::invalid_argument naming the bad option.
+  PlannerConfig planner_config() const;
+};
+
+/// --integration, --no-icp, --no-segmentation, --no-hole-filling.
+struct MappingOptions {
+  std::string integration = "paper";
+  bool icp = true;
+  bool segmentation = true;
+  bool hole_filling = true;
+
+  void add_to(CLI::App& cmd);
+  /// The scene's defaults with the options applied (segmentation only where the scene has a
+  /// table).
+  MapperConfig mapper_config(const sim::Scene& scene) const;
+};
+
+}  // namespace vantage::cli
