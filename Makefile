@@ -19,9 +19,11 @@ configure: deps
 build: configure
 	@cmake --build --preset $(PRESET)
 
+# The main job: explore the default table-top scene with the paper's method, 10 scans.
 demo: build
-	@mkdir -p results
-	$(VANTAGE) ray --scenario 4 --csv results/ray-scenario4.csv --plot results/ray-scenario4.png
+	@rm -rf results/demo
+	$(VANTAGE) explore --out results/demo
+	@echo "pictures: results/demo/unobserved.png, results/demo/map.png"
 
 test: build
 	@ctest --preset $(PRESET)
