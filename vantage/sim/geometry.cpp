@@ -1,5 +1,6 @@
 #include "vantage/sim/geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -94,6 +95,41 @@ Eigen::AlignedBox3d Shape::bounds() const {
     return {sphere->center - r, sphere->center + r};
   }
   return mesh_world.bounds();
+}
+
+std::vector<Eigen::Vector2d> top_outline(const Shape& shape) {
+  std::vector<Eigen::Vector2d> points;
+  if (shape.sphere) {
+    for (int k = 0; k < 32; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / 32;
+      // NOTE: the polygon circumscribes the circle, so the outline never cuts into the sphere.
+      const double r = shape.sphere->radius / std::cos(std::numbers::pi / 32);
+      points.push_back(shape.sphere->center.head<2>() +
+                       r * Eigen::Vector2d(std::cos(a), std::sin(a)));
+    }
+    return points;
+  }
+  for (const Eigen::Vector3d& v : shape.mesh_world.vertices) points.push_back(v.head<2>());
+  // Andrew's monotone chain.
+  std::sort(points.begin(), points.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
+  });
+  if (points.size() < 3) return points;
+  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
+  };
+  std::vector<Eigen::Vector2d> hull(2 * points.size());
+  std::size_t k = 0;
+  for (const Eigen::Vector2d& p : points) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], p) <= 0) --k;
+    hull[k++] = p;
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  return hull;
 }
 
 }  // namespace vantage::sim

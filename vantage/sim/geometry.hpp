@@ -55,4 +55,8 @@ struct Shape {
   Eigen::AlignedBox3d bounds() const;
 };
 
+/// The convex hull of a shape seen from above (its projection on the x-y plane), counter-clockwise
+/// [m]. A sphere gives a 32-gon around its circle.
+std::vector<Eigen::Vector2d> top_outline(const Shape& shape);
+
 }  // namespace vantage::sim

@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -17,7 +18,7 @@
 namespace vantage::sim {
 namespace {
 
-constexpr std::size_t kRayBlock = 2048;  ///< rays per parallel task
+constexpr std::size_t kRayBlock = 2048;  ///< rays per parallel task, a multiple of 16
 
 void on_embree_error(void* user, RTCError code, const char* message) {
   auto* last = static_cast<std::string*>(user);
@@ -207,30 +208,60 @@ SimulatedScan World::scan_with(const Eigen::Isometry3d& T_true, const Eigen::Iso
   std::vector<std::uint8_t> valid(n, 0);
   RTCScene scene = embree_->scene;
   run_with_threads(config_.num_threads, [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kRayBlock),
-                      [&](const tbb::blocked_range<std::size_t>& block) {
-                        for (std::size_t i = block.begin(); i != block.end(); ++i) {
-                          const Eigen::Vector3d& d = directions[i];
-                          const Eigen::Vector3f dir_world = (R * d).cast<float>();
-                          const float t =
-                              intersect(scene, origin, dir_world, static_cast<float>(max_range));
-                          if (t < 0.0f) continue;
-                          double range = t;
-                          if (range < min_range) continue;  // too close: no return
-                          if (noise.enabled()) {
-                            const double z = standard_normal(noise_seed, RandomStream::kRange, i);
-                            if (depth_noise) {
-                              const double depth = range * d.x();
-                              range = (depth + noise.sigma_at(depth) * z) / d.x();
-                            } else {
-                              range += noise.sigma_at(range) * z;
-                            }
-                            if (range < min_range || range > max_range) continue;
-                          }
-                          points[i] = d * range;
-                          valid[i] = 1;
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, n, kRayBlock),
+        [&](const tbb::blocked_range<std::size_t>& block) {
+          RTCIntersectContext context;
+          rtcInitIntersectContext(&context);
+          context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+          // NOTE: packets of 16 neighbouring rays, which Embree traces together; a scan's rays
+          // are coherent (row by row), so this is about twice as fast as one ray at a time.
+          RTCRayHit16 packet;
+          alignas(64) int lanes[16];
+          for (std::size_t first = block.begin(); first < block.end(); first += 16) {
+            const std::size_t count = std::min<std::size_t>(16, block.end() - first);
+            for (std::size_t k = 0; k < 16; ++k) {
+              lanes[k] = k < count ? -1 : 0;
+              const Eigen::Vector3f d =
+                  k < count ? Eigen::Vector3f((R * directions[first + k]).cast<float>())
+                            : Eigen::Vector3f::UnitX();
+              packet.ray.org_x[k] = origin.x();
+              packet.ray.org_y[k] = origin.y();
+              packet.ray.org_z[k] = origin.z();
+              packet.ray.dir_x[k] = d.x();
+              packet.ray.dir_y[k] = d.y();
+              packet.ray.dir_z[k] = d.z();
+              packet.ray.tnear[k] = 0.0f;
+              packet.ray.tfar[k] = static_cast<float>(max_range);
+              packet.ray.time[k] = 0.0f;
+              packet.ray.mask[k] = 0xFFFFFFFFu;  // NOTE: Debian's Embree filters by mask
+              packet.ray.id[k] = static_cast<unsigned>(k);
+              packet.ray.flags[k] = 0;
+              packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+              packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+            }
+            rtcIntersect16(lanes, scene, &context, &packet);
+            for (std::size_t k = 0; k < count; ++k) {
+              if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
+              const std::size_t i = first + k;
+              const Eigen::Vector3d& d = directions[i];
+              double range = packet.ray.tfar[k];
+              if (range < min_range) continue;  // too close: no return
+              if (noise.enabled()) {
+                const double z = standard_normal(noise_seed, RandomStream::kRange, i);
+                if (depth_noise) {
+                  const double depth = range * d.x();
+                  range = (depth + noise.sigma_at(depth) * z) / d.x();
+                } else {
+                  range += noise.sigma_at(range) * z;
+                }
+                if (range < min_range || range > max_range) continue;
+              }
+              points[i] = d * range;
+              valid[i] = 1;
+            }
+          }
+        });
   });
   SimulatedScan scan;
   scan.T_world_sensor_true = T_true;
