@@ -478,7 +478,6 @@ struct Shared {
   std::vector<std::vector<detail::Odds>> steady;  // per code, the state after m + 1 cells of it
   double p_min = 0.12;
   double epsilon = 0.0;
-  bool greedy = false;
 };
 
 /// One ray's contribution to each member of its group.
@@ -623,6 +622,32 @@ double replay(const Shared& sh, const CodeT* codes, const RayGroup& rays, const 
   return code->entropy - entropy_bits(odds.posterior());  // eq. (4)
 }
 
+/// Moves `walk` to the last cell along the ray inside the cube of uniform blocks around its
+/// cell, when that skips at least two cells. `lo_s`, `hi_s` bound the jump along the ray.
+bool jump_uniform(const GridSpec& spec, const Blocks& blocks, const Eigen::Vector3d& o,
+                  const Eigen::Vector3d& dir, double s_in, double s_out, const Index3& last,
+                  const Index3& origin_cell, Walk& walk) {
+  const std::size_t block = blocks.index(walk.cell);
+  const int r = blocks.radius[block];
+  double s_exit = s_out;
+  for (int a = 0; a < 3; ++a) {
+    if (dir[a] == 0.0) continue;
+    const int b = (walk.cell[a] >> kBlockShift) + (dir[a] > 0.0 ? r + 1 : -r);
+    const double plane = spec.origin[a] + std::clamp(b * kBlock, 0, spec.dims[a]) * spec.resolution;
+    s_exit = std::min(s_exit, (plane - o[a]) / dir[a]);
+  }
+  const double s_land = s_exit - 1e-9 * (s_exit - s_in + 1.0);
+  Index3 land = cell_at(spec, o + s_land * dir);
+  // Stay within the uniform cube and never step back.
+  for (int a = 0; a < 3; ++a) {
+    land[a] = walk.step[a] > 0 ? std::clamp(land[a], walk.cell[a], last[a])
+                               : std::clamp(land[a], last[a], walk.cell[a]);
+  }
+  if ((land - origin_cell).cwiseAbs().sum() <= walk.m + 1) return false;
+  walk.start(spec, o, dir, land, last, origin_cell);
+  return true;
+}
+
 /// The pixel that owns a point: the one whose footprint holds the point's image.
 inline bool owns(const RayGroup& rays, const Eigen::Vector3d& p_world, int col, int row) {
   const Eigen::Vector3d p = rays.Rt * (p_world - rays.origin);
@@ -655,14 +680,10 @@ RaySum cast_ray(const Shared& sh, const CodeT* codes, const RayGroup& rays, int 
   detail::Odds odds;
   double p_prev = sh.p_min;
   if (m0 > 0) odds = sh.outside[static_cast<std::size_t>(m0)];
-  bool blocked = false;  // greedy: an occupied cell was passed
   for (;;) {
     const auto code_index = static_cast<std::size_t>(codes[walk.linear]);
     const Code& code = sh.codes[code_index];
-    if (sh.greedy) {
-      if (blocked) break;
-      if (code.state == CellState::kOccupied) blocked = true;
-    } else {
+    {
       if (walk.m == 0) {
         odds = detail::Odds(1.0, code.p);  // the origin's cell: v_0 = 1, q_0 = p_0
       } else {
@@ -672,65 +693,43 @@ RaySum cast_ray(const Shared& sh, const CodeT* codes, const RayGroup& rays, int 
       p_prev = code.p;
       history[walk.m & (kHistory - 1)] = {odds, code.p};
     }
-    if (code.state == CellState::kUnobserved && (sh.greedy || !odds.pinned(eps))) {
+    if (code.state == CellState::kUnobserved && !odds.pinned(eps)) {
       const Eigen::Vector3d c = spec.center(walk.cell);
       if (owns(rays, c, col, row)) {
-        double g = -1.0;  // replayed once, for the first member that holds the cell
+        double g = 0.0;  // replayed once, for the first member that holds the cell
+        bool replayed = false;
         for (std::size_t k = 0; k < rays.views.size(); ++k) {
           if (!rays.views[k]->contains(c)) continue;
-          if (g < 0.0)
-            g = sh.greedy ? 1.0 : replay(sh, codes, rays, history, m0, walk.cell, walk.m);
+          if (!replayed) {
+            g = replay(sh, codes, rays, history, m0, walk.cell, walk.m);
+            replayed = true;
+          }
           sum.gain[k] += g;
           ++sum.targets[k];
         }
       }
     }
-    if (!sh.greedy && odds.hidden(eps)) break;
+    if (odds.hidden(eps)) break;
 
     // A uniform region the state has settled in predicts nothing new until it ends: jump to its
     // last cell along the ray, with the state the table holds there.
-    const std::size_t block = sh.blocks.index(walk.cell);
-    if (sh.blocks.code[block] == code_index && code.state != CellState::kOccupied &&
-        (sh.greedy ? code.state == CellState::kFree
-                   : (code.state == CellState::kFree || odds.pinned(eps)))) {
+    if (sh.blocks.code[sh.blocks.index(walk.cell)] == code_index &&
+        (code.state == CellState::kFree ||
+         (code.state == CellState::kUnobserved && odds.pinned(eps)))) {
       const auto& steady = sh.steady[code_index];
-      bool settled = sh.greedy;
-      if (!settled && !steady.empty()) {
-        // |v - v_f| and |q - q_f| below the tolerance; f sums to 1 in both pairs.
-        const detail::Odds& f = steady[static_cast<std::size_t>(walk.m)];
-        settled = std::abs(odds.n * f.d - odds.d * f.n) < kSteadyTolerance * (odds.n + odds.d) &&
-                  std::abs(odds.a * f.b - odds.b * f.a) < kSteadyTolerance * (odds.a + odds.b);
-      }
-      if (settled) {
-        const int r = sh.blocks.radius[block];
-        double s_exit = s_out;
-        for (int a = 0; a < 3; ++a) {
-          if (dir[a] == 0.0) continue;
-          const int b = (walk.cell[a] >> kBlockShift) + (dir[a] > 0.0 ? r + 1 : -r);
-          const double plane =
-              spec.origin[a] + std::clamp(b * kBlock, 0, spec.dims[a]) * spec.resolution;
-          s_exit = std::min(s_exit, (plane - o[a]) / dir[a]);
+      // |v - v_f| and |q - q_f| below the tolerance; f sums to 1 in both pairs.
+      const detail::Odds& f = steady[static_cast<std::size_t>(walk.m)];
+      const bool settled =
+          std::abs(odds.n * f.d - odds.d * f.n) < kSteadyTolerance * (odds.n + odds.d) &&
+          std::abs(odds.a * f.b - odds.b * f.a) < kSteadyTolerance * (odds.a + odds.b);
+      if (settled &&
+          jump_uniform(spec, sh.blocks, o, dir, s_in, s_out, last, rays.origin_cell, walk)) {
+        odds = steady[static_cast<std::size_t>(walk.m)];
+        for (int k = 0; k < kHistory && walk.m - k >= m0; ++k) {
+          const int m = walk.m - k;
+          history[m & (kHistory - 1)] = {steady[static_cast<std::size_t>(m)], code.p};
         }
-        const double s_land = s_exit - 1e-9 * (s_exit - s_in + 1.0);
-        Index3 land = cell_at(spec, o + s_land * dir);
-        // Stay within the uniform cube and never step back.
-        for (int a = 0; a < 3; ++a) {
-          land[a] = walk.step[a] > 0 ? std::clamp(land[a], walk.cell[a], last[a])
-                                     : std::clamp(land[a], last[a], walk.cell[a]);
-        }
-        const int m_land = (land - rays.origin_cell).cwiseAbs().sum();
-        if (m_land > walk.m + 1 && codes[spec.linear(land)] == code_index) {
-          walk.start(spec, o, dir, land, last, rays.origin_cell);
-          if (!sh.greedy) {
-            odds = steady[static_cast<std::size_t>(walk.m)];
-            for (int k = 0; k < kHistory; ++k) {
-              const int m = walk.m - k;
-              if (m < m0) break;
-              history[m & (kHistory - 1)] = {steady[static_cast<std::size_t>(m)], code.p};
-            }
-          }
-          continue;  // the landing cell is of the same code: no new contribution there
-        }
+        continue;  // the landing cell has the same code: nothing new to credit there
       }
     }
     if (!walk.advance()) break;
@@ -755,7 +754,6 @@ std::vector<ViewGain> evaluate(const GainMap& map, std::span<const Frustum> view
   sh.spec = &spec;
   sh.p_min = map.params().p_min;
   sh.epsilon = config.epsilon;
-  sh.greedy = config.method == GainMethod::kGreedy;
   std::vector<Code> code_table;
   for (const GainMap::Value& v : map.values())
     code_table.push_back({v.p, 1.0 - v.p, v.entropy, v.state});
@@ -773,7 +771,7 @@ std::vector<ViewGain> evaluate(const GainMap& map, std::span<const Frustum> view
   }
   // Steady states of the codes that fill whole blocks.
   sh.steady.resize(code_table.size());
-  if (!sh.greedy) {
+  {
     std::vector<bool> wanted(code_table.size(), false);
     for (const std::uint16_t c : sh.blocks.code) {
       if (c != kMixed && code_table[c].state != CellState::kOccupied) wanted[c] = true;
@@ -838,6 +836,7 @@ std::vector<ViewGain> evaluate(const GainMap& map, std::span<const Frustum> view
 std::vector<ViewGain> fast_view_gains(const GainMap& map, std::span<const Frustum> views,
                                       const GainConfig& config) {
   config.validate();
+  if (config.method == GainMethod::kGreedy) return exact_view_gains(map, views, config);
   std::vector<ViewGain> gains;
   run_with_threads(config.num_threads, [&] {
     switch (map.code_width()) {

@@ -62,52 +62,6 @@ class GainMap {
 
 namespace detail {
 
-/// The model's state along a ray, as RayState without the index; see RayModel.
-struct Filter {
-  double t = 1.0;  ///< a^m
-  double v = 1.0;  ///< visibility v_m
-  double q = 0.5;  ///< posterior q_m
-  double p = 0.5;  ///< occupancy p_m of the current cell
-
-  Filter() = default;
-  explicit Filter(const RayState& s) : t(s.t), v(s.visibility), q(s.posterior), p(s.occupancy) {}
-  /// The origin's cell, as RayModel::start.
-  static Filter start(double p0) {
-    Filter s;
-    s.q = p0;
-    s.p = p0;
-    return s;
-  }
-};
-
-/// RayModel::step inlined for the hot loops, the same arithmetic in the same order, so that it
-/// gives bit-identical states (tests/gain/fast_gain_test.cpp pins this).
-class ModelStep {
- public:
-  explicit ModelStep(double alpha) : alpha_(alpha) {}
-
-  Filter step(const Filter& prev, double p_m) const {
-    Filter s;
-    s.t = prev.t * alpha_;  // eq. (10)
-    const double v = prev.v;
-    double vis = s.t * v + 0.1 * (1.0 - v);  // eqs. (5), (9)
-    double hid = (1.0 - s.t) * v + 0.9 * (1.0 - v);
-    vis *= 1.0 - prev.p;  // eqs. (6)-(7)
-    hid *= prev.p;
-    s.v = (vis + hid) > 0.0 ? vis / (vis + hid) : 0.0;
-    const double tau = 0.5 + s.v / 2.0;                               // eq. (15)
-    const double pred = tau * prev.q + (1.0 - tau) * (1.0 - prev.q);  // eq. (14)
-    const double occ = pred * p_m;                                    // eq. (12)
-    const double free = (1.0 - pred) * (1.0 - p_m);
-    s.q = (occ + free) > 0.0 ? occ / (occ + free) : 0.5;
-    s.p = p_m;
-    return s;
-  }
-
- private:
-  double alpha_;
-};
-
 /// The same model in odds form, without divisions: visibility v = n / (n + d) and posterior
 /// q = a / (a + b), each pair scaled freely. One step is a few multiply-adds, so a long ray costs
 /// no division per cell; renormalize() keeps the pairs in range.
@@ -152,11 +106,18 @@ struct Odds {
 }  // namespace detail
 
 /// Fast evaluation of every view (GainEvaluation::kFast). The grid is only read.
+///
+/// The probabilistic method casts rays; the greedy one has no state to carry along a ray, and an
+/// exact line of sight stops at the first occupied cell, so its fast mode is the exact one.
 std::vector<ViewGain> fast_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                       const GainConfig& config);
 
 /// The same on a snapshot taken earlier, for callers that evaluate one map state repeatedly.
 std::vector<ViewGain> fast_view_gains(const GainMap& map, std::span<const Frustum> views,
                                       const GainConfig& config);
+
+/// The exact evaluation (exact_view_gains) on a snapshot taken earlier.
+std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
+                                       const GainConfig& config);
 
 }  // namespace vantage

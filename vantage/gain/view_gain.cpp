@@ -235,16 +235,21 @@ std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const 
   throw std::invalid_argument("gain.evaluation is not a known evaluation");
 }
 
-std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
+std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
                                        const GainConfig& config) {
   config.validate();
   std::vector<ViewGain> gains(views.size());
   run_with_threads(config.num_threads, [&] {
-    const GainMap map(grid);
     tbb::parallel_for(std::size_t{0}, views.size(),
                       [&](std::size_t i) { gains[i] = evaluate_one(map, views[i], config); });
   });
   return gains;
+}
+
+std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
+                                       const GainConfig& config) {
+  config.validate();
+  return exact_view_gains(GainMap(grid, config.num_threads), views, config);
 }
 
 ViewGain exact_view_gain(const OccupancyGrid& grid, const Frustum& view, const GainConfig& config) {
