@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <numbers>
 #include <random>
 #include <stdexcept>
@@ -175,7 +175,8 @@ TEST(PoseError, MeasuresTranslationAndAngle) {
 // its sensor, on a ring of 10 positions (radius 1.2 m, height 1.3 m), with Gaussian range
 // noise. The guess is the true pose with the robot's base error: a yaw about the vertical axis
 // through the sensor plus a horizontal shift, both drawn at the stated size with random signs,
-// plus half the yaw as sensor pitch/roll. Prints error before/after and time per scan.
+// plus half the yaw as sensor pitch/roll. Prints the mean error before/after, the worst after,
+// how many of 10 scans converged, and the CPU time per scan.
 namespace study {
 
 struct Row {
