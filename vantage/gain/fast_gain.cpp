@@ -615,6 +615,7 @@ double replay(const Shared& sh, const CodeT* codes, const RayGroup& rays, const 
       first = false;
     } else {
       odds.step(sh.t[static_cast<std::size_t>(walk.m)], p_prev, code->p);
+      if ((walk.m & 7) == 0) odds.renormalize();
     }
     p_prev = code->p;
     if (!walk.advance()) break;

@@ -1,0 +1,308 @@
+// The fast gain evaluation against the exact one: the model in odds form against RayModel, the
+// snapshot against the grid, coverage (every unobserved cell in view credited once), thread-count
+// independence, and the oracle on synthetic table-top map states after 1, 3 and 6 scans.
+
+#include "vantage/gain/fast_gain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "bench/synthetic_tabletop.hpp"
+#include "vantage/gain/ray_model.hpp"
+#include "vantage/planner/choose.hpp"
+
+namespace vantage {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// The model in odds form
+
+TEST(OddsModel, MatchesRayModelAlongRandomRays) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> any(0.01, 0.99);
+  const OccupancyParams params;
+  const double levels[] = {params.p_min, 0.4, 0.5, 0.7, params.p_max};
+  std::uniform_int_distribution<int> level(0, 5);
+  // NOTE: not alpha = 1, where v stays 1 and q becomes a bare product of likelihood ratios: the
+  // direct form keeps q near 1 as a double and loses 1 - q, which the odds form keeps.
+  for (const double alpha : {0.997, 0.9999, 0.99999, 0.9}) {
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<double> p(300);
+      for (double& x : p) {
+        const int k = level(rng);
+        x = k < 5 ? levels[k] : any(rng);
+      }
+      const RayModel model(alpha);
+      const std::vector<RayState> states = model.trace(p);
+      detail::Odds odds(1.0, p[0]);
+      double t = 1.0;
+      for (std::size_t m = 1; m < p.size(); ++m) {
+        t *= alpha;
+        odds.step(t, p[m - 1], p[m]);
+        if (m % 8 == 0) odds.renormalize();
+        ASSERT_NEAR(odds.visibility(), states[m].visibility, 1e-12) << "alpha " << alpha;
+        ASSERT_NEAR(odds.posterior(), states[m].posterior, 1e-12) << "alpha " << alpha;
+      }
+    }
+  }
+}
+
+TEST(OddsModel, StopTestsMatchTheirDefinitions) {
+  const detail::Odds hidden(0.0004, 0.5);
+  EXPECT_TRUE(hidden.hidden(1e-3));
+  EXPECT_FALSE(hidden.hidden(1e-4));
+  const detail::Odds pinned(0.5, 0.5005);
+  EXPECT_TRUE(pinned.pinned(1e-3));
+  EXPECT_FALSE(pinned.pinned(1e-4));
+  EXPECT_FALSE(pinned.hidden(0.0));
+  EXPECT_FALSE(detail::Odds(0.5, 0.5).pinned(0.0));  // epsilon 0 never stops
+}
+
+// ---------------------------------------------------------------------------------------------
+// The snapshot
+
+TEST(GainMap, HoldsTheGridsProbabilitiesAndClasses) {
+  OccupancyGrid grid(GridSpec::centered({0, 0, 0}, 0.05, {23, 17, 11}));
+  std::mt19937_64 rng(3);
+  std::uniform_int_distribution<int> op(0, 4);
+  for (int sweep = 0; sweep < 4; ++sweep) {
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      const int k = op(rng);
+      if (k == 0) grid.hit(i);
+      if (k == 1 || k == 2) grid.miss(i);
+    }
+  }
+  const GainMap map(grid, 2);
+  EXPECT_EQ(map.code_width(), 1);
+  EXPECT_LE(map.values().size(), 256u);
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    ASSERT_EQ(map.value(i).p, grid.probability(i)) << "cell " << i;
+    ASSERT_EQ(map.value(i).state, grid.state(i)) << "cell " << i;
+    ASSERT_DOUBLE_EQ(map.value(i).entropy, entropy_bits(grid.probability(i)));
+  }
+  EXPECT_TRUE(std::is_sorted(map.values().begin(), map.values().end(),
+                             [](const auto& a, const auto& b) { return a.p < b.p; }));
+}
+
+TEST(GainMap, WidensItsCodesForManyDistinctValues) {
+  OccupancyGrid grid(GridSpec::centered({0, 0, 0}, 0.05, {40, 40, 4}));
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    grid.set_log_odds(i, -2.0f + 4.0f * static_cast<float>(i) / static_cast<float>(grid.size()));
+  }
+  const GainMap map(grid, 1);
+  std::vector<float> distinct(grid.log_odds().begin(), grid.log_odds().end());
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  EXPECT_GT(distinct.size(), 256u);
+  EXPECT_EQ(map.code_width(), 2);
+  EXPECT_EQ(map.values().size(), distinct.size());
+  for (std::size_t i = 0; i < grid.size(); ++i) ASSERT_EQ(map.value(i).p, grid.probability(i));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Small grids
+
+// A grid of random cells and four views around it, one of them from inside the grid.
+struct RandomWorld {
+  OccupancyGrid grid{GridSpec::centered({0, 0, 0.25}, 0.02, {40, 40, 25})};
+  std::vector<Frustum> views;
+
+  RandomWorld() {
+    std::mt19937_64 rng(11);
+    std::uniform_int_distribution<int> kind(0, 9);
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      const int k = kind(rng);
+      if (k < 4) grid.miss(i);
+      if (k == 9) grid.hit(i);
+    }
+    for (int k = 0; k < 3; ++k) {
+      const double a = k * 2.0;
+      views.emplace_back(look_at({1.2 * std::cos(a), 1.2 * std::sin(a), 0.6}, {0, 0, 0.2}),
+                         SensorFov{deg2rad(60), deg2rad(45), 0.3, 3.0});
+    }
+    views.emplace_back(look_at({0.05, 0.02, 0.3}, {0.4, 0.1, 0.2}), SensorFov{});
+  }
+};
+
+TEST(FastGain, CreditsEveryUnobservedCellInViewExactlyOnce) {
+  const RandomWorld world;
+  GainConfig config;
+  config.epsilon = 0.0;  // no cell is left uncredited for being pinned
+  const auto exact = exact_view_gains(world.grid, world.views, config);
+  const auto fast = fast_view_gains(world.grid, world.views, config);
+  for (std::size_t v = 0; v < world.views.size(); ++v) {
+    EXPECT_GT(exact[v].targets, 0u);
+    EXPECT_EQ(fast[v].targets, exact[v].targets) << "view " << v;
+  }
+  // From outside the grid the gain agrees too. (Inside, a few cells of random noise carry a
+  // tenth of a bit; the replay window does not reach back over that noise.)
+  for (std::size_t v = 0; v < 3; ++v) {
+    EXPECT_NEAR(fast[v].gain, exact[v].gain, 1e-3 * exact[v].gain) << "view " << v;
+  }
+}
+
+TEST(FastGain, SameResultForAnyThreadCount) {
+  const RandomWorld world;
+  for (const GainMethod method : {GainMethod::kProbabilistic, GainMethod::kGreedy}) {
+    GainConfig one;
+    one.method = method;
+    one.num_threads = 1;
+    GainConfig two = one;
+    two.num_threads = 2;
+    GainConfig three = one;
+    three.num_threads = 3;
+    const auto a = fast_view_gains(world.grid, world.views, one);
+    const auto b = fast_view_gains(world.grid, world.views, two);
+    const auto c = fast_view_gains(world.grid, world.views, three);
+    for (std::size_t v = 0; v < world.views.size(); ++v) {
+      EXPECT_EQ(a[v].gain, b[v].gain);  // bitwise
+      EXPECT_EQ(a[v].gain, c[v].gain);
+      EXPECT_EQ(a[v].targets, b[v].targets);
+    }
+  }
+}
+
+TEST(FastGain, AgreesWithExactOnAHandBuiltRow) {
+  // The row of tests/gain/view_gain_test.cpp: free cells, three unobserved, an occupied one,
+  // three unobserved behind it, free cells; the sensor inside the first cell.
+  GridSpec spec;
+  spec.origin = {0.0, -0.05, -0.05};
+  spec.resolution = 0.1;
+  spec.dims = {20, 1, 1};
+  OccupancyGrid grid(spec);
+  for (std::size_t i = 0; i < 20; ++i) {
+    if (i == 8) grid.set_probability(i, grid.params().p_max);
+    if (i < 5 || i > 11) grid.set_probability(i, grid.params().p_min);
+  }
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(0.05, 0.0, 0.0);
+  const std::vector<Frustum> view = {Frustum(pose, SensorFov{deg2rad(60), deg2rad(60), 0.0, 10.0})};
+  GainConfig config;
+  config.epsilon = 0.0;
+  const ViewGain exact = exact_view_gains(grid, view, config).front();
+  const ViewGain fast = fast_view_gains(grid, view, config).front();
+  EXPECT_EQ(fast.targets, 6u);
+  EXPECT_NEAR(fast.gain, exact.gain, 1e-9);
+}
+
+TEST(FastGain, ViewsThatSeeNoGridGainNothing) {
+  const OccupancyGrid grid(GridSpec::centered({0, 0, 0}, 0.05, {20, 20, 10}));
+  std::vector<Frustum> views = {Frustum(look_at({2, 0, 0}, {4, 0, 0}), SensorFov{}),
+                                Frustum(look_at({0, 0, 30}, {0, 0, 0}), SensorFov{})};
+  for (const ViewGain& g : fast_view_gains(grid, views, GainConfig{})) {
+    EXPECT_EQ(g.targets, 0u);
+    EXPECT_EQ(g.gain, 0.0);
+  }
+}
+
+TEST(EvaluateViews, DispatchesOnTheEvaluation) {
+  const RandomWorld world;
+  GainConfig config;
+  config.evaluation = GainEvaluation::kExact;
+  const auto exact = evaluate_views(world.grid, world.views, config);
+  const auto exact_ref = exact_view_gains(world.grid, world.views, config);
+  config.evaluation = GainEvaluation::kFast;
+  const auto fast = evaluate_views(world.grid, world.views, config);
+  const auto fast_ref = fast_view_gains(world.grid, world.views, config);
+  for (std::size_t v = 0; v < world.views.size(); ++v) {
+    EXPECT_EQ(exact[v].gain, exact_ref[v].gain);
+    EXPECT_EQ(fast[v].gain, fast_ref[v].gain);
+  }
+  EXPECT_EQ(GainConfig{}.evaluation, GainEvaluation::kFast);  // the default, see BENCHMARK.md
+}
+
+TEST(GainConfig, RejectsBadEpsilonAndRaySpacing) {
+  GainConfig config;
+  config.epsilon = -1e-9;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+  config.epsilon = 0.5;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+  config.epsilon = 0.0;
+  EXPECT_NO_THROW(config.validate());
+  config.ray_spacing = 0.0;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+  config.ray_spacing = 1.5;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+  EXPECT_EQ(parse_gain_evaluation("fast"), GainEvaluation::kFast);
+  EXPECT_EQ(parse_gain_evaluation("exact"), GainEvaluation::kExact);
+  EXPECT_THROW(parse_gain_evaluation("quick"), std::invalid_argument);
+  EXPECT_EQ(to_string(GainEvaluation::kFast), "fast");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The oracle: synthetic table tops after 1, 3 and 6 paper-mode scans from the ring
+
+struct MapState {
+  std::string name;
+  OccupancyGrid grid;
+};
+
+class FastGainOracle : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    states_ = new std::vector<MapState>;
+    const std::vector<Frustum> views = synthetic::ring_views();
+    // The denser layout; the built-in scenes of vantage::sim are in fast_gain_scenes_test.cpp.
+    const synthetic::Scene scene = synthetic::table_top(1);
+    OccupancyGrid grid(synthetic::grid_spec());
+    IntegrationConfig integration;
+    for (int k = 0; k < 6; ++k) {
+      const Frustum& view = views[static_cast<std::size_t>(synthetic::kScanOrder[k])];
+      integrate_scan(grid, Scan{synthetic::scan(scene, view, 320, 240), view}, integration);
+      if (k == 0 || k == 2 || k == 5) {
+        states_->push_back({"after " + std::to_string(k + 1) + " scans", grid});
+      }
+    }
+  }
+  static void TearDownTestSuite() {
+    delete states_;
+    states_ = nullptr;
+  }
+  static std::vector<MapState>* states_;
+};
+std::vector<MapState>* FastGainOracle::states_ = nullptr;
+
+TEST_F(FastGainOracle, PerViewErrorAndChoiceWithinBounds) {
+  const std::vector<Frustum> views = synthetic::ring_views();
+  for (const MapState& state : *states_) {
+    GainConfig reference;
+    reference.epsilon = 0.0;  // the literal model
+    const auto exact = exact_view_gains(state.grid, views, reference);
+    const auto fast = fast_view_gains(state.grid, views, GainConfig{});
+    std::vector<double> errors, exact_gains, fast_gains;
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      ASSERT_GT(exact[v].gain, 0.0) << state.name << ", view " << v;
+      errors.push_back(std::abs(fast[v].gain - exact[v].gain) / exact[v].gain);
+      exact_gains.push_back(exact[v].gain);
+      fast_gains.push_back(fast[v].gain);
+    }
+    std::vector<double> sorted = errors;
+    std::sort(sorted.begin(), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    EXPECT_LE(median, 0.02) << state.name;
+    EXPECT_LE(sorted.back(), 0.05) << state.name;
+    const double best = exact_gains[choose_best(exact_gains)];
+    const double chosen = exact_gains[choose_best(fast_gains)];
+    EXPECT_GE(chosen, 0.99 * best) << state.name;
+    RecordProperty(state.name,
+                   "median " + std::to_string(median) + ", worst " + std::to_string(sorted.back()));
+  }
+}
+
+TEST_F(FastGainOracle, ExactEarlyStopChangesNothingMeasurable) {
+  const std::vector<Frustum> views = synthetic::ring_views();
+  const MapState& state = states_->back();  // the densest, most scanned
+  GainConfig literal;
+  literal.epsilon = 0.0;
+  const auto a = exact_view_gains(state.grid, views, literal);
+  const auto b = exact_view_gains(state.grid, views, GainConfig{});
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    EXPECT_NEAR(b[v].gain, a[v].gain, 1e-4 * a[v].gain) << "view " << v;
+    EXPECT_EQ(b[v].targets, a[v].targets);
+  }
+}
+
+}  // namespace
+}  // namespace vantage
