@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <ctime>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -187,6 +189,33 @@ TEST(TableSegmentation, RejectsBadInput) {
     } catch (const std::invalid_argument& e) {
       EXPECT_NE(std::string(e.what()).find(field), std::string::npos) << e.what();
     }
+  }
+}
+
+// Run with --gtest_also_run_disabled_tests --gtest_filter='TableStudy.*': CPU time of
+// segment_table on the synthetic table top, alone and with a 2 m x 2 m floor below it.
+TEST(TableStudy, DISABLED_Timing) {
+  const Scene scene;
+  Labelled cloud = table_top(scene, 21);
+  for (const bool with_floor : {false, true}) {
+    if (with_floor) {
+      Scene floor;
+      floor.table_z = 0.0;
+      floor.table_half = {1.0, 1.0};
+      floor.boxes.clear();
+      add(cloud, testing::sample_table(floor, 10000.0, kSigma, 22), false, scene.table_z);
+    }
+    TableConfig config;
+    config.min_table_z = 0.3;
+    config.num_threads = 1;
+    const std::clock_t start = std::clock();
+    const int runs = 5;
+    std::size_t objects = 0;
+    for (int run = 0; run < runs; ++run)
+      objects = segment_table(cloud.points, config).objects.size();
+    std::printf("%zu points%s: %.0f ms CPU per segmentation, %zu object points\n",
+                cloud.points.size(), with_floor ? " (with floor)" : "",
+                1e3 * static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC / runs, objects);
   }
 }
 
