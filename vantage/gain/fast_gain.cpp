@@ -126,6 +126,10 @@ constexpr std::uint16_t kMixed = 0xffff;
 
 /// Cells of the exact ray replayed before a credited cell (docs/fast-gain.md).
 constexpr int kReplayCells = 8;
+/// A pinned cell is left uncredited, and a pinned ray jumps, only this many blocks inside a
+/// uniform region: kSkipMargin * kBlock >= kReplayCells keeps every replay window inside it.
+constexpr int kSkipMargin = 2;
+static_assert(kSkipMargin * kBlock >= kReplayCells);
 /// States kept along a ray for the replays, a power of two above kReplayCells.
 constexpr int kHistory = 16;
 /// A ray jumps a uniform region only once its state lies this close to the region's steady state.
@@ -188,7 +192,8 @@ Blocks summarize_blocks(const GridSpec& spec, const CodeT* codes, const std::vec
       }
     }
   });
-  // A block is on a border when it is mixed or a neighbour holds another code. The radius is the
+  // A block is on a border when it is mixed, or a neighbour holds another code or lies outside
+  // the grid. The radius is the
   // chessboard distance to the nearest border block (two chamfer passes, 26 neighbours): all
   // blocks within it share the block's code, because blocks off the border share their
   // neighbours' codes.
@@ -207,10 +212,9 @@ Blocks summarize_blocks(const GridSpec& spec, const CodeT* codes, const std::vec
           for (int dy = -1; dy <= 1 && !border; ++dy) {
             for (int dx = -1; dx <= 1 && !border; ++dx) {
               const int nx = x + dx, ny = y + dy, nz = z + dz;
-              if (nx < 0 || ny < 0 || nz < 0 || nx >= bd.x() || ny >= bd.y() || nz >= bd.z()) {
-                continue;
-              }
-              border = blocks.code[at(nx, ny, nz)] != c;
+              // Outside the grid counts as another code: rays come from there as free space.
+              border = nx < 0 || ny < 0 || nz < 0 || nx >= bd.x() || ny >= bd.y() || nz >= bd.z() ||
+                       blocks.code[at(nx, ny, nz)] != c;
             }
           }
         }
@@ -624,12 +628,14 @@ double replay(const Shared& sh, const CodeT* codes, const RayGroup& rays, const 
 }
 
 /// Moves `walk` to the last cell along the ray inside the cube of uniform blocks around its
-/// cell, when that skips at least two cells. `lo_s`, `hi_s` bound the jump along the ray.
+/// cell, shrunk by `margin` blocks, when that skips at least two cells; [s_in, s_out] bounds the
+/// ray.
 bool jump_uniform(const GridSpec& spec, const Blocks& blocks, const Eigen::Vector3d& o,
                   const Eigen::Vector3d& dir, double s_in, double s_out, const Index3& last,
-                  const Index3& origin_cell, Walk& walk) {
+                  const Index3& origin_cell, int margin, Walk& walk) {
   const std::size_t block = blocks.index(walk.cell);
-  const int r = blocks.radius[block];
+  const int r = blocks.radius[block] - margin;
+  if (r < 0) return false;
   double s_exit = s_out;
   for (int a = 0; a < 3; ++a) {
     if (dir[a] == 0.0) continue;
@@ -694,7 +700,12 @@ RaySum cast_ray(const Shared& sh, const CodeT* codes, const RayGroup& rays, int 
       p_prev = code.p;
       history[walk.m & (kHistory - 1)] = {odds, code.p};
     }
-    if (code.state == CellState::kUnobserved && !odds.pinned(eps)) {
+    // A pinned cell deep in a uniform region gains nothing: within kSkipMargin blocks of it every
+    // cell has its code, so its exact ray's last cells evolve exactly as this ray's did. Nearer a
+    // border its own ray may graze known space and be re-armed, so it is replayed.
+    const std::size_t block = sh.blocks.index(walk.cell);
+    const bool deep = sh.blocks.code[block] == code_index && sh.blocks.radius[block] >= kSkipMargin;
+    if (code.state == CellState::kUnobserved && !(deep && odds.pinned(eps))) {
       const Eigen::Vector3d c = spec.center(walk.cell);
       if (owns(rays, c, col, row)) {
         double g = 0.0;  // replayed once, for the first member that holds the cell
@@ -714,7 +725,7 @@ RaySum cast_ray(const Shared& sh, const CodeT* codes, const RayGroup& rays, int 
 
     // A uniform region the state has settled in predicts nothing new until it ends: jump to its
     // last cell along the ray, with the state the table holds there.
-    if (sh.blocks.code[sh.blocks.index(walk.cell)] == code_index &&
+    if (sh.blocks.code[block] == code_index &&
         (code.state == CellState::kFree ||
          (code.state == CellState::kUnobserved && odds.pinned(eps)))) {
       const auto& steady = sh.steady[code_index];
@@ -723,8 +734,8 @@ RaySum cast_ray(const Shared& sh, const CodeT* codes, const RayGroup& rays, int 
       const bool settled =
           std::abs(odds.n * f.d - odds.d * f.n) < kSteadyTolerance * (odds.n + odds.d) &&
           std::abs(odds.a * f.b - odds.b * f.a) < kSteadyTolerance * (odds.a + odds.b);
-      if (settled &&
-          jump_uniform(spec, sh.blocks, o, dir, s_in, s_out, last, rays.origin_cell, walk)) {
+      if (settled && jump_uniform(spec, sh.blocks, o, dir, s_in, s_out, last, rays.origin_cell,
+                                  code.state == CellState::kFree ? 0 : kSkipMargin, walk)) {
         odds = steady[static_cast<std::size_t>(walk.m)];
         for (int k = 0; k < kHistory && walk.m - k >= m0; ++k) {
           const int m = walk.m - k;
