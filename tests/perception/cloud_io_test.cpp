@@ -236,6 +236,20 @@ TEST_F(CloudIo, NonFiniteCoordinatesNameThePoint) {
   EXPECT_NE(read_error(ply).find("nan.ply: point 1 has"), std::string::npos);
 }
 
+TEST_F(CloudIo, NonFinitePointsCanBeSkippedOnRequest) {
+  const fs::path path =
+      write("organized.pcd", std::string(kPcdHeader) + "DATA ascii\nnan nan nan\n1 2 3\n4 5 inf\n");
+  EXPECT_EQ(read_point_cloud(path, {.skip_non_finite = true}),
+            PointCloud{Eigen::Vector3d(1, 2, 3)});
+  const fs::path none =
+      write("none.ply",
+            "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float "
+            "y\nproperty float z\nend_header\nnan 0 0\n");
+  const std::string message =
+      error_of<std::runtime_error>([&] { read_point_cloud(none, {.skip_non_finite = true}); });
+  EXPECT_NE(message.find("none.ply: no point has finite coordinates"), std::string::npos);
+}
+
 TEST_F(CloudIo, EmptyCloudsAreErrors) {
   const fs::path pcd =
       write("empty.pcd", "FIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nWIDTH 0\nPOINTS 0\nDATA ascii\n");

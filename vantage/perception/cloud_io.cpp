@@ -636,11 +636,15 @@ std::string ply_header(std::size_t n) {
 
 }  // namespace
 
-PointCloud read_point_cloud(const fs::path& path) {
+PointCloud read_point_cloud(const fs::path& path, const CloudReadOptions& options) {
   const Format format = format_of(path);
   try {
     const std::string text = read_whole_file(path);
     PointCloud cloud = format == Format::kPcd ? parse_pcd(text) : parse_ply(text);
+    if (options.skip_non_finite) {
+      std::erase_if(cloud, [](const Eigen::Vector3d& p) { return !p.allFinite(); });
+      if (cloud.empty()) throw FormatError("no point has finite coordinates");
+    }
     check_finite(cloud);
     return cloud;
   } catch (const FormatError& e) {

@@ -8,15 +8,23 @@
 
 namespace vantage {
 
+/// How read_point_cloud treats points with a non-finite coordinate.
+struct CloudReadOptions {
+  /// Drop them instead of failing: organized RGB-D clouds mark pixels without depth with NaN.
+  bool skip_non_finite = false;
+};
+
 /// Reads the x, y, z of every point of a `.pcd` (DATA ascii, binary or binary_compressed) or
 /// `.ply` (ascii, binary_little_endian or binary_big_endian; the `vertex` element) file [m].
 /// Other fields and elements are ignored; the extension is matched without regard to case.
 ///
 /// Throws std::invalid_argument for any other extension, and std::runtime_error with one line
 /// that names the file when it cannot be read, is malformed (with the line or point where),
-/// holds no point, or holds a non-finite coordinate (with the point's index). Nothing partial is
+/// holds no point, or holds a non-finite coordinate (with the point's index; unless
+/// `options.skip_non_finite`, and then only when no finite point is left). Nothing partial is
 /// ever returned.
-PointCloud read_point_cloud(const std::filesystem::path& path);
+PointCloud read_point_cloud(const std::filesystem::path& path,
+                            const CloudReadOptions& options = {});
 
 /// Writes `points` as binary PCD (`.pcd`) or binary little-endian PLY (`.ply`) with float32
 /// x, y, z, the layout PCL's `pcl::PointXYZ` readers and viewers expect. Coordinates are
