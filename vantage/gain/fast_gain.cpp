@@ -120,7 +120,7 @@ namespace {
 // What the rays read: per code the cell's occupancy and class; per block of kBlock^3 cells its
 // code when all its cells share one, and how far around it every block does too.
 
-constexpr int kBlockShift = 2;
+constexpr int kBlockShift = 1;
 constexpr int kBlock = 1 << kBlockShift;
 constexpr std::uint16_t kMixed = 0xffff;
 
@@ -128,7 +128,7 @@ constexpr std::uint16_t kMixed = 0xffff;
 constexpr int kReplayCells = 8;
 /// A pinned cell is left uncredited, and a pinned ray jumps, only this many blocks inside a
 /// uniform region: kSkipMargin * kBlock >= kReplayCells keeps every replay window inside it.
-constexpr int kSkipMargin = 2;
+constexpr int kSkipMargin = 4;
 static_assert(kSkipMargin * kBlock >= kReplayCells);
 /// States kept along a ray for the replays, a power of two above kReplayCells.
 constexpr int kHistory = 16;
@@ -421,26 +421,29 @@ std::vector<std::uint8_t> live_tiles(const GridSpec& spec, const Blocks& blocks,
   const int tiles_x = (rays.cols + kTile - 1) / kTile, tiles_y = (rays.rows + kTile - 1) / kTile;
   std::vector<std::uint8_t> live(static_cast<std::size_t>(tiles_x) * tiles_y, 0);
   if (live.empty()) return live;
-  // Boxes of 2 x 2 x 2 blocks keep the projections few.
+  // Boxes of kBox^3 blocks (4^3 cells): fewer projections, still a tight mask.
+  constexpr int kBox = 4 / kBlock;
   const Index3 bd = blocks.dims;
   const double edge = kBlock * spec.resolution;
-  for (int z = 0; z < bd.z(); z += 2) {
-    for (int y = 0; y < bd.y(); y += 2) {
-      for (int x = 0; x < bd.x(); x += 2) {
+  for (int z = 0; z < bd.z(); z += kBox) {
+    for (int y = 0; y < bd.y(); y += kBox) {
+      for (int x = 0; x < bd.x(); x += kBox) {
         bool any = false;
-        for (int k = 0; k < 8 && !any; ++k) {
-          const int bx = x + (k & 1), by = y + ((k >> 1) & 1), bz = z + ((k >> 2) & 1);
-          if (bx >= bd.x() || by >= bd.y() || bz >= bd.z()) continue;
-          any = blocks.unobserved[static_cast<std::size_t>(bx) +
-                                  bd.x() * (static_cast<std::size_t>(by) +
-                                            bd.y() * static_cast<std::size_t>(bz))] != 0;
+        for (int bz = z; bz < std::min(z + kBox, bd.z()) && !any; ++bz) {
+          for (int by = y; by < std::min(y + kBox, bd.y()) && !any; ++by) {
+            for (int bx = x; bx < std::min(x + kBox, bd.x()) && !any; ++bx) {
+              any = blocks.unobserved[static_cast<std::size_t>(bx) +
+                                      bd.x() * (static_cast<std::size_t>(by) +
+                                                bd.y() * static_cast<std::size_t>(bz))] != 0;
+            }
+          }
         }
         if (!any) continue;
         const Eigen::Vector3d lo = spec.origin + Eigen::Vector3d(x, y, z) * edge;
         double c_lo = 1e300, c_hi = -1e300, r_lo = 1e300, r_hi = -1e300;
         for (int k = 0; k < 8; ++k) {
           const Eigen::Vector3d corner =
-              lo + 2.0 * edge * Eigen::Vector3d(k & 1, (k >> 1) & 1, (k >> 2) & 1);
+              lo + kBox * edge * Eigen::Vector3d(k & 1, (k >> 1) & 1, (k >> 2) & 1);
           const Eigen::Vector3d p = rays.Rt * (corner - rays.origin);
           if (p.x() <= 1e-9) {  // too close to call: every tile
             std::fill(live.begin(), live.end(), std::uint8_t{1});
