@@ -1,0 +1,70 @@
+// The oracle of the fast gain evaluation on the built-in table tops of vantage::sim: after 1, 3
+// and 6 paper-mode scans from the scene's start poses, the fast gain of each of the 30 ring
+// candidates against the exact evaluation of the literal model (MODEL.md).
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "vantage/gain/fast_gain.hpp"
+#include "vantage/map/integrate.hpp"
+#include "vantage/planner/choose.hpp"
+#include "vantage/sim/world.hpp"
+
+namespace vantage {
+namespace {
+
+/// Scans from these start poses (one per ring position), in this order.
+constexpr int kScanOrder[] = {0, 5, 2, 7, 3, 8};
+
+void check_scene(const std::string& name) {
+  const sim::World world(sim::load_scene(name));
+  const sim::Scene& scene = world.scene();
+  const std::vector<Frustum> views = make_views(scene.candidate_poses(), scene.fov());
+  ASSERT_EQ(views.size(), 30u);
+  OccupancyGrid grid(scene.grid);
+  for (int k = 0; k < 6; ++k) {
+    const sim::SimulatedScan scan =
+        world.scan(scene.start_poses[static_cast<std::size_t>(kScanOrder[k])], 1000 + k);
+    integrate_scan(grid, Scan{scan.points_world(), scan.view()}, IntegrationConfig{});
+    if (k != 0 && k != 2 && k != 5) continue;
+    const std::string state = name + " after " + std::to_string(k + 1) + " scans";
+
+    GainConfig reference;
+    reference.epsilon = 0.0;  // the literal model
+    const auto exact = exact_view_gains(grid, views, reference);
+    const auto fast = fast_view_gains(grid, views, GainConfig{});
+    std::vector<double> errors, exact_gains, fast_gains;
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      ASSERT_GT(exact[v].gain, 0.0) << state << ", view " << v;
+      errors.push_back(std::abs(fast[v].gain - exact[v].gain) / exact[v].gain);
+      exact_gains.push_back(exact[v].gain);
+      fast_gains.push_back(fast[v].gain);
+    }
+    std::sort(errors.begin(), errors.end());
+    EXPECT_LE(errors[errors.size() / 2], 0.02) << state << ": median relative error";
+    EXPECT_LE(errors.back(), 0.05) << state << ": worst relative error";
+    const double best = exact_gains[choose_best(exact_gains)];
+    const double chosen = exact_gains[choose_best(fast_gains)];
+    EXPECT_GE(chosen, 0.99 * best) << state << ": exact gain of the fast choice";
+  }
+}
+
+TEST(FastGainScenes, Tabletop1) { check_scene("tabletop-1"); }
+TEST(FastGainScenes, Tabletop2) { check_scene("tabletop-2"); }
+TEST(FastGainScenes, Tabletop3) { check_scene("tabletop-3"); }
+TEST(FastGainScenes, Tabletop4) { check_scene("tabletop-4"); }
+
+TEST(FastGainScenes, EveryBuiltInTableTopIsCovered) {
+  std::vector<std::string> table_tops;
+  for (const std::string& name : sim::builtin_scene_names()) {
+    if (name.rfind("tabletop-", 0) == 0) table_tops.push_back(name);
+  }
+  EXPECT_EQ(table_tops,
+            (std::vector<std::string>{"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"}));
+}
+
+}  // namespace
+}  // namespace vantage
