@@ -29,10 +29,10 @@ IcpMetric parse_icp_metric(std::string_view name);
 /// of max(voxel_size, d / 2).
 ///
 /// The defaults suit a table top (7.8 mm cells, a robot's pose off by a few cm and degrees):
-/// 8 cm covers how far such an error moves a point 1-2 m from the sensor, 1 cm is about a cell,
+/// 8 cm covers most of how far such an error moves a point 1-2 m away, 1 cm is about a cell,
 /// and 1 cm voxels keep a scan to ~10k points. On simulated table-top scans (IcpStudy in
-/// tests/perception/registration_test.cpp) they bring guesses 5 cm / 6.4° off to 0.7 mm / 0.03°
-/// mean with 1 mm range noise, and to 2 mm / 0.08° with 3 mm.
+/// tests/perception/registration_test.cpp; docs/perception.md) they bring guesses 5 cm / 6.4°
+/// off to 0.70 mm / 0.029° mean with 1 mm range noise, and to 2.05 mm / 0.077° with 3 mm.
 struct IcpConfig {
   IcpMetric metric = IcpMetric::kPointToPlane;
   double max_correspondence_distance = 0.01;      ///< [m] pairing distance of the final stage
