@@ -1,10 +1,15 @@
 #!/usr/bin/python3
-"""Plots and summarises a sweep (`vantage bench`): the paper's Figs. 10 and 11.
+"""Plots and summarises a sweep (`vantage bench`): the paper's Figs. 10 and 11 (table top) and
+Figs. 15 and 16 (office).
 
 Usage: plot_bench.py DIR
 Reads DIR/scans.csv; writes DIR/unobserved.png (mean +- std of unobserved cells per scan, per
-method and scene), DIR/prediction_error.png (absolute error of predicted vs actual gain per scan,
-probabilistic vs greedy predictions on the probabilistic run's poses) and DIR/summary.md.
+method and scene), DIR/unobserved_by_travel.png (the same against the distance travelled),
+DIR/prediction_error.png (absolute error of predicted vs actual gain per scan, probabilistic vs
+greedy predictions on the probabilistic run's poses) and DIR/summary.md.
+
+A trial that stopped early (no frontier left) keeps its last map: its last figures stand for the
+later scans, so that every mean is over all trials.
 """
 import csv
 import math
@@ -42,11 +47,44 @@ def load(path):
 
 
 def grouped(rows):
-    """(scene, method, alpha) -> scan -> list of rows (one per trial)."""
-    g = defaultdict(lambda: defaultdict(list))
+    """(scene, method, alpha) -> scan -> list of rows (one per trial), trials that stopped early
+    carried forward to the group's last scan."""
+    trials = defaultdict(lambda: defaultdict(list))
     for r in rows:
-        g[(r["scene"], r["method"], r["alpha"])][int(r["scan"])].append(r)
+        trials[(r["scene"], r["method"], r["alpha"])][r["trial"]].append(r)
+    g = defaultdict(lambda: defaultdict(list))
+    for key, by_trial in trials.items():
+        last = max(int(r["scan"]) for rs in by_trial.values() for r in rs)
+        for rs in by_trial.values():
+            rs.sort(key=lambda r: int(r["scan"]))
+            for r in rs:
+                g[key][int(r["scan"])].append(r)
+            for k in range(int(rs[-1]["scan"]) + 1, last + 1):
+                g[key][k].append(dict(rs[-1], scan=str(k), predicted_gain="",
+                                      greedy_predicted_gain="", actual_gain="0", travel_m="0",
+                                      fallback="0", carried="1"))
     return g
+
+
+def travelled(by_scan):
+    """trial -> list of (cumulative travel [m], unobserved cells) by scan."""
+    curves = defaultdict(list)
+    for k in sorted(by_scan):
+        for r in by_scan[k]:
+            c = curves[r["trial"]]
+            total = (c[-1][0] if c else 0.0) + float(r.get("travel_m") or 0.0)
+            c.append((total, float(r["unobserved"])))
+    return curves
+
+
+def at_distance(curve, d):
+    """Unobserved cells of a trial once it has travelled d: its last scan taken within d."""
+    value = curve[0][1]
+    for total, unobserved in curve:
+        if total > d + 1e-9:
+            break
+        value = unobserved
+    return value
 
 
 def grid_axes(n):
@@ -82,10 +120,41 @@ def plot_unobserved(out, scenes, g):
     plt.close(fig)
 
 
+def plot_unobserved_by_travel(out, scenes, g):
+    fig, axes = grid_axes(len(scenes))
+    for ax, scene in zip(axes, scenes):
+        for (s, method, alpha), by_scan in sorted(g.items()):
+            if s != scene:
+                continue
+            curves = travelled(by_scan)
+            longest = max(c[-1][0] for c in curves.values())
+            if longest <= 0:
+                continue
+            xs = [longest * i / 200 for i in range(201)]
+            stats = [mean_std([at_distance(c, d) for c in curves.values()]) for d in xs]
+            m = [x[0] for x in stats]
+            sd = [x[1] for x in stats]
+            colour = COLOURS.get(method)
+            ax.plot(xs, m, "-", color=colour, label=label(method, alpha))
+            ax.fill_between(xs, [a - b for a, b in zip(m, sd)], [a + b for a, b in zip(m, sd)],
+                            color=colour, alpha=0.12)
+        ax.set_title(scene)
+        ax.set_xlabel("distance travelled [m]")
+        ax.set_ylabel("unobserved cells")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=8)
+    for ax in axes[len(scenes):]:
+        ax.axis("off")
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "unobserved_by_travel.png"), dpi=110)
+    plt.close(fig)
+
+
 def prediction_errors(by_scan):
     """scan -> (errors of the method's prediction, errors of greedy's on the same poses)."""
     result = {}
     for k, rows in sorted(by_scan.items()):
+        rows = [r for r in rows if "carried" not in r]
         own = [abs(float(r["predicted_gain"]) - float(r["actual_gain"]))
                for r in rows if r["predicted_gain"]]
         greedy = [abs(float(r["greedy_predicted_gain"]) - float(r["actual_gain"]))
@@ -123,32 +192,65 @@ def plot_prediction_error(out, scenes, g):
     plt.close(fig)
 
 
+def checkpoints(last):
+    """Scans to report: 2, 4, 6, 8 for short runs, quarters of the run for long ones."""
+    if last <= 10:
+        return [2, 4, 6, 8]
+    return sorted({max(2, round(last * q / 4)) for q in (1, 2, 3, 4)})
+
+
+def scans_to(by_scan, share):
+    """Mean scan at which a trial's coverage first reaches `share`, over the trials that do, and
+    how many do."""
+    first = {}
+    for k in sorted(by_scan):
+        for r in by_scan[k]:
+            if r["trial"] not in first and float(r["coverage"]) >= share:
+                first[r["trial"]] = k
+    trials = {r["trial"] for rs in by_scan.values() for r in rs}
+    if not first:
+        return f"- (0/{len(trials)})"
+    return f"{mean_std(list(first.values()))[0]:.1f} ({len(first)}/{len(trials)})"
+
+
 def summary(out, scenes, g):
+    last = max(k for by_scan in g.values() for k in by_scan)
+    marks = checkpoints(last)
     lines = ["# Sweep summary", "",
-             "Mean unobserved cells after scans 2, 4, 6 and 8 (over trials); AUC = area under the",
-             "mean unobserved-cells curve (trapezoid, per scan); prediction error = mean",
-             "|predicted - actual| gain over scans 2.. of the method's own prediction (greedy's",
-             "prediction on the same poses in brackets); plan time = mean seconds per decision.",
+             f"Mean unobserved cells after scans {', '.join(map(str, marks))} (over trials); AUC =",
+             "area under the mean unobserved-cells curve (trapezoid, per scan); prediction error =",
+             "mean |predicted - actual| gain over scans 2.. of the method's own prediction",
+             "(greedy's prediction on the same poses in brackets); plan time = mean seconds per",
+             "decision; travel = mean distance travelled per trial [m]; fallbacks = mean stops per",
+             "trial whose goal was not reachable; scans to X% = mean scan at which coverage of the",
+             "observable surface first reaches X% (trials that reach it / trials).",
              ""]
     for scene in scenes:
         lines += [f"## {scene}", "",
-                  "| method | trials | @2 | @4 | @6 | @8 | AUC | prediction error | plan [s] |",
-                  "|---|---|---|---|---|---|---|---|---|"]
+                  "| method | trials | " + " | ".join(f"@{k}" for k in marks) +
+                  " | AUC | prediction error | plan [s] | travel [m] | fallbacks |"
+                  " scans to 50% | scans to 75% |",
+                  "|---|---|" + "---|" * len(marks) + "---|---|---|---|---|---|---|"]
         for (s, method, alpha), by_scan in sorted(g.items()):
             if s != scene:
                 continue
             scans = sorted(by_scan)
             means = {k: mean_std([float(r["unobserved"]) for r in by_scan[k]])[0] for k in scans}
-            cells = [f"{means[k]:.0f}" if k in means else "-" for k in (2, 4, 6, 8)]
+            cells = [f"{means[k]:.0f}" if k in means else "-" for k in marks]
             auc = sum((means[a] + means[b]) / 2 for a, b in zip(scans, scans[1:]))
             errs = prediction_errors(by_scan)
             own = [e for k in errs for e in errs[k][0]]
             greedy = [e for k in errs for e in errs[k][1]]
             err = f"{mean_std(own)[0]:.0f} ({mean_std(greedy)[0]:.0f})" if own else "-"
-            plan = [float(r["plan_seconds"]) for k in scans if k > 1 for r in by_scan[k]]
+            real = [r for k in scans for r in by_scan[k] if "carried" not in r]
+            plan = [float(r["plan_seconds"]) for r in real if int(r["scan"]) > 1]
             trials = len(by_scan[scans[0]])
+            travel = sum(float(r.get("travel_m") or 0.0) for r in real) / trials
+            fallbacks = sum(int(r.get("fallback") or 0) for r in real) / trials
             lines.append(f"| {label(method, alpha)} | {trials} | " + " | ".join(cells) +
-                         f" | {auc:.0f} | {err} | {mean_std(plan)[0]:.3f} |")
+                         f" | {auc:.0f} | {err} | {mean_std(plan)[0]:.3f} | {travel:.1f} |"
+                         f" {fallbacks:.1f} | {scans_to(by_scan, 0.5)} |"
+                         f" {scans_to(by_scan, 0.75)} |")
         lines.append("")
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines))
@@ -162,6 +264,8 @@ def main(argv):
     scenes = sorted({r["scene"] for r in rows})
     g = grouped(rows)
     plot_unobserved(out, scenes, g)
+    if "travel_m" in rows[0]:
+        plot_unobserved_by_travel(out, scenes, g)
     plot_prediction_error(out, scenes, g)
     summary(out, scenes, g)
 

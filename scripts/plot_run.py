@@ -2,8 +2,11 @@
 """Draws one exploration run (the folder `vantage explore` writes).
 
 Usage: plot_run.py RUN_DIR
-Writes RUN_DIR/unobserved.png (unobserved cells and coverage by scan) and RUN_DIR/map.png (top
-view of the final map's occupied cells with the candidate views and the views taken).
+Writes RUN_DIR/unobserved.png (unobserved cells and coverage by scan; for an office also
+unobserved cells by distance travelled) and RUN_DIR/map.png: on a table top, a top view of the
+final map's occupied cells with the candidate views and the views taken; in an office, a top view
+of the explored floor (seen free space, obstacles, rooms) with the path driven and the stops, and
+the goals the robot could not reach (fallbacks, paper section 5.3.1).
 """
 import csv
 import json
@@ -28,10 +31,13 @@ def yaw_of(quaternion_xyzw):
 
 
 def plot_progress(run_dir, scans, run):
+    office = run["scene"].get("kind") == "office"
     x = [int(r["scan"]) for r in scans]
-    fig, ax = plt.subplots(figsize=(6.4, 4))
+    fig, axes = plt.subplots(1, 2 if office else 1, figsize=(11.5 if office else 6.4, 4),
+                             squeeze=False)
+    ax = axes[0][0]
     ax.plot(x, [int(r["unobserved"]) for r in scans], "o-", color="#c62828", label="unobserved")
-    ax.set_xlabel("scan")
+    ax.set_xlabel("stop (a 360-degree sweep each)" if office else "scan")
     ax.set_ylabel("unobserved cells")
     ax.grid(alpha=0.3)
     cov = ax.twinx()
@@ -44,8 +50,90 @@ def plot_progress(run_dir, scans, run):
     cfg = run["config"]
     method = cfg["method"] + (f", a = {cfg['alpha']}" if cfg["method"] == "probabilistic" else "")
     ax.set_title(f"{run['scene']['name']}: {method}")
+    if office:
+        travel, total = [], 0.0
+        for r in scans:
+            total += float(r.get("travel_m") or 0.0)
+            travel.append(total)
+        by = axes[0][1]
+        by.plot(travel, [int(r["unobserved"]) for r in scans], "o-", color="#c62828")
+        for r, d in zip(scans, travel):
+            if r.get("fallback") == "1":
+                by.plot([d], [int(r["unobserved"])], "x", color="black", ms=8)
+        by.set_xlabel("distance travelled [m] (x: a fallback stop)")
+        by.set_ylabel("unobserved cells")
+        by.grid(alpha=0.3)
+        by.set_title(f"{total:.1f} m in {len(scans)} stops")
     fig.tight_layout()
     fig.savefig(os.path.join(run_dir, "unobserved.png"), dpi=120)
+    plt.close(fig)
+
+
+def read_floor_map(path):
+    with open(path) as f:
+        header = f.readline().split()
+        ox, oy, res = (float(v) for v in header[:3])
+        nx, ny = int(header[3]), int(header[4])
+        rows = [line.rstrip("\n").ljust(nx) for line in f]
+    codes = {" ": 0, ".": 1, "#": 2}
+    image = [[codes.get(ch, 0) for ch in row[:nx]] for row in rows[:ny]]
+    return image, (ox, ox + nx * res, oy, oy + ny * res)
+
+
+def plot_office_map(run_dir, run):
+    from matplotlib.colors import ListedColormap
+
+    image, extent = read_floor_map(os.path.join(run_dir, "floor_map.txt"))
+    w, h = extent[1] - extent[0], extent[3] - extent[2]
+    fig, ax = plt.subplots(figsize=(min(14, 3 + 0.55 * w), min(14, 1.2 + 0.55 * h)))
+    ax.imshow(image, origin="lower", extent=extent, interpolation="nearest",
+              cmap=ListedColormap(["#eeeeee", "#bbdefb", "#37474f"]), vmin=0, vmax=2)
+    for room in run["scene"].get("rooms", []):
+        (x0, y0), (x1, y1) = room["min"], room["max"]
+        ax.add_patch(plt.Rectangle((x0, y0), x1 - x0, y1 - y0, fill=False, ls=":", lw=0.8,
+                                   color="#616161"))
+        ax.annotate(room["name"], ((x0 + x1) / 2, y1 - 0.25), ha="center", va="top",
+                    fontsize=7, color="#616161")
+    for s in run["scans"]:
+        path = s.get("path", [])
+        if path:
+            ax.plot([p[0] for p in path], [p[1] for p in path], "-", color="#e65100", lw=1.4)
+    for c in run.get("candidates", []):
+        ax.plot(c["position"][0], c["position"][1], "+", color="#7b1fa2", ms=6)
+    for s in run["scans"]:
+        px, py = s["pose"]["position"][:2]
+        first = s["scan"] == 1
+        ax.plot(px, py, "o", ms=9 if first else 6, color="#2e7d32" if first else "#e65100",
+                mec="black", mew=0.6)
+        ax.annotate(str(s["scan"]), (px, py), textcoords="offset points", xytext=(5, 5),
+                    fontsize=8, color="black", weight="bold")
+        if s.get("fallback") and s.get("goal"):
+            gx, gy = s["goal"][:2]
+            ax.plot(gx, gy, "x", color="#b71c1c", ms=8, mew=2)
+            ax.plot([px, gx], [py, gy], ":", color="#b71c1c", lw=1)
+    handles = [plt.Line2D([], [], color="#e65100", lw=1.4, label="path driven"),
+               plt.Line2D([], [], marker="o", ls="", color="#e65100", mec="black",
+                          label="stops (360-degree sweeps)"),
+               plt.Line2D([], [], marker="o", ls="", ms=9, color="#2e7d32", mec="black",
+                          label="start"),
+               plt.Line2D([], [], marker="x", ls="", color="#b71c1c", mew=2,
+                          label="unreachable goal (fallback)"),
+               plt.Line2D([], [], marker="+", ls="", color="#7b1fa2",
+                          label="frontier stops left"),
+               plt.Rectangle((0, 0), 1, 1, color="#bbdefb", label="seen free at sensor height"),
+               plt.Rectangle((0, 0), 1, 1, color="#37474f", label="obstacle (robot's band)")]
+    ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    ax.set_xlim(extent[0], extent[1])
+    ax.set_ylim(extent[2], extent[3])
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    cfg = run["config"]
+    method = cfg["method"] + (f", a = {cfg['alpha']}" if cfg["method"] == "probabilistic" else "")
+    travel = sum(float(s.get("travel_m", 0.0)) for s in run["scans"])
+    ax.set_title(f"{run['scene']['name']}, {method}: {len(run['scans'])} stops, {travel:.1f} m")
+    fig.tight_layout()
+    fig.savefig(os.path.join(run_dir, "map.png"), dpi=120)
     plt.close(fig)
 
 
@@ -96,7 +184,10 @@ def main(argv):
         run = json.load(f)
     scans = read_csv(os.path.join(run_dir, "scans.csv"))
     plot_progress(run_dir, scans, run)
-    plot_map(run_dir, run)
+    if run["scene"].get("kind") == "office":
+        plot_office_map(run_dir, run)
+    else:
+        plot_map(run_dir, run)
 
 
 if __name__ == "__main__":

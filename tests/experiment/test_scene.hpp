@@ -46,11 +46,14 @@ inline std::vector<std::vector<std::string>> parse_csv(const std::string& text) 
   return rows;
 }
 
-/// The CSV without its last column (plan_seconds, the only wall-clock figure in it).
+/// The CSV with its plan_seconds column (the 12th, the only wall-clock figure in it) emptied.
 inline std::string without_timing(const std::string& csv) {
   std::string out;
-  std::istringstream lines(csv);
-  for (std::string line; std::getline(lines, line);) out += line.substr(0, line.rfind(',')) + "\n";
+  for (std::vector<std::string> fields : parse_csv(csv)) {
+    if (fields.size() > 11) fields[11].clear();
+    for (std::size_t k = 0; k < fields.size(); ++k) out += (k > 0 ? "," : "") + fields[k];
+    out += "\n";
+  }
   return out;
 }
 

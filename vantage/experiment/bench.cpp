@@ -61,6 +61,7 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
     exploration.mapper.register_scans = given.register_scans;
     exploration.mapper.segment_table = exploration.mapper.segment_table && given.segment_table;
   }
+  apply_registration_switch(scene, exploration);  // offices register whole sweeps
   Mapper mapper(scene.grid, exploration.mapper);
   const ExplorationResult result = explore(scene, exploration, mapper);
   return scans_csv_rows({spec.scene, spec.method, spec.alpha, spec.trial}, result.scans);
@@ -91,6 +92,18 @@ void BenchConfig::validate() const {
         fmt::format("bench.shard {}/{} is not a shard: need 0 <= I < N", shard_index, shard_count));
   }
   exploration.validate();
+}
+
+BenchConfig office_bench_config() {
+  BenchConfig config;
+  config.scenes = {"office-small-sparse", "office-small-cluttered", "office-large-sparse",
+                   "office-large-cluttered"};
+  config.methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy, PlannerMethod::kLatombe,
+                    PlannerMethod::kYamauchi, PlannerMethod::kRandom};
+  config.alphas = {0.9999, 0.999};
+  config.trials = 5;
+  config.exploration.scans = 20;
+  return config;
 }
 
 std::vector<TrialSpec> bench_trials(const BenchConfig& config) {

@@ -43,6 +43,11 @@ struct BenchConfig {
   void validate() const;
 };
 
+/// The paper's office sweep (§5.2, Figs. 15 and 16): both offices at both clutter levels, all
+/// five methods (the probabilistic one with a = 0.9999 and 0.999), trial i from start pose i of
+/// 5, 20 stops each.
+BenchConfig office_bench_config();
+
 /// Every trial of the sweep in its fixed order, before sharding. Loads each scene once, to name
 /// it; throws what load_scene throws.
 std::vector<TrialSpec> bench_trials(const BenchConfig& config);

@@ -1,7 +1,13 @@
 #pragma once
 /// @file
-/// Simulated NBV exploration, scan by scan (§5.1): scan from the current view with a noisy pose,
-/// register, segment, integrate, predict every candidate's gain, move to the best.
+/// Simulated NBV exploration, scan by scan: scan from the current view with a noisy pose,
+/// register, segment, integrate, predict every candidate's gain, move to the best. One loop for
+/// both of the paper's experiments:
+/// - table top (§5.1): one scan per view, the candidates are the scene's ring of views, and the
+///   robot walks around the table;
+/// - office (§5.2): a 360° sweep at every stop, the candidates are frontier-region centroids on
+///   the floor, the robot drives there on a navigation grid, and when a goal cannot be reached it
+///   scans as close to it as it got (§5.3.1, a "fallback").
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -11,10 +17,46 @@
 #include <vector>
 
 #include "vantage/perception/mapper.hpp"
+#include "vantage/planner/navigation.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"
 
 namespace vantage {
+
+/// Settings that only office scenes use (§5.2); the robot's footprint and height come from the
+/// scene.
+struct OfficeConfig {
+  /// Frontier cells lie within this height of the sensor's: the band a level sensor sees out to
+  /// its full range in every direction, so its frontier is the edge of what a sweep saw [m].
+  double frontier_band = 0.1;
+  int min_frontier_cells = 20;       ///< smaller frontier regions are dropped
+  double max_frontier_radius = 1.5;  ///< frontier regions are cut into pieces this wide [m]
+  /// Obstacles on the navigation grid are occupied cells from this height up to the robot's
+  /// height; below it are the floor's own hits and their range noise [m].
+  double min_obstacle_height = 0.15;
+  bool unknown_blocks = false;  ///< unobserved cells block the robot (false: plan into them)
+  /// A candidate whose stop (the goal, or its fallback) lies within this distance of a stop
+  /// already taken is dropped: the sweep there would see what that one saw. It also drops the
+  /// frontier ring that the sensor's minimum range leaves around the robot [m].
+  double min_move = 0.5;
+  /// Register each 360° sweep as a whole (all steps at once, well constrained) against the
+  /// sweeps so far; the mapper's own per-scan registration must then be off (a single 57° step
+  /// facing one wall slides along it). See default_mapper_config().
+  bool register_sweeps = true;
+  /// Sweep registration: scans thinned to one point per map cell, guesses up to ~6 cm and a few
+  /// degrees off (points 3.5 m away move by up to 0.3 m), Kinect noise of up to 2 cm.
+  perception::IcpConfig icp = {.max_correspondence_distance = 0.04,
+                               .initial_correspondence_distance = 0.32,
+                               .voxel_size = 0.04};
+  /// An ICP correction larger than this is taken for a slide (along a corridor, or towards the
+  /// part already mapped) and rejected: the believed pose is kept. 3 sigma of the default pose
+  /// noise [m], [rad].
+  double max_icp_translation = 0.06;
+  double max_icp_rotation = deg2rad(6.0);
+
+  /// Throws std::invalid_argument naming the field.
+  void validate() const;
+};
 
 /// Settings of one exploration run.
 struct ExplorationConfig {
@@ -27,6 +69,7 @@ struct ExplorationConfig {
   /// Error of the robot's belief after each move (x, y, yaw), replacing the scene's; the first
   /// scan's pose defines the map frame and is exact. Default: 2 cm, 2 cm, 2 degrees.
   std::optional<sim::PoseNoise> pose_noise = sim::PoseNoise{0.02, 0.02, deg2rad(2.0)};
+  OfficeConfig office;  ///< used by office scenes only
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -38,14 +81,16 @@ struct StageTimes {
   double register_scan = 0.0;
   double segment = 0.0;
   double integrate = 0.0;
-  double plan = 0.0;  ///< the decision that chose this scan's view
+  double plan = 0.0;        ///< the decision that chose this scan's view, candidates included
+  double candidates = 0.0;  ///< ... of which finding the candidates (office: frontiers, travel)
 };
 
-/// Everything recorded after one scan.
+/// Everything recorded after one scan (office: one stop, all steps of its sweep).
 struct ScanRecord {
   int scan = 0;   ///< 1-based
   int view = -1;  ///< candidate index taken (-1: a start pose not on the ring)
-  Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();  ///< true pose
+  /// True pose (office: of the sweep's first step, heading along the way the robot came).
+  Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
   std::optional<double> predicted_gain;         ///< under the method (none for the first scan)
   std::optional<double> greedy_predicted_gain;  ///< under greedy, same view
   std::size_t actual_gain = 0;                  ///< cells that left the unobserved set
@@ -57,14 +102,23 @@ struct ScanRecord {
   double yaw_error_before = 0.0;   ///< rotation error of the believed pose [rad]
   double yaw_error_after = 0.0;    ///< ... after ICP [rad]
   std::size_t points = 0;
-  std::size_t object_points = 0;
+  std::size_t object_points = 0;  ///< points integrated (office: thinned to one per cell)
+  /// Distance travelled to this view from the previous one [m]: on the table top the walk along
+  /// the ring (the arc between the two bearings); in an office the path driven on the floor.
+  double travel = 0.0;
+  /// The planned goal was not reachable, and the robot scanned where it got closest (§5.3.1).
+  bool fallback = false;
+  std::optional<Eigen::Vector3d> goal;  ///< office: where the planner sent the robot [m]
+  std::vector<Eigen::Vector2d> path;    ///< office: the floor path driven to this stop [m]
+  int candidates = 0;                   ///< candidates the decision chose among
   StageTimes seconds;
 };
 
 /// A finished run.
 struct ExplorationResult {
   std::vector<ScanRecord> scans;
-  std::vector<Eigen::Isometry3d> candidates;  ///< the candidate poses of the scene
+  /// The candidate poses: the scene's ring; in an office, the frontier stops of the last decision.
+  std::vector<Eigen::Isometry3d> candidates;
   std::string stop_reason;
   std::size_t observable_cells = 0;  ///< the coverage denominator
 };
@@ -73,10 +127,23 @@ struct ExplorationResult {
 using ScanCallback = std::function<void(const ScanRecord&, int total)>;
 
 /// Runs one exploration of a simulated scene and returns its records and the final mapper.
+/// Office scenes need a mapper that does not register single scans (explore() registers whole
+/// sweeps); throws std::invalid_argument otherwise.
 ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
                           const ScanCallback& on_scan = {});
 
-/// The mapper settings a scene calls for (table segmentation on for table tops).
+/// The mapper settings a scene calls for: table segmentation on for table tops; for offices,
+/// registration of single scans off (explore() registers whole sweeps).
 MapperConfig default_mapper_config(const sim::Scene& scene);
+
+/// Moves a registration switch to where a scene needs it: for offices, `config.mapper`'s
+/// register_scans becomes `config.office.register_sweeps` and is switched off in the mapper.
+void apply_registration_switch(const sim::Scene& scene, ExplorationConfig& config);
+
+/// The frusta that plan a stop's 360° sweep: one per step of the scene's sweep, each as wide as
+/// the yaw step (2 pi / steps) when the sensor is at least that wide, so they tile the sweep
+/// without overlap and a stop counts each cell once (up to cells on a shared boundary plane).
+/// A narrower sensor keeps its own width (the sweep then has gaps, and still no overlap).
+std::vector<Frustum> sweep_frusta(const sim::Scene& scene, const Eigen::Isometry3d& T_world_sensor);
 
 }  // namespace vantage

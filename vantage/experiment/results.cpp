@@ -9,6 +9,7 @@
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/perception/cloud_io.hpp"
+#include "vantage/planner/navigation.hpp"
 
 namespace vantage {
 namespace {
@@ -57,6 +58,16 @@ json config_json(const ExplorationConfig& config) {
         {"max_iterations", mapper.icp.max_iterations},
         {"voxel_size", mapper.icp.voxel_size}}},
       {"table_segmentation", mapper.segment_table},
+      {"office",
+       {{"frontier_band", config.office.frontier_band},
+        {"min_frontier_cells", config.office.min_frontier_cells},
+        {"max_frontier_radius", config.office.max_frontier_radius},
+        {"min_obstacle_height", config.office.min_obstacle_height},
+        {"unknown_blocks", config.office.unknown_blocks},
+        {"min_move", config.office.min_move},
+        {"register_sweeps", config.office.register_sweeps},
+        {"max_icp_translation", config.office.max_icp_translation},
+        {"max_icp_rotation", config.office.max_icp_rotation}}},
   };
 }
 
@@ -80,11 +91,54 @@ json scan_json(const ScanRecord& r) {
               {"register", r.seconds.register_scan},
               {"segment", r.seconds.segment},
               {"integrate", r.seconds.integrate},
-              {"plan", r.seconds.plan}}}};
+              {"plan", r.seconds.plan},
+              {"candidates", r.seconds.candidates}}},
+            {"travel_m", r.travel},
+            {"fallback", r.fallback},
+            {"candidates", r.candidates}};
+  if (r.goal) j["goal"] = {r.goal->x(), r.goal->y(), r.goal->z()};
+  json path = json::array();
+  for (const Eigen::Vector2d& p : r.path) path.push_back({p.x(), p.y()});
+  j["path"] = path;
   j["predicted_gain"] = r.predicted_gain ? json(*r.predicted_gain) : json(nullptr);
   j["greedy_predicted_gain"] =
       r.greedy_predicted_gain ? json(*r.greedy_predicted_gain) : json(nullptr);
   return j;
+}
+
+/// A top view of the floor for the office picture: per (x, y) column, '#' where the robot's
+/// navigation grid sees an obstacle, '.' where a cell in the sensor's height band is known free,
+/// ' ' where the band is all unknown. A header line gives origin_x origin_y resolution nx ny.
+void write_floor_map(const std::filesystem::path& path, const sim::Scene& scene,
+                     const ExplorationConfig& config, const OccupancyGrid& grid) {
+  NavigationConfig nav;
+  nav.footprint = scene.robot.footprint;
+  nav.min_height = config.office.min_obstacle_height;
+  nav.max_height = scene.robot.height;
+  const NavigationGrid floor = NavigationGrid::from_map(grid, nav);
+  const GridSpec& spec = grid.spec();
+  const double lo = scene.mount.height - config.office.frontier_band;
+  const double hi = scene.mount.height + config.office.frontier_band;
+  std::string text = fmt::format("{} {} {} {} {}\n", spec.origin.x(), spec.origin.y(),
+                                 spec.resolution, spec.dims.x(), spec.dims.y());
+  for (int y = 0; y < spec.dims.y(); ++y) {
+    std::string row(static_cast<std::size_t>(spec.dims.x()), ' ');
+    for (int x = 0; x < spec.dims.x(); ++x) {
+      if (floor.obstacle(floor.linear({x, y}))) {
+        row[static_cast<std::size_t>(x)] = '#';
+        continue;
+      }
+      for (int z = 0; z < spec.dims.z(); ++z) {
+        const double h = spec.center({x, y, z}).z();
+        if (h >= lo && h <= hi && grid.state(spec.linear({x, y, z})) == CellState::kFree) {
+          row[static_cast<std::size_t>(x)] = '.';
+          break;
+        }
+      }
+    }
+    text += row + "\n";
+  }
+  write_atomically(path, text);
 }
 
 }  // namespace
@@ -95,10 +149,11 @@ std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>&
                                 : std::string();
   std::string rows;
   for (const ScanRecord& r : scans) {
-    rows += fmt::format("{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g}\n", label.scene,
+    rows += fmt::format("{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g},{:.15g},{:d}\n", label.scene,
                         to_string(label.method), alpha, label.trial, r.scan, r.view,
                         optional_number(r.predicted_gain), optional_number(r.greedy_predicted_gain),
-                        r.actual_gain, r.unobserved, r.coverage, r.seconds.plan);
+                        r.actual_gain, r.unobserved, r.coverage, r.seconds.plan, r.travel,
+                        r.fallback ? 1 : 0);
   }
   return rows;
 }
@@ -129,6 +184,14 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
   for (const Eigen::Isometry3d& pose : result.candidates) {
     run["candidates"].push_back(pose_json(pose));
   }
+  json rooms = json::array();
+  for (const sim::Room& room : scene.rooms) {
+    rooms.push_back({{"name", room.name},
+                     {"min", {room.area.min().x(), room.area.min().y()}},
+                     {"max", {room.area.max().x(), room.area.max().y()}}});
+  }
+  run["scene"]["rooms"] = rooms;
+  run["scene"]["kind"] = sim::to_string(scene.kind);
   write_atomically(dir / "run.json", run.dump(2) + "\n");
 
   write_octomap(dir / "map.bt", grid);
@@ -141,6 +204,8 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
     cells += fmt::format("{:.5f},{:.5f},{:.5f}\n", c.x(), c.y(), c.z());
   }
   write_atomically(dir / "map_cells.csv", cells);
+  if (scene.kind == sim::SceneKind::kOffice)
+    write_floor_map(dir / "floor_map.txt", scene, config, grid);
 }
 
 }  // namespace vantage

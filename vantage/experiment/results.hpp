@@ -13,9 +13,11 @@
 namespace vantage {
 
 /// The header of scans.csv. Other tools read it: append columns, never change these.
+/// travel_m is the distance travelled to the scan's view (table top: the walk along the ring;
+/// office: the path driven), fallback 1 where the planned goal was not reachable (§5.3.1).
 inline constexpr std::string_view kScansCsvHeader =
     "scene,method,alpha,trial,scan,view,predicted_gain,greedy_predicted_gain,actual_gain,"
-    "unobserved,coverage,plan_seconds";
+    "unobserved,coverage,plan_seconds,travel_m,fallback";
 
 /// Which run a row belongs to.
 struct RunLabel {
@@ -29,10 +31,11 @@ struct RunLabel {
 /// an empty field where a value does not exist (no prediction before the first scan).
 std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>& scans);
 
-/// Writes scans.csv, run.json, map.bt, cloud.pcd (when any object point was seen) and
-/// map_cells.csv (the occupied cells, for the picture) into `dir`, which must exist. The caller
-/// writes into a fresh temporary folder and renames it into place, so a run's folder is whole or
-/// absent.
+/// Writes scans.csv, run.json, map.bt, cloud.pcd (when any object point was seen),
+/// map_cells.csv (the occupied cells, for the picture) and, for offices, floor_map.txt (a top
+/// view of the floor: unknown, seen free and obstacle columns) into `dir`, which must exist. The
+/// caller writes into a fresh temporary folder and renames it into place, so a run's folder is
+/// whole or absent.
 void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
                      const ExplorationConfig& config, const ExplorationResult& result,
                      const Mapper& mapper);

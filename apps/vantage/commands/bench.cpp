@@ -29,6 +29,7 @@ struct BenchOptions {
   int jobs = 1;
   std::string shard = "0/1";
   std::string out = "results/bench-tabletop";
+  std::string kind = "tabletop";  ///< which experiment: tabletop or office
   bool plots = true;
   PlanningOptions planning;
   MappingOptions mapping;
@@ -79,8 +80,34 @@ void run(const BenchOptions& o) {
   fmt::print("ran {} trial(s); {}\n", ran, (fs::path(o.out) / "scans.csv").string());
   if (o.plots && config.shard_count == 1) {
     run_plot_script("plot_bench.py", {o.out});
-    fmt::print("plots and summary: {}/unobserved.png, prediction_error.png, summary.md\n", o.out);
+    fmt::print("plots and summary: {}/unobserved.png, {}prediction_error.png, summary.md\n", o.out,
+               o.kind == "office" ? "unobserved_by_travel.png, " : "");
   }
+}
+
+void add_sweep_command(CLI::App& bench, const std::string& name, const std::string& description,
+                       const std::string& trials_help, const std::shared_ptr<BenchOptions>& o) {
+  CLI::App* cmd = bench.add_subcommand(name, description);
+  cmd->add_option("--scenes", o->scenes, "scenes")->delimiter(',')->capture_default_str();
+  cmd->add_option("--methods", o->methods, "methods")->delimiter(',')->capture_default_str();
+  cmd->add_option("--alphas", o->alphas, "a values of the probabilistic method, a,b,...")
+      ->capture_default_str();
+  cmd->add_option("--trials", o->trials, trials_help)->capture_default_str();
+  cmd->add_option(
+         "--scans,-n", o->scans,
+         o->kind == "office" ? "stops per trial (a 360-degree sweep each)" : "scans per trial")
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed, "base seed")->capture_default_str();
+  cmd->add_option("--jobs", o->jobs, "trials run in parallel")->capture_default_str();
+  cmd->add_option("--shard", o->shard, "run slice I of N (0-based), e.g. 2/8")
+      ->capture_default_str();
+  cmd->add_option("--out,-o", o->out, "sweep folder; rerunning resumes it")->capture_default_str();
+  cmd->add_flag("!--no-plots", o->plots, "skip plots and summary");
+  o->planning.add_to(*cmd);
+  o->mapping.add_to(*cmd);
+  // A sweep runs trials in parallel; one thread per trial unless told otherwise.
+  cmd->get_option("--threads")->default_val(1);
+  cmd->callback([o] { run(*o); });
 }
 
 }  // namespace
@@ -89,31 +116,25 @@ void add_bench_command(CLI::App& app) {
   CLI::App* bench = app.add_subcommand("bench", "The paper's experiments as sweeps");
   bench->require_subcommand(1);
 
-  auto o = std::make_shared<BenchOptions>();
-  CLI::App* tabletop = bench->add_subcommand(
-      "tabletop", "Table-top sweep: scenes x methods x trials (the paper's Figs. 10 and 11)");
-  tabletop->add_option("--scenes", o->scenes, "scenes")->delimiter(',')->capture_default_str();
-  tabletop->add_option("--methods", o->methods, "methods")->delimiter(',')->capture_default_str();
-  tabletop->add_option("--alphas", o->alphas, "a values of the probabilistic method, a,b,...")
-      ->capture_default_str();
-  tabletop
-      ->add_option("--trials", o->trials,
-                   "trials per scene and method; trial i starts "
-                   "from ring position i")
-      ->capture_default_str();
-  tabletop->add_option("--scans,-n", o->scans, "scans per trial")->capture_default_str();
-  tabletop->add_option("--seed", o->seed, "base seed")->capture_default_str();
-  tabletop->add_option("--jobs", o->jobs, "trials run in parallel")->capture_default_str();
-  tabletop->add_option("--shard", o->shard, "run slice I of N (0-based), e.g. 2/8")
-      ->capture_default_str();
-  tabletop->add_option("--out,-o", o->out, "sweep folder; rerunning resumes it")
-      ->capture_default_str();
-  tabletop->add_flag("!--no-plots", o->plots, "skip plots and summary");
-  o->planning.add_to(*tabletop);
-  o->mapping.add_to(*tabletop);
-  // A sweep runs trials in parallel; one thread per trial unless told otherwise.
-  tabletop->get_option("--threads")->default_val(1);
-  tabletop->callback([o] { run(*o); });
+  auto tabletop = std::make_shared<BenchOptions>();
+  add_sweep_command(*bench, "tabletop",
+                    "Table-top sweep: scenes x methods x trials (the paper's Figs. 10 and 11)",
+                    "trials per scene and method; trial i starts from ring position i", tabletop);
+
+  const BenchConfig paper = office_bench_config();
+  auto office = std::make_shared<BenchOptions>();
+  office->kind = "office";
+  office->scenes = paper.scenes;
+  office->methods.clear();
+  for (const PlannerMethod m : paper.methods) office->methods.emplace_back(to_string(m));
+  office->alphas = fmt::format("{},{}", paper.alphas[0], paper.alphas[1]);
+  office->trials = paper.trials;
+  office->scans = paper.exploration.scans;
+  office->out = "results/bench-office";
+  add_sweep_command(
+      *bench, "office",
+      "Office sweep: offices x methods x starts, frontier stops (the paper's Figs. 15 and 16)",
+      "trials per scene and method; trial i starts from the scene's start pose i", office);
 
   auto dirs = std::make_shared<std::vector<std::string>>();
   auto out = std::make_shared<std::string>();

@@ -34,7 +34,11 @@ struct ExploreOptions {
   std::string out;
   bool plots = true;
   bool quiet = false;
+  bool alpha_given = false;  ///< --alpha on the command line (else the scene kind's default)
 };
+
+/// The paper's a for an office (§5.2) when --alpha is not given; table tops keep 0.997.
+constexpr double kOfficeAlpha = 0.9999;
 
 fs::path default_out(const ExploreOptions& o) {
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -49,24 +53,32 @@ void print_scan(const ScanRecord& r, int total) {
                                     : fmt::format("{:>8} {:>16}", "-", "");
   const double seconds = r.seconds.scan + r.seconds.register_scan + r.seconds.segment +
                          r.seconds.integrate + r.seconds.plan;
+  const std::string travel =
+      r.goal || r.travel > 0.0
+          ? fmt::format("  travel {:5.2f} m{}", r.travel, r.fallback ? " (fallback)" : "")
+          : std::string();
   fmt::print(
       "scan {:2}/{}  view {:2}  predicted {}  actual {:7}  unobserved {:8}  "
-      "coverage {:5.1f}%  icp {:4.1f}->{:4.1f} mm  {:5.2f} s\n",
+      "coverage {:5.1f}%  icp {:4.1f}->{:4.1f} mm{}  {:5.2f} s\n",
       r.scan, total, r.view, predicted, r.actual_gain, r.unobserved, 100.0 * r.coverage,
-      1e3 * r.pose_error_before, 1e3 * r.pose_error_after, seconds);
+      1e3 * r.pose_error_before, 1e3 * r.pose_error_after, travel, seconds);
   std::fflush(stdout);
 }
 
 void run(const ExploreOptions& o) {
   const sim::Scene scene = sim::load_scene(o.scene);
+  const bool office = scene.kind == sim::SceneKind::kOffice;
+  PlanningOptions planning = o.planning;
+  if (office && !o.alpha_given) planning.alpha = kOfficeAlpha;
   ExplorationConfig config;
-  config.planner = o.planning.planner_config();
+  config.planner = planning.planner_config();
   config.mapper = o.mapping.mapper_config(scene);
   config.mapper.integration.num_threads = o.planning.threads;
   config.scans = o.scans;
   config.min_gain = o.min_gain;
   config.start = o.start;
   config.seed = o.seed;
+  apply_registration_switch(scene, config);  // offices register whole sweeps
   config.validate();
 
   const fs::path out = o.out.empty() ? default_out(o) : fs::path(o.out);
@@ -74,11 +86,10 @@ void run(const ExploreOptions& o) {
     throw std::invalid_argument(fmt::format("--out {} exists and is not empty", out.string()));
   }
   if (!o.quiet) {
-    fmt::print(
-        "exploring {} with {} ({} evaluation{}), {} scans from start {}, seed {}\n", scene.name,
-        o.planning.method, o.planning.evaluation,
-        o.planning.method == "probabilistic" ? fmt::format(", a = {}", o.planning.alpha) : "",
-        o.scans, o.start, o.seed);
+    fmt::print("exploring {} with {} ({} evaluation{}), {} scans from start {}, seed {}\n",
+               scene.name, o.planning.method, o.planning.evaluation,
+               o.planning.method == "probabilistic" ? fmt::format(", a = {}", planning.alpha) : "",
+               o.scans, o.start, o.seed);
   }
   Mapper mapper(scene.grid, config.mapper);
   const ExplorationResult result =
@@ -114,8 +125,11 @@ void add_explore_command(CLI::App& app) {
   cmd->add_option("--scene,-s", o->scene, "built-in scene name or scene YAML file")
       ->capture_default_str();
   o->planning.add_to(*cmd);
+  cmd->get_option("--alpha")->description(
+      "observability parameter a of the probabilistic method (table top 0.997, office 0.9999)");
   o->mapping.add_to(*cmd);
-  cmd->add_option("--scans,-n", o->scans, "number of scans to take")->capture_default_str();
+  cmd->add_option("--scans,-n", o->scans, "number of scans to take (office: stops, a sweep each)")
+      ->capture_default_str();
   cmd->add_option("--min-gain", o->min_gain,
                   "stop early when the best predicted gain falls below this [cells]")
       ->capture_default_str();
@@ -125,7 +139,10 @@ void add_explore_command(CLI::App& app) {
   cmd->add_option("--out,-o", o->out, "results folder (default: a fresh folder under results/)");
   cmd->add_flag("!--no-plots", o->plots, "skip the pictures");
   cmd->add_flag("--quiet,-q", o->quiet, "no per-scan progress");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, cmd] {
+    o->alpha_given = cmd->get_option("--alpha")->count() > 0;
+    run(*o);
+  });
 }
 
 }  // namespace vantage::cli
