@@ -1,0 +1,189 @@
+#include "bench/octomap_gain.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <stdexcept>
+
+#include "vantage/gain/fast_gain.hpp"
+#include "vantage/gain/ray_model.hpp"
+#include "vantage/map/line_of_sight.hpp"
+#include "vantage/util/parallel.hpp"
+
+namespace vantage::bench {
+namespace {
+
+octomap::point3d to_point(const Eigen::Vector3d& p) {
+  return {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())};
+}
+
+}  // namespace
+
+std::unique_ptr<octomap::OcTree> to_octree(const OccupancyGrid& grid) {
+  const GridSpec& spec = grid.spec();
+  const Eigen::Vector3d lattice = spec.origin / spec.resolution;
+  if ((lattice - lattice.array().round().matrix()).cwiseAbs().maxCoeff() > 1e-9) {
+    throw std::invalid_argument("to_octree: the grid's cells do not lie on OctoMap's keys");
+  }
+  auto tree = std::make_unique<octomap::OcTree>(spec.resolution);
+  const OccupancyParams& p = grid.params();
+  tree->setProbHit(p.p_hit);
+  tree->setProbMiss(p.p_miss);
+  tree->setClampingThresMin(p.p_min);
+  tree->setClampingThresMax(p.p_max);
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const float l = grid.log_odds(i);
+    if (l == 0.0f) continue;  // unknown: no node, as in OctoMap
+    tree->setNodeValue(to_point(spec.center(spec.unravel(i))), l, /*lazy_eval=*/true);
+  }
+  tree->updateInnerOccupancy();
+  return tree;
+}
+
+OctoMapGains octomap_view_gains(const octomap::OcTree& tree, const GridSpec& spec,
+                                const OccupancyParams& params, std::span<const Frustum> views,
+                                const GainConfig& config) {
+  config.validate();
+  OctoMapGains out;
+  out.gains.resize(views.size());
+  std::atomic<std::size_t> rays{0}, keys{0};
+  const float free_max = static_cast<float>(logit(0.4));
+  const float occupied_min = static_cast<float>(logit(0.6));
+  const double eps = config.epsilon;
+
+  run_with_threads(config.num_threads, [&] {
+    tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t vi) {
+      const Frustum& view = views[vi];
+      const Eigen::Matrix3d R = view.T_world_sensor().linear();
+      const Eigen::Vector3d o = view.origin();
+      const int max_cells = max_ray_cells(spec, o);
+      const UniformPrefix outside(RayModel(config.alpha), params.p_min, max_cells + 1);
+      std::vector<double> t(static_cast<std::size_t>(max_cells) + 2, 1.0);
+      for (std::size_t m = 1; m < t.size(); ++m) t[m] = t[m - 1] * config.alpha;
+
+      // The pixel grid: the field of view cut to the grid's image, the fast mode's pitch.
+      const double th = std::tan(view.fov().h_fov / 2), tv = std::tan(view.fov().v_fov / 2);
+      double u_lo = -th, u_hi = th, v_lo = -tv, v_hi = tv, depth = 0.0;
+      double cu_lo = 1e300, cu_hi = -1e300, cv_lo = 1e300, cv_hi = -1e300;
+      bool in_front = true;
+      for (int k = 0; k < 8; ++k) {
+        const Eigen::Vector3d c((k & 1) ? spec.max_corner().x() : spec.origin.x(),
+                                (k & 2) ? spec.max_corner().y() : spec.origin.y(),
+                                (k & 4) ? spec.max_corner().z() : spec.origin.z());
+        const Eigen::Vector3d p = R.transpose() * (c - o);
+        depth = std::max(depth, p.x());
+        if (p.x() <= 1e-9) {
+          in_front = false;
+          continue;
+        }
+        cu_lo = std::min(cu_lo, p.y() / p.x());
+        cu_hi = std::max(cu_hi, p.y() / p.x());
+        cv_lo = std::min(cv_lo, p.z() / p.x());
+        cv_hi = std::max(cv_hi, p.z() / p.x());
+      }
+      if (in_front) {
+        u_lo = std::max(u_lo, cu_lo);
+        u_hi = std::min(u_hi, cu_hi);
+        v_lo = std::max(v_lo, cv_lo);
+        v_hi = std::min(v_hi, cv_hi);
+      }
+      depth = std::min(depth, view.fov().max_range);
+      if (depth <= 0.0 || u_hi <= u_lo || v_hi <= v_lo) return;
+      const double du = config.ray_spacing * spec.resolution / depth;
+      const int cols = static_cast<int>(std::ceil((u_hi - u_lo) / du));
+      const int rows = static_cast<int>(std::ceil((v_hi - v_lo) / du));
+      const double reach = view.fov().max_range + spec.resolution * 0.8660254037844386;
+
+      octomap::KeySet credited;  // count each cell once per view
+      octomap::KeyRay ray;
+      const octomap::OcTreeKey k_origin = tree.coordToKey(to_point(o));
+      // The grid's cells as keys: beyond them is the free space of MODEL.md, not OctoMap's
+      // unknown.
+      const octomap::OcTreeKey k_lo = tree.coordToKey(to_point(spec.center(Index3::Zero())));
+      const octomap::OcTreeKey k_hi =
+          tree.coordToKey(to_point(spec.center(spec.dims - Index3::Ones())));
+      auto in_grid = [&](const octomap::OcTreeKey& k) {
+        for (int a = 0; a < 3; ++a) {
+          if (k[a] < k_lo[a] || k[a] > k_hi[a]) return false;
+        }
+        return true;
+      };
+      ViewGain gain;
+      std::size_t view_keys = 0;
+      for (int row = 0; row < rows; ++row) {
+        for (int col = 0; col < cols; ++col) {
+          const Eigen::Vector3d dir =
+              R * Eigen::Vector3d(1.0, u_lo + (col + 0.5) * du, v_lo + (row + 0.5) * du);
+          // Clip to the grid: the cells before it are free (MODEL.md), a table lookup.
+          double s_in = 0.0, s_out = reach / dir.norm();
+          bool hits = true;
+          for (int a = 0; a < 3 && hits; ++a) {
+            if (dir[a] == 0.0) {
+              hits = o[a] >= spec.origin[a] && o[a] < spec.max_corner()[a];
+              continue;
+            }
+            double t0 = (spec.origin[a] - o[a]) / dir[a],
+                   t1 = (spec.max_corner()[a] - o[a]) / dir[a];
+            if (t0 > t1) std::swap(t0, t1);
+            s_in = std::max(s_in, t0);
+            s_out = std::min(s_out, t1);
+          }
+          if (!hits || s_in >= s_out) continue;
+          const double nudge = 1e-6 * spec.resolution / dir.norm();
+          const octomap::point3d from = to_point(o + (s_in + nudge) * dir);
+          const octomap::point3d to = to_point(o + (s_out - nudge) * dir);
+          if (!tree.computeRayKeys(from, to, ray)) continue;
+          ray.addKey(tree.coordToKey(to));  // computeRayKeys leaves out the end's cell
+          const octomap::OcTreeKey& first = *ray.begin();
+          int m = std::abs(int(first[0]) - int(k_origin[0])) +
+                  std::abs(int(first[1]) - int(k_origin[1])) +
+                  std::abs(int(first[2]) - int(k_origin[2]));
+          detail::Odds odds;
+          double p_prev = params.p_min;
+          bool start = true;
+          for (const octomap::OcTreeKey& key : ray) {
+            ++view_keys;
+            const bool inside = in_grid(key);
+            const octomap::OcTreeNode* node = inside ? tree.search(key) : nullptr;
+            const float l = node ? node->getLogOdds() : (inside ? 0.0f : free_max - 1.0f);
+            const double p = node ? node->getOccupancy() : (inside ? 0.5 : params.p_min);
+            if (start) {
+              if (m == 0) {
+                odds = detail::Odds(1.0, p);
+              } else {
+                odds = detail::Odds(outside.at(m));
+                odds.step(t[static_cast<std::size_t>(m)], params.p_min, p);
+              }
+              start = false;
+            } else {
+              odds.step(t[static_cast<std::size_t>(m)], p_prev, p);
+              if ((m & 7) == 0) odds.renormalize();
+            }
+            p_prev = p;
+            const bool unobserved = l > free_max && l < occupied_min;
+            if (unobserved && !odds.pinned(eps)) {
+              const octomap::point3d c = tree.keyToCoord(key);
+              if (view.contains(Eigen::Vector3d(c.x(), c.y(), c.z())) &&
+                  credited.insert(key).second) {
+                gain.gain += entropy_bits(p) - entropy_bits(odds.posterior());
+                ++gain.targets;
+              }
+            }
+            if (odds.hidden(eps)) break;
+            ++m;
+          }
+        }
+      }
+      out.gains[vi] = gain;
+      rays += static_cast<std::size_t>(rows) * static_cast<std::size_t>(cols);
+      keys += view_keys;
+    });
+  });
+  out.rays = rays;
+  out.keys = keys;
+  return out;
+}
+
+}  // namespace vantage::bench
