@@ -89,16 +89,18 @@ GainMap::GainMap(const OccupancyGrid& grid, int num_threads)
       values_.push_back(v);
     }
     code_width_ = keys.size() <= 0x100u ? 1 : (keys.size() <= 0x10000u ? 2 : 4);
-    codes_.assign((n * static_cast<std::size_t>(code_width_) + 3) / 4, 0u);
     switch (code_width_) {
       case 1:
-        write_codes(log_odds, keys, reinterpret_cast<std::uint8_t*>(codes_.data()));
+        codes8_.resize(n);
+        write_codes(log_odds, keys, codes8_.data());
         break;
       case 2:
-        write_codes(log_odds, keys, reinterpret_cast<std::uint16_t*>(codes_.data()));
+        codes16_.resize(n);
+        write_codes(log_odds, keys, codes16_.data());
         break;
       default:
-        write_codes(log_odds, keys, codes_.data());
+        codes32_.resize(n);
+        write_codes(log_odds, keys, codes32_.data());
         break;
     }
   });

@@ -47,7 +47,13 @@ class GainMap {
   /// Codes of width `Code` (which must match code_width()), one per cell in linear order.
   template <typename Code>
   const Code* codes() const {
-    return reinterpret_cast<const Code*>(codes_.data());
+    if constexpr (sizeof(Code) == 1) {
+      return codes8_.data();
+    } else if constexpr (sizeof(Code) == 2) {
+      return codes16_.data();
+    } else {
+      return codes32_.data();
+    }
   }
   /// The value of cell `i`, whatever the code width.
   const Value& value(std::size_t i) const;
@@ -57,7 +63,10 @@ class GainMap {
   OccupancyParams params_;
   int code_width_ = 1;
   std::vector<Value> values_;
-  std::vector<std::uint32_t> codes_;  // storage for codes of code_width_ bytes, aligned
+  // The codes, in the one vector of width code_width_.
+  std::vector<std::uint8_t> codes8_;
+  std::vector<std::uint16_t> codes16_;
+  std::vector<std::uint32_t> codes32_;
 };
 
 namespace detail {

@@ -61,8 +61,9 @@ struct GainConfig {
 /// The predicted gain of one view.
 struct ViewGain {
   double gain = 0.0;  ///< expected number of unobserved cells the view turns known [bits]
-  /// Exact mode: unobserved cells inside the frustum. Fast mode: those a ray reached before it
-  /// stopped early.
+  /// Exact mode: the unobserved cells inside the frustum. Fast mode: those it credited; the same
+  /// cells with epsilon = 0, without those behind a ray's early stop and those deep in uniform
+  /// unobserved space with a pinned posterior otherwise.
   std::size_t targets = 0;
 };
 
