@@ -143,6 +143,18 @@ TEST(FastGain, CreditsEveryUnobservedCellInViewExactlyOnce) {
   }
 }
 
+TEST(FastGain, AWideFieldOfViewIsCoveredWhole) {
+  const RandomWorld world;
+  const std::vector<Frustum> wide = {Frustum(look_at({1.0, 0.1, 0.4}, {0, 0, 0.2}),
+                                             SensorFov{deg2rad(170), deg2rad(150), 0.1, 3.0})};
+  GainConfig config;
+  config.epsilon = 0.0;
+  const ViewGain exact = exact_view_gains(world.grid, wide, config).front();
+  const ViewGain fast = fast_view_gains(world.grid, wide, config).front();
+  EXPECT_GT(exact.targets, 0u);
+  EXPECT_EQ(fast.targets, exact.targets);
+}
+
 TEST(FastGain, SameResultForAnyThreadCount) {
   const RandomWorld world;
   for (const GainMethod method : {GainMethod::kProbabilistic, GainMethod::kGreedy}) {

@@ -281,10 +281,11 @@ struct RayGroup {
   bool origin_inside = false;
 };
 
-/// The image corners (u, v) of a view's field of view in the frame `Rt`; false when one lies
-/// too far off the axis.
-bool fov_corners(const Frustum& view, const Eigen::Matrix3d& Rt, double& u_lo, double& u_hi,
-                 double& v_lo, double& v_hi) {
+/// Extends [u_lo, u_hi] x [v_lo, v_hi] by the image corners of a view's field of view in the
+/// frame `Rt`. False, leaving the bounds incomplete, when a corner lies behind the frame or, with
+/// `limit`, more than kMaxImageTan off its axis.
+bool fov_corners(const Frustum& view, const Eigen::Matrix3d& Rt, bool limit, double& u_lo,
+                 double& u_hi, double& v_lo, double& v_hi) {
   const double th = std::tan(view.fov().h_fov / 2.0), tv = std::tan(view.fov().v_fov / 2.0);
   const Eigen::Matrix3d R = Rt * view.T_world_sensor().linear();
   for (const double sy : {-1.0, 1.0}) {
@@ -292,7 +293,7 @@ bool fov_corners(const Frustum& view, const Eigen::Matrix3d& Rt, double& u_lo, d
       const Eigen::Vector3d d = R * Eigen::Vector3d(1.0, sy * th, sz * tv);
       if (d.x() <= 0.0) return false;
       const double u = d.y() / d.x(), v = d.z() / d.x();
-      if (std::abs(u) > kMaxImageTan || std::abs(v) > kMaxImageTan) return false;
+      if (limit && (std::abs(u) > kMaxImageTan || std::abs(v) > kMaxImageTan)) return false;
       u_lo = std::min(u_lo, u);
       u_hi = std::max(u_hi, u);
       v_lo = std::min(v_lo, v);
@@ -326,7 +327,7 @@ bool fits(std::span<const Frustum* const> views) {
   const Eigen::Matrix3d Rt = group_frame(views).transpose();
   double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
   for (const Frustum* v : views) {
-    if (!fov_corners(*v, Rt, u_lo, u_hi, v_lo, v_hi)) return false;
+    if (!fov_corners(*v, Rt, /*limit=*/true, u_lo, u_hi, v_lo, v_hi)) return false;
   }
   return true;
 }
@@ -369,7 +370,10 @@ void lay_out_rays(const GridSpec& spec, double ray_spacing, RayGroup& rays) {
   double u_lo = 1e300, u_hi = -1e300, v_lo = 1e300, v_hi = -1e300;
   double max_range = 0.0;
   for (const Frustum* v : rays.views) {
-    fov_corners(*v, rays.Rt, u_lo, u_hi, v_lo, v_hi);
+    // Members other than the first fit the limit (fits()); the first may be wider than it, alone
+    // in its group, and its image must still cover all of it. SensorFov keeps every corner in
+    // front of a lone view.
+    fov_corners(*v, rays.Rt, /*limit=*/false, u_lo, u_hi, v_lo, v_hi);
     max_range = std::max(max_range, v->fov().max_range);
   }
 
