@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <numbers>
 #include <random>
 
 #include "bench/synthetic_tabletop.hpp"
@@ -153,6 +154,41 @@ TEST(FastGain, AWideFieldOfViewIsCoveredWhole) {
   const ViewGain fast = fast_view_gains(world.grid, wide, config).front();
   EXPECT_GT(exact.targets, 0u);
   EXPECT_EQ(fast.targets, exact.targets);
+}
+
+TEST(FastGain, ASweepFromInsideTheGridIsCoveredWhole) {
+  // An office stop: 8 views 45 degrees apart at one origin inside the grid. They share rays in
+  // groups that each fit one image.
+  const RandomWorld world;
+  std::vector<Frustum> sweep;
+  for (int k = 0; k < 8; ++k) {
+    const double yaw = k * std::numbers::pi / 4;
+    const Eigen::Vector3d eye(0.1, -0.05, 0.3);
+    sweep.emplace_back(look_at(eye, eye + Eigen::Vector3d(std::cos(yaw), std::sin(yaw), -0.3)),
+                       SensorFov{deg2rad(57), deg2rad(43), 0.05, 3.0});
+  }
+  GainConfig config;
+  config.epsilon = 0.0;
+  const auto exact = exact_view_gains(world.grid, sweep, config);
+  const auto fast = fast_view_gains(world.grid, sweep, config);
+  for (std::size_t v = 0; v < sweep.size(); ++v) {
+    EXPECT_GT(exact[v].targets, 0u);
+    EXPECT_EQ(fast[v].targets, exact[v].targets) << "view " << v;
+  }
+}
+
+TEST(FastGain, AViewAloneAndInItsGroupAgree) {
+  // Views at one origin share rays; alone, a view gets its own. The layouts differ, the gains
+  // agree within the fast mode's accuracy.
+  const OccupancyGrid grid =
+      synthetic::map_after(synthetic::table_top(0), synthetic::grid_spec(), 1, 160, 120);
+  const std::vector<Frustum> ring = synthetic::ring_views();
+  const std::vector<Frustum> three(ring.begin() + 3, ring.begin() + 6);  // one position
+  const auto together = fast_view_gains(grid, three, GainConfig{});
+  for (std::size_t v = 0; v < three.size(); ++v) {
+    const ViewGain alone = fast_view_gains(grid, std::span(&three[v], 1), GainConfig{}).front();
+    EXPECT_NEAR(alone.gain, together[v].gain, 1e-3 * together[v].gain) << "view " << v;
+  }
 }
 
 TEST(FastGain, SameResultForAnyThreadCount) {
