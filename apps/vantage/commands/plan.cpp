@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <numbers>
 #include <numeric>
 #include <optional>
 #include <string>
@@ -21,6 +22,7 @@
 #include "vantage/experiment/recorded.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/octomap_io.hpp"
+#include "vantage/views/frontier.hpp"
 #include "vantage/views/ring.hpp"
 #include "vantage/views/sphere.hpp"
 
@@ -65,8 +67,24 @@ SensorFov fov_from_options(const PlanOptions& o) {
   return result;
 }
 
+/// Four level views (yaw 0, 90, 180, 270 degrees) at the centroid of every frontier region.
+std::vector<Eigen::Isometry3d> frontier_poses(const OccupancyGrid& grid) {
+  std::vector<Eigen::Isometry3d> poses;
+  for (const FrontierRegion& region : frontier_regions(grid, FrontierConfig{})) {
+    for (int k = 0; k < 4; ++k) {
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.linear() = Eigen::AngleAxisd(k * std::numbers::pi / 2.0, Eigen::Vector3d::UnitZ())
+                          .toRotationMatrix();
+      pose.translation() = region.centroid;
+      poses.push_back(pose);
+    }
+  }
+  if (poses.empty()) throw std::runtime_error("the map has no frontier regions to plan from");
+  return poses;
+}
+
 std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen::AlignedBox3d& roi,
-                                               CloudFrame frame) {
+                                               CloudFrame frame, const OccupancyGrid& grid) {
   const Eigen::Vector3d center = roi.center();
   const double half_diagonal = 0.5 * roi.sizes().head<2>().norm();
   if (o.candidates == "ring") {
@@ -84,10 +102,7 @@ std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen
     sphere.views = o.views > 0 ? o.views : 50;
     return sphere_poses(sphere);
   }
-  if (o.candidates == "frontier") {
-    throw std::invalid_argument(
-        "--candidates frontier is not available yet; use ring, sphere or a pose file");
-  }
+  if (o.candidates == "frontier") return frontier_poses(grid);
   if (!fs::exists(o.candidates)) {
     throw std::invalid_argument(
         fmt::format("--candidates '{}' is neither ring, sphere, frontier nor an existing pose file",
@@ -138,7 +153,7 @@ void run(const PlanOptions& o) {
   const Eigen::AlignedBox3d roi =
       manifest ? manifest->roi : Eigen::AlignedBox3d(spec.origin, spec.max_corner());
 
-  const std::vector<Eigen::Isometry3d> poses = candidate_poses(o, roi, frame);
+  const std::vector<Eigen::Isometry3d> poses = candidate_poses(o, roi, frame, grid);
   std::vector<Candidate> candidates;
   for (const Eigen::Isometry3d& pose : poses) candidates.push_back({Frustum(pose, fov)});
   const Plan plan = plan_next_view(grid, candidates, planner, /*seed=*/1);
@@ -234,7 +249,8 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("input", o->input, "manifest YAML, or a folder holding manifest.yaml");
   cmd->add_option("--map", o->map, "start from this OctoMap (.bt or .ot)");
   cmd->add_option("--candidates,-c", o->candidates,
-                  "ring, sphere, or a TUM-format file of candidate poses")
+                  "ring, sphere, frontier (4 level views at each frontier region's "
+                  "centroid), or a TUM-format file of candidate poses")
       ->capture_default_str();
   cmd->add_option("--radius", o->radius, "ring/sphere radius [m] (default: from the ROI)");
   cmd->add_option("--height", o->height, "ring height [m] (default: 0.3 m above the ROI)");
