@@ -199,18 +199,21 @@ def checkpoints(last):
     return sorted({max(2, round(last * q / 4)) for q in (1, 2, 3, 4)})
 
 
-def scans_to(by_scan, share):
-    """Mean scan at which a trial's coverage first reaches `share`, over the trials that do, and
-    how many do."""
-    first = {}
-    for k in sorted(by_scan):
-        for r in by_scan[k]:
-            if r["trial"] not in first and float(r["coverage"]) >= share:
-                first[r["trial"]] = k
-    trials = {r["trial"] for rs in by_scan.values() for r in rs}
-    if not first:
-        return f"- (0/{len(trials)})"
-    return f"{mean_std(list(first.values()))[0]:.1f} ({len(first)}/{len(trials)})"
+def reduction_curve(by_scan):
+    """scan -> mean over trials of the cells that left the unobserved set since the first scan."""
+    first = {r["trial"]: float(r["unobserved"]) for r in by_scan[min(by_scan)]}
+    return {k: mean_std([first[r["trial"]] - float(r["unobserved"]) for r in rows])[0]
+            for k, rows in sorted(by_scan.items())}
+
+
+def scans_to(curve, target):
+    """The (fractional, linearly interpolated) scan at which a mean reduction curve first reaches
+    `target`, or None."""
+    scans = sorted(curve)
+    for a, b in zip(scans, scans[1:]):
+        if curve[b] >= target > curve[a]:
+            return a + (b - a) * (target - curve[a]) / (curve[b] - curve[a])
+    return None
 
 
 def summary(out, scenes, g):
@@ -222,10 +225,13 @@ def summary(out, scenes, g):
              "mean |predicted - actual| gain over scans 2.. of the method's own prediction",
              "(greedy's prediction on the same poses in brackets); plan time = mean seconds per",
              "decision; travel = mean distance travelled per trial [m]; fallbacks = mean stops per",
-             "trial whose goal was not reachable; scans to X% = mean scan at which coverage of the",
-             "observable surface first reaches X% (trials that reach it / trials).",
+             "trial whose goal was not reachable; scans to X% = the scan at which the method's mean",
+             "reduction of unobserved cells since scan 1 reaches X% of the largest mean reduction",
+             "any method of the scene reached by the last scan (interpolated; '-' = not reached).",
              ""]
     for scene in scenes:
+        curves = {key: reduction_curve(by_scan) for key, by_scan in g.items() if key[0] == scene}
+        best = max(c[max(c)] for c in curves.values())
         lines += [f"## {scene}", "",
                   "| method | trials | " + " | ".join(f"@{k}" for k in marks) +
                   " | AUC | prediction error | plan [s] | travel [m] | fallbacks |"
@@ -247,10 +253,11 @@ def summary(out, scenes, g):
             trials = len(by_scan[scans[0]])
             travel = sum(float(r.get("travel_m") or 0.0) for r in real) / trials
             fallbacks = sum(int(r.get("fallback") or 0) for r in real) / trials
+            reach = [scans_to(curves[(s, method, alpha)], share * best) for share in (0.5, 0.75)]
+            reach = [f"{x:.1f}" if x is not None else "-" for x in reach]
             lines.append(f"| {label(method, alpha)} | {trials} | " + " | ".join(cells) +
                          f" | {auc:.0f} | {err} | {mean_std(plan)[0]:.3f} | {travel:.1f} |"
-                         f" {fallbacks:.1f} | {scans_to(by_scan, 0.5)} |"
-                         f" {scans_to(by_scan, 0.75)} |")
+                         f" {fallbacks:.1f} | {reach[0]} | {reach[1]} |")
         lines.append("")
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines))
