@@ -128,6 +128,24 @@ TEST(Navigation, MapObstaclesComeFromTheHeightBand) {
                std::invalid_argument);
 }
 
+TEST(Navigation, CombinedGridsHoldTheObstaclesOfBoth) {
+  // The maze, and a map that also saw an obstacle at (2, 2): the corridor y = 2 is cut, so the
+  // goal at (4, 0) cannot be reached any more.
+  const NavigationGrid truth = maze();
+  std::vector<std::uint8_t> seen(25, 0);
+  seen[2 + 5 * 2] = 1;
+  const NavigationGrid map(Eigen::Vector2d::Zero(), 1.0, {5, 5}, seen, 0.5);
+  const NavigationGrid both = NavigationGrid::combine(truth, map);
+  for (std::size_t i = 0; i < both.size(); ++i) {
+    EXPECT_EQ(both.obstacle(i), truth.obstacle(i) || map.obstacle(i)) << i;
+  }
+  const NavigationPath path = find_path(both, centre(0, 4), centre(4, 0));
+  EXPECT_FALSE(path.reached);
+  EXPECT_TRUE(path.end.isApprox(centre(4, 2))) << path.end.transpose();  // 2 m from the goal
+  const NavigationGrid other(Eigen::Vector2d::Zero(), 0.5, {5, 5}, seen, 0.5);
+  EXPECT_THROW(NavigationGrid::combine(truth, other), std::invalid_argument);
+}
+
 TEST(Navigation, AStarAgreesWithDijkstraOnRandomGrids) {
   std::mt19937 rng(3);
   std::bernoulli_distribution wall(0.3);

@@ -428,10 +428,13 @@ class Explorer {
     d.seconds = seconds_since(start);
 
     // The drive happens in the true world: to the goal when the map says it is reachable,
-    // else to the map's nearest reachable place; where a wall the map has not seen yet is in
-    // the way, as close as the robot gets (§5.3.1).
+    // else to the map's nearest reachable place; where an obstacle the map has not seen yet is
+    // in the way, as close as the robot gets (§5.3.1). The robot keeps clear of what its map
+    // holds too, so it never squeezes through a gap its map has closed (and then finds itself
+    // walled in by its own map).
     const Stop& chosen = stops[best];
-    const NavigationPath path = find_path(true_navigation_, true_position_, chosen.arrival);
+    const NavigationPath path =
+        find_path(NavigationGrid::combine(true_navigation_, nav), true_position_, chosen.arrival);
     d.fallback = !chosen.reachable || !path.reached;
     d.travel = path.length;
     d.path = path.points;

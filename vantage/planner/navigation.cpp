@@ -233,6 +233,17 @@ NavigationGrid NavigationGrid::from_occupancy(const GridSpec& spec,
           config.footprint};
 }
 
+NavigationGrid NavigationGrid::combine(const NavigationGrid& a, const NavigationGrid& b) {
+  if (a.dims_ != b.dims_ || a.resolution_ != b.resolution_ || a.origin_ != b.origin_) {
+    throw std::invalid_argument("navigation grid: cannot combine grids of different geometry");
+  }
+  std::vector<std::uint8_t> obstacles(a.obstacle_.size());
+  for (std::size_t i = 0; i < obstacles.size(); ++i) {
+    obstacles[i] = a.obstacle_[i] != 0 || b.obstacle_[i] != 0;
+  }
+  return {a.origin_, a.resolution_, a.dims_, std::move(obstacles), a.footprint_};
+}
+
 std::optional<Index2> NavigationGrid::cell_of(const Eigen::Vector2d& p) const {
   if (!p.allFinite()) return std::nullopt;
   const Eigen::Vector2d cells = (p - origin_) / resolution_;

@@ -55,6 +55,11 @@ class NavigationGrid {
   static NavigationGrid from_occupancy(const GridSpec& spec, std::span<const std::uint8_t> occupied,
                                        const NavigationConfig& config);
 
+  /// The obstacles of both grids, inflated by `a`'s footprint: e.g. where a robot that plans on
+  /// its map can drive in the true world. Throws std::invalid_argument when the grids' geometry
+  /// differs.
+  static NavigationGrid combine(const NavigationGrid& a, const NavigationGrid& b);
+
   const Eigen::Vector2d& origin() const { return origin_; }  ///< min corner of cell (0, 0) [m]
   double resolution() const { return resolution_; }          ///< [m]
   const Index2& dims() const { return dims_; }
