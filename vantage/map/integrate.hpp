@@ -42,7 +42,7 @@ struct IntegrationConfig {
 /// One scan in the world frame: the points and the frustum of the sensor that took them.
 struct Scan {
   PointCloud points_world;  ///< [m]
-  Frustum view;                               ///< sensor pose and field of view
+  Frustum view;             ///< sensor pose and field of view
 };
 
 /// What one integration changed.
