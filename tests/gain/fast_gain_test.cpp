@@ -258,7 +258,7 @@ TEST(EvaluateViews, DispatchesOnTheEvaluation) {
     EXPECT_EQ(exact[v].gain, exact_ref[v].gain);
     EXPECT_EQ(fast[v].gain, fast_ref[v].gain);
   }
-  EXPECT_EQ(GainConfig{}.evaluation, GainEvaluation::kFast);  // the default, see BENCHMARK.md
+  EXPECT_EQ(GainConfig{}.evaluation, GainEvaluation::kAuto);  // the default, see BENCHMARK.md
 }
 
 TEST(GainConfig, RejectsBadEpsilonAndRaySpacing) {
@@ -275,6 +275,7 @@ TEST(GainConfig, RejectsBadEpsilonAndRaySpacing) {
   EXPECT_THROW(config.validate(), std::invalid_argument);
   EXPECT_EQ(parse_gain_evaluation("fast"), GainEvaluation::kFast);
   EXPECT_EQ(parse_gain_evaluation("exact"), GainEvaluation::kExact);
+  EXPECT_EQ(parse_gain_evaluation("auto"), GainEvaluation::kAuto);
   EXPECT_THROW(parse_gain_evaluation("quick"), std::invalid_argument);
   EXPECT_EQ(to_string(GainEvaluation::kFast), "fast");
 }

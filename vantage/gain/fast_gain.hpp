@@ -114,7 +114,15 @@ struct Odds {
 
 }  // namespace detail
 
-/// Fast evaluation of every view (GainEvaluation::kFast). The grid is only read.
+/// What the two evaluations would cost on one map state, counted before any ray is cast.
+struct GainCost {
+  double exact_steps = 0.0;  ///< cell steps of the exact mode's rays, estimated by sampling
+  double fast_rays = 0.0;    ///< rays the fast mode casts
+};
+
+/// Fast evaluation of every view (GainEvaluation::kFast). The grid is only read. With
+/// `config.evaluation` = kAuto it first weighs the two evaluations' costs (GainCost) and returns
+/// the exact evaluation when that is cheaper.
 ///
 /// The probabilistic method casts rays; the greedy one has no state to carry along a ray, and an
 /// exact line of sight stops at the first occupied cell, so its fast mode is the exact one.

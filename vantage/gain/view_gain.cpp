@@ -198,6 +198,8 @@ std::string_view to_string(GainEvaluation evaluation) {
       return "exact";
     case GainEvaluation::kFast:
       return "fast";
+    case GainEvaluation::kAuto:
+      return "auto";
   }
   return "unknown";
 }
@@ -205,7 +207,9 @@ std::string_view to_string(GainEvaluation evaluation) {
 GainEvaluation parse_gain_evaluation(std::string_view name) {
   if (name == "exact") return GainEvaluation::kExact;
   if (name == "fast") return GainEvaluation::kFast;
-  throw std::invalid_argument(cat("unknown gain evaluation '", name, "' (expected exact or fast)"));
+  if (name == "auto") return GainEvaluation::kAuto;
+  throw std::invalid_argument(
+      cat("unknown gain evaluation '", name, "' (expected exact, fast or auto)"));
 }
 
 void GainConfig::validate() const {
@@ -230,6 +234,7 @@ std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const 
     case GainEvaluation::kExact:
       return exact_view_gains(grid, views, config);
     case GainEvaluation::kFast:
+    case GainEvaluation::kAuto:  // fast_view_gains makes the choice
       return fast_view_gains(grid, views, config);
   }
   throw std::invalid_argument("gain.evaluation is not a known evaluation");

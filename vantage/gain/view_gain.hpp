@@ -32,16 +32,19 @@ enum class GainEvaluation {
   /// Rays cast outward through the frustum, each carrying the model's state along itself and
   /// crediting the cells it owns (vantage/gain/fast_gain.hpp, docs/fast-gain.md).
   kFast,
+  /// Whichever of the two costs less on this map state and these views, by counts taken before
+  /// any ray is cast (docs/fast-gain.md, "Choosing per map state"). Deterministic.
+  kAuto,
 };
 
 std::string_view to_string(GainEvaluation evaluation);
-/// Parses "exact" or "fast"; throws std::invalid_argument naming the value.
+/// Parses "exact", "fast" or "auto"; throws std::invalid_argument naming the value.
 GainEvaluation parse_gain_evaluation(std::string_view name);
 
 /// Settings of a gain evaluation.
 struct GainConfig {
   GainMethod method = GainMethod::kProbabilistic;
-  GainEvaluation evaluation = GainEvaluation::kFast;  ///< used by evaluate_views
+  GainEvaluation evaluation = GainEvaluation::kAuto;  ///< used by evaluate_views
   double alpha = 0.997;                               ///< observability parameter a, in (0, 1]
   /// Early stop, in [0, 0.5): a ray stops once its visibility falls below epsilon. In the fast
   /// mode an unobserved cell whose posterior lies within epsilon of 0.5 ("pinned", gain below

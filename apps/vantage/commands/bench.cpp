@@ -131,7 +131,6 @@ void add_bench_command(CLI::App& app) {
   office->trials = paper.trials;
   office->scans = paper.exploration.scans;
   office->out = "results/bench-office";
-  office->planning.evaluation = "exact";  // faster than fast at a = 0.9999 in an office
   add_sweep_command(
       *bench, "office",
       "Office sweep: offices x methods x starts, frontier stops (the paper's Figs. 15 and 16)",

@@ -34,16 +34,11 @@ struct ExploreOptions {
   std::string out;
   bool plots = true;
   bool quiet = false;
-  bool alpha_given = false;       ///< --alpha on the command line (else the scene kind's default)
-  bool evaluation_given = false;  ///< --evaluation on the command line (else the kind's default)
+  bool alpha_given = false;  ///< --alpha on the command line (else the scene kind's default)
 };
 
 /// The paper's a for an office (§5.2) when --alpha is not given; table tops keep 0.997.
 constexpr double kOfficeAlpha = 0.9999;
-/// An office's gain evaluation when --evaluation is not given: at a = 0.9999 a ray's visibility
-/// hardly falls, so the fast mode's early stops never come and it walks every pixel ray to the
-/// grid's edge; the exact mode only walks to the few frontier cells in range (RESULTS.md).
-constexpr const char* kOfficeEvaluation = "exact";
 
 fs::path default_out(const ExploreOptions& o) {
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -75,7 +70,6 @@ void run(const ExploreOptions& o) {
   const bool office = scene.kind == sim::SceneKind::kOffice;
   PlanningOptions planning = o.planning;
   if (office && !o.alpha_given) planning.alpha = kOfficeAlpha;
-  if (office && !o.evaluation_given) planning.evaluation = kOfficeEvaluation;
   ExplorationConfig config;
   config.planner = planning.planner_config();
   config.mapper = o.mapping.mapper_config(scene);
@@ -93,7 +87,7 @@ void run(const ExploreOptions& o) {
   }
   if (!o.quiet) {
     fmt::print("exploring {} with {} ({} evaluation{}), {} scans from start {}, seed {}\n",
-               scene.name, o.planning.method, planning.evaluation,
+               scene.name, o.planning.method, o.planning.evaluation,
                o.planning.method == "probabilistic" ? fmt::format(", a = {}", planning.alpha) : "",
                o.scans, o.start, o.seed);
   }
@@ -133,8 +127,6 @@ void add_explore_command(CLI::App& app) {
   o->planning.add_to(*cmd);
   cmd->get_option("--alpha")->description(
       "observability parameter a of the probabilistic method (table top 0.997, office 0.9999)");
-  cmd->get_option("--evaluation")
-      ->description("gain evaluation: fast or exact (table top fast, office exact)");
   o->mapping.add_to(*cmd);
   cmd->add_option("--scans,-n", o->scans, "number of scans to take (office: stops, a sweep each)")
       ->capture_default_str();
@@ -149,7 +141,6 @@ void add_explore_command(CLI::App& app) {
   cmd->add_flag("--quiet,-q", o->quiet, "no per-scan progress");
   cmd->callback([o, cmd] {
     o->alpha_given = cmd->get_option("--alpha")->count() > 0;
-    o->evaluation_given = cmd->get_option("--evaluation")->count() > 0;
     run(*o);
   });
 }

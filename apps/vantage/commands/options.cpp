@@ -9,7 +9,8 @@ void PlanningOptions::add_to(CLI::App& cmd) {
       ->capture_default_str();
   cmd.add_option("--alpha,-a", alpha, "observability parameter a of the probabilistic method")
       ->capture_default_str();
-  cmd.add_option("--evaluation", evaluation, "gain evaluation: fast or exact")
+  cmd.add_option("--evaluation", evaluation,
+                 "gain evaluation: auto (the cheaper of the two on each map state), fast or exact")
       ->capture_default_str();
   cmd.add_option("--epsilon", epsilon, "early stop of a ray's model, in [0, 0.5)")
       ->capture_default_str();

@@ -16,7 +16,7 @@ namespace vantage::cli {
 struct PlanningOptions {
   std::string method = "probabilistic";
   double alpha = 0.997;
-  std::string evaluation = "fast";
+  std::string evaluation = "auto";
   double epsilon = GainConfig{}.epsilon;
   double lambda = PlannerConfig{}.lambda;
   int threads = 0;
