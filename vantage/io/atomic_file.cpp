@@ -34,12 +34,24 @@ void write_atomically(const fs::path& path, std::string_view content) {
   write_atomically(path, [&](std::ostream& out) { out << content; });
 }
 
-void commit_atomically(const fs::path& temporary, const fs::path& path) {
-  std::error_code error;
-  fs::rename(temporary, path, error);
-  if (error) {
-    throw std::runtime_error(
-        cat(path.string(), ": cannot move ", temporary.string(), " into place: ", error.message()));
+void write_folder_atomically(const fs::path& dir,
+                             const std::function<void(const fs::path&)>& fill) {
+  const fs::path partial = dir.string() + ".partial-" + std::to_string(::getpid());
+  fs::remove_all(partial);
+  fs::create_directories(partial);
+  try {
+    fill(partial);
+    if (fs::exists(dir)) fs::remove(dir);  // an empty folder the user made; throws otherwise
+    std::error_code error;
+    fs::rename(partial, dir, error);
+    if (error) {
+      throw std::runtime_error(
+          cat(dir.string(), ": cannot move ", partial.string(), " into place: ", error.message()));
+    }
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove_all(partial, ignored);
+    throw;
   }
 }
 

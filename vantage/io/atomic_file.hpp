@@ -18,7 +18,11 @@ void write_atomically(const std::filesystem::path& path,
 /// Writes `content` to `path` atomically.
 void write_atomically(const std::filesystem::path& path, std::string_view content);
 
-/// Renames a finished temporary file or folder into place, replacing nothing partially.
-void commit_atomically(const std::filesystem::path& temporary, const std::filesystem::path& path);
+/// Writes the folder `dir` by calling `fill` on a temporary sibling folder, then renaming it into
+/// place, so the folder appears whole or not at all. `dir` must not exist or be an empty folder
+/// (it is replaced). On any error the temporary folder is removed, `dir` is left as it was, and
+/// the exception propagates.
+void write_folder_atomically(const std::filesystem::path& dir,
+                             const std::function<void(const std::filesystem::path&)>& fill);
 
 }  // namespace vantage

@@ -3,7 +3,6 @@
 
 #include <fmt/chrono.h>
 #include <fmt/core.h>
-#include <unistd.h>
 
 #include <chrono>
 #include <filesystem>
@@ -95,19 +94,10 @@ void run(const ExploreOptions& o) {
   const ExplorationResult result =
       explore(scene, config, mapper, o.quiet ? ScanCallback{} : ScanCallback(print_scan));
 
-  // Everything goes into a temporary sibling first, so the folder appears whole or not at all.
-  const fs::path partial = out.string() + fmt::format(".partial-{}", ::getpid());
-  fs::remove_all(partial);
-  fs::create_directories(partial);
-  try {
-    write_run_files(partial, scene, config, result, mapper);
-    if (o.plots) run_plot_script("plot_run.py", {partial.string()});
-    if (fs::exists(out)) fs::remove(out);  // an empty folder the user made
-    commit_atomically(partial, out);
-  } catch (...) {
-    fs::remove_all(partial);
-    throw;
-  }
+  write_folder_atomically(out, [&](const fs::path& dir) {
+    write_run_files(dir, scene, config, result, mapper);
+    if (o.plots) run_plot_script("plot_run.py", {dir.string()});
+  });
   const ScanRecord& last = result.scans.back();
   fmt::print(
       "{}: {} scans, {} unobserved cells left, coverage {:.1f}% of {} observable surface "

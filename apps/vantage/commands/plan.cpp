@@ -4,7 +4,6 @@
 
 #include <fmt/chrono.h>
 #include <fmt/core.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -205,18 +204,10 @@ void run(const PlanOptions& o) {
   if (fs::exists(dir) && !fs::is_empty(dir)) {
     throw std::invalid_argument(fmt::format("--out {} exists and is not empty", dir.string()));
   }
-  const fs::path partial = dir.string() + fmt::format(".partial-{}", ::getpid());
-  fs::remove_all(partial);
-  fs::create_directories(partial);
-  try {
+  write_folder_atomically(dir, [&](const fs::path& partial) {
     write_atomically(partial / "plan.json", out.dump(2) + "\n");
     write_octomap(partial / "map.bt", grid);
-    if (fs::exists(dir)) fs::remove(dir);
-    commit_atomically(partial, dir);
-  } catch (...) {
-    fs::remove_all(partial);
-    throw;
-  }
+  });
 
   if (o.json_only) {
     fmt::print("{}\n", out.dump(2));
