@@ -34,6 +34,19 @@ def mean_std(values):
     return m, math.sqrt(sum((v - m) ** 2 for v in values) / n)
 
 
+# Further a values of the probabilistic method, each in its own shade of its colour.
+PROBABILISTIC_SHADES = ["#d32f2f", "#ff8a80", "#8e0000", "#f06292", "#5d4037"]
+
+
+def colour(g, method, alpha):
+    """The colour of one curve: the method's, and for the probabilistic method one shade per a
+    value in the sweep (in ascending order of a), so that an a study's curves can be told apart."""
+    if method != "probabilistic":
+        return COLOURS.get(method)
+    alphas = sorted({float(a) for (_, m, a) in g if m == "probabilistic"})
+    return PROBABILISTIC_SHADES[alphas.index(float(alpha)) % len(PROBABILISTIC_SHADES)]
+
+
 def label(method, alpha):
     return f"{method} (a={alpha})" if method == "probabilistic" else method
 
@@ -104,10 +117,10 @@ def plot_unobserved(out, scenes, g):
             stats = [mean_std([float(r["unobserved"]) for r in by_scan[k]]) for k in scans]
             m = [x[0] for x in stats]
             sd = [x[1] for x in stats]
-            colour = COLOURS.get(method)
-            ax.plot(scans, m, "o-", ms=3, color=colour, label=label(method, alpha))
+            c = colour(g, method, alpha)
+            ax.plot(scans, m, "o-", ms=3, color=c, label=label(method, alpha))
             ax.fill_between(scans, [a - b for a, b in zip(m, sd)], [a + b for a, b in zip(m, sd)],
-                            color=colour, alpha=0.15)
+                            color=c, alpha=0.15)
         ax.set_title(scene)
         ax.set_xlabel("scan")
         ax.set_ylabel("unobserved cells")
@@ -134,10 +147,10 @@ def plot_unobserved_by_travel(out, scenes, g):
             stats = [mean_std([at_distance(c, d) for c in curves.values()]) for d in xs]
             m = [x[0] for x in stats]
             sd = [x[1] for x in stats]
-            colour = COLOURS.get(method)
-            ax.plot(xs, m, "-", color=colour, label=label(method, alpha))
+            c = colour(g, method, alpha)
+            ax.plot(xs, m, "-", color=c, label=label(method, alpha))
             ax.fill_between(xs, [a - b for a, b in zip(m, sd)], [a + b for a, b in zip(m, sd)],
-                            color=colour, alpha=0.12)
+                            color=c, alpha=0.12)
         ax.set_title(scene)
         ax.set_xlabel("distance travelled [m]")
         ax.set_ylabel("unobserved cells")
@@ -175,7 +188,7 @@ def plot_prediction_error(out, scenes, g):
             own = [mean_std(errs[k][0]) for k in scans]
             greedy = [mean_std(errs[k][1]) for k in scans]
             ax.errorbar(scans, [x[0] for x in own], yerr=[x[1] for x in own], fmt="o-", ms=3,
-                        capsize=2, color=COLOURS["probabilistic"],
+                        capsize=2, color=colour(g, method, alpha),
                         label=f"probabilistic prediction (a={alpha})")
             ax.errorbar(scans, [x[0] for x in greedy], yerr=[x[1] for x in greedy], fmt="s--",
                         ms=3, capsize=2, color=COLOURS["greedy"],
