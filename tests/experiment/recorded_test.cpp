@@ -6,7 +6,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <numeric>
+#include <string>
 
 #include "test_scene.hpp"
 #include "vantage/experiment/exploration.hpp"
@@ -73,6 +75,61 @@ TEST(Recorded, PlanningFromFilesRanksAsInProcess) {
   EXPECT_EQ(ranking(a), ranking(b));
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     EXPECT_DOUBLE_EQ(a.gains[i].gain, b.gains[i].gain) << "candidate " << i;
+  }
+}
+
+TEST(Recorded, NanPixelsFailUnlessTheManifestSkipsThem) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  const sim::World world(scene);
+  sim::SimulatedScan scan = world.scan(scene.start_poses[0], 5);
+  for (Eigen::Vector3d& p : scan.points_sensor) p = p.cast<float>().cast<double>();
+
+  // An organized cloud's layout: the scan's points with a NaN pixel after every tenth.
+  const std::filesystem::path dir = testing::fresh_dir("recorded_nan");
+  {
+    std::ofstream pcd(dir / "organized.pcd");
+    const std::size_t n = scan.points_sensor.size(), holes = (n + 9) / 10;
+    pcd << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH " << n + holes
+        << "\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS " << n + holes << "\nDATA ascii\n";
+    pcd.precision(9);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Eigen::Vector3d& p = scan.points_sensor[i];
+      pcd << p.x() << ' ' << p.y() << ' ' << p.z() << '\n';
+      if (i % 10 == 0) pcd << "nan nan nan\n";
+    }
+  }
+  Manifest manifest;
+  manifest.frame = CloudFrame::kXForward;
+  manifest.fov = scene.fov();
+  manifest.roi = Eigen::AlignedBox3d(scene.grid.origin, scene.grid.max_corner());
+  manifest.grid = scene.grid;
+  ManifestCloud cloud;
+  cloud.file = dir / "organized.pcd";
+  cloud.T_world_cloud = cloud.T_world_sensor = scan.T_world_sensor_true;
+  manifest.clouds.push_back(cloud);
+  MapperConfig config;
+  config.register_scans = false;
+  config.segment_table = false;
+
+  Mapper refused(scene.grid, config);
+  try {
+    map_recorded(manifest, refused);
+    FAIL() << "a NaN point was accepted without skip_non_finite";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("organized.pcd"), std::string::npos) << e.what();
+  }
+
+  manifest.options.skip_non_finite = true;
+  write_manifest(dir / "manifest.yaml", manifest);
+  const Manifest read = read_manifest(dir);
+  EXPECT_TRUE(read.options.skip_non_finite);
+  Mapper skipped(scene.grid, config);
+  map_recorded(read, skipped);
+  Mapper direct(scene.grid, config);
+  direct.add_scan(scan.points_sensor, scan.T_world_sensor_true, scan.fov);
+  ASSERT_EQ(skipped.grid().spec().num_cells(), direct.grid().spec().num_cells());
+  for (std::size_t i = 0; i < direct.grid().spec().num_cells(); ++i) {
+    ASSERT_EQ(skipped.grid().log_odds(i), direct.grid().log_odds(i)) << "cell " << i;
   }
 }
 

@@ -21,7 +21,8 @@ void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback&
   const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(manifest.frame).transpose();
   for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
     const ManifestCloud& cloud = manifest.clouds[i];
-    PointCloud points = read_point_cloud(cloud.file);
+    PointCloud points =
+        read_point_cloud(cloud.file, {.skip_non_finite = manifest.options.skip_non_finite});
     for (Eigen::Vector3d& p : points) p = R_sensor_cloud * p;
     try {
       const MapperUpdate update = mapper.add_scan(points, cloud.T_world_sensor, manifest.fov);

@@ -350,7 +350,11 @@ Manifest read_manifest(const fs::path& path) {
 
   // Options.
   if (const YAML::Node options = root["options"]) {
-    in.check_map(options, "options", {"table_segmentation", "icp", "integration"});
+    in.check_map(options, "options",
+                 {"table_segmentation", "icp", "integration", "skip_non_finite"});
+    if (const YAML::Node n = options["skip_non_finite"]) {
+      manifest.options.skip_non_finite = in.boolean(n, "options.skip_non_finite");
+    }
     if (const YAML::Node n = options["table_segmentation"]) {
       manifest.options.table_segmentation = in.boolean(n, "options.table_segmentation");
     }
@@ -567,6 +571,7 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
   out << YAML::Key << "icp" << YAML::Value << manifest.options.icp;
   out << YAML::Key << "integration" << YAML::Value
       << std::string(to_string(manifest.options.integration));
+  out << YAML::Key << "skip_non_finite" << YAML::Value << manifest.options.skip_non_finite;
   out << YAML::EndMap;
   out << YAML::EndMap;
   if (!out.good()) throw std::runtime_error(cat(path.string(), ": ", out.GetLastError()));

@@ -71,6 +71,9 @@ struct ManifestOptions {
   bool table_segmentation = false;  ///< remove the support plane before integration
   bool icp = false;                 ///< refine each cloud's pose by ICP against the map
   IntegrationMode integration = IntegrationMode::kPaper;
+  /// Drop points with a non-finite coordinate instead of failing: organized RGB-D clouds mark
+  /// pixels without depth with NaN. Off by default, so a corrupt cloud never passes silently.
+  bool skip_non_finite = false;
   bool operator==(const ManifestOptions&) const = default;
 };
 
