@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "test_scene.hpp"
 #include "vantage/experiment/results.hpp"
@@ -87,6 +90,35 @@ TEST(Exploration, SameSeedSameCsvForOneAndTwoThreads) {
   // plan_seconds is the one wall-clock column; every other figure must match exactly.
   EXPECT_EQ(testing::without_timing(one.csv), testing::without_timing(two.csv));
   EXPECT_EQ(one.result.scans[1].view, two.result.scans[1].view);
+}
+
+// Every view is taken at most once unless revisits are asked for; when the ring runs out the run
+// ends with a reason, not a repeated view.
+TEST(Exploration, TakesEachViewOnceUnlessRevisitsAreAllowed) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  const std::size_t views = scene.candidate_poses().size();
+  ExplorationConfig config;
+  config.planner.method = PlannerMethod::kRandom;  // the cheapest decisions, still seeded
+  config.scans = static_cast<int>(views) + 3;
+  config.seed = 3;
+  config.mapper = default_mapper_config(scene);
+  config.mapper.register_scans = false;
+  Mapper mapper(scene.grid, config.mapper);
+  const ExplorationResult once = explore(scene, config, mapper);
+  std::vector<int> taken;
+  for (const ScanRecord& r : once.scans) {
+    if (r.view >= 0) taken.push_back(r.view);
+  }
+  EXPECT_EQ(taken.size(), views);  // the start is a ring view here; then every other once
+  std::sort(taken.begin(), taken.end());
+  EXPECT_EQ(std::adjacent_find(taken.begin(), taken.end()), taken.end()) << "a view taken twice";
+  EXPECT_NE(once.stop_reason.find("every candidate view has been taken"), std::string::npos)
+      << once.stop_reason;
+
+  config.revisit = true;
+  Mapper again(scene.grid, config.mapper);
+  const ExplorationResult revisits = explore(scene, config, again);
+  EXPECT_EQ(revisits.scans.size(), views + 3);  // the ring never runs out
 }
 
 TEST(Exploration, RejectsBadSettings) {

@@ -165,6 +165,7 @@ class Explorer {
       if (ring_.empty()) {
         throw std::invalid_argument(cat("scene '", scene.name, "' has no candidate views"));
       }
+      taken_.assign(ring_.size(), false);
     }
     if (!(world_.scene().grid == mapper.grid().spec())) {
       throw std::invalid_argument(cat("the mapper's grid differs from scene '", scene.name, "''s"));
@@ -186,6 +187,7 @@ class Explorer {
     for (std::size_t i = 0; i < result_.candidates.size(); ++i) {
       if (result_.candidates[i].isApprox(next.pose, 1e-9)) next.view = static_cast<int>(i);
     }
+    if (next.view >= 0 && !taken_.empty()) taken_[static_cast<std::size_t>(next.view)] = true;
     for (int k = 1; k <= config_.scans; ++k) {
       ScanRecord record;
       record.scan = k;
@@ -333,11 +335,23 @@ class Explorer {
   /// Table top: every ring view, scored by the method; the robot walks around the table.
   Decision plan_view(const ScanRecord& current, std::uint64_t seed) {
     const Eigen::Vector3d here = current.T_world_sensor.translation();
-    for (Candidate& c : ring_) c.travel = ring_walk(scene_.ring, here, c.view.origin());
-    const Plan plan = plan_next_view(mapper_.grid(), ring_, planner_, seed);
+    std::vector<Candidate> open;  // the ring's views still to take, and their ring indices
+    std::vector<std::size_t> index;
+    for (std::size_t i = 0; i < ring_.size(); ++i) {
+      if (!config_.revisit && taken_[i]) continue;
+      open.push_back(ring_[i]);
+      open.back().travel = ring_walk(scene_.ring, here, ring_[i].view.origin());
+      index.push_back(i);
+    }
     Decision d;
+    d.candidates = static_cast<int>(open.size());
+    if (open.empty()) {
+      d.stop = true;
+      d.stop_reason = cat("every candidate view has been taken after scan ", current.scan);
+      return d;
+    }
+    const Plan plan = plan_next_view(mapper_.grid(), open, planner_, seed);
     d.seconds = plan.seconds;
-    d.candidates = static_cast<int>(ring_.size());
     double best_gain = 0.0;  // of any candidate, whichever the method chose
     for (const ViewGain& g : plan.gains) best_gain = std::max(best_gain, g.gain);
     if (best_gain < config_.min_gain) {
@@ -345,11 +359,13 @@ class Explorer {
       d.stop_reason = cat("best predicted gain ", best_gain, " fell below ", config_.min_gain,
                           " after scan ", current.scan);
     }
-    d.view = static_cast<int>(plan.best);
-    d.pose = result_.candidates[plan.best];
+    const std::size_t view = index[plan.best];
+    taken_[view] = true;
+    d.view = static_cast<int>(view);
+    d.pose = result_.candidates[view];
     d.predicted = plan.gains[plan.best].gain;
     d.greedy_predicted = plan.greedy_gains[plan.best];
-    d.travel = ring_[plan.best].travel;
+    d.travel = open[plan.best].travel;
     return d;
   }
 
@@ -456,6 +472,7 @@ class Explorer {
   PlannerConfig planner_;
   ExplorationResult result_;
   std::vector<Candidate> ring_;  ///< table top: the ring's views
+  std::vector<bool> taken_;  ///< table top: ring views already taken (ExplorationConfig::revisit)
   // Office:
   NavigationConfig navigation_;
   FrontierConfig frontier_;

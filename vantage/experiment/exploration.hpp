@@ -60,10 +60,15 @@ struct OfficeConfig {
 
 /// Settings of one exploration run.
 struct ExplorationConfig {
-  PlannerConfig planner;   ///< method, alpha, evaluation; greedy_reference is forced on
-  MapperConfig mapper;     ///< ICP, table segmentation, integration
-  int scans = 10;          ///< N, the number of scans to take (the first included)
-  double min_gain = 0.0;   ///< stop early once the best predicted gain falls below this
+  PlannerConfig planner;  ///< method, alpha, evaluation; greedy_reference is forced on
+  MapperConfig mapper;    ///< ICP, table segmentation, integration
+  int scans = 10;         ///< N, the number of scans to take (the first included)
+  double min_gain = 0.0;  ///< stop early once the best predicted gain falls below this
+  /// Table top: whether a ring view already taken stays a candidate. Off by default, as an
+  /// office never returns to a visited stop: a view's own scan has already turned its line of
+  /// sight known, and the literal model's small remaining prediction there (gain behind the
+  /// surfaces it saw) would otherwise bring the robot back to scan the same view again.
+  bool revisit = false;
   int start = 0;           ///< index into the scene's start poses
   std::uint64_t seed = 1;  ///< sensor noise, pose noise and random choice
   /// Error of the robot's belief after each move (x, y, yaw), replacing the scene's; the first

@@ -37,6 +37,7 @@ json config_json(const ExplorationConfig& config) {
       {"lambda", config.planner.lambda},
       {"scans", config.scans},
       {"min_gain", config.min_gain},
+      {"revisit", config.revisit},
       {"start", config.start},
       {"seed", config.seed},
       {"num_threads", gain.num_threads},

@@ -31,6 +31,7 @@ struct BenchOptions {
   std::string out = "results/bench-tabletop";
   std::string kind = "tabletop";  ///< which experiment: tabletop or office
   bool plots = true;
+  bool revisit = false;
   PlanningOptions planning;
   MappingOptions mapping;
 };
@@ -64,6 +65,7 @@ void run(const BenchOptions& o) {
   config.exploration.mapper.segment_table = o.mapping.segmentation;
   config.exploration.scans = o.scans;
   config.exploration.seed = o.seed;
+  config.exploration.revisit = o.revisit;
   config.jobs = o.jobs;
   parse_shard(o.shard, config);
   config.validate();
@@ -103,6 +105,10 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
       ->capture_default_str();
   cmd->add_option("--out,-o", o->out, "sweep folder; rerunning resumes it")->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "skip plots and summary");
+  if (o->kind == "tabletop") {
+    cmd->add_flag("--revisit", o->revisit,
+                  "views already taken stay candidates (the paper's loop taken literally)");
+  }
   o->planning.add_to(*cmd);
   o->mapping.add_to(*cmd);
   // A sweep runs trials in parallel; one thread per trial unless told otherwise.

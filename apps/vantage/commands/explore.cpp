@@ -28,6 +28,7 @@ struct ExploreOptions {
   MappingOptions mapping;
   int scans = 10;
   double min_gain = 0.0;
+  bool revisit = false;
   int start = 0;
   std::uint64_t seed = 1;
   std::string out;
@@ -75,6 +76,7 @@ void run(const ExploreOptions& o) {
   config.mapper.integration.num_threads = o.planning.threads;
   config.scans = o.scans;
   config.min_gain = o.min_gain;
+  config.revisit = o.revisit;
   config.start = o.start;
   config.seed = o.seed;
   apply_registration_switch(scene, config);  // offices register whole sweeps
@@ -123,6 +125,9 @@ void add_explore_command(CLI::App& app) {
   cmd->add_option("--min-gain", o->min_gain,
                   "stop early when the best predicted gain falls below this [cells]")
       ->capture_default_str();
+  cmd->add_flag(
+      "--revisit", o->revisit,
+      "table top: views already taken stay candidates (the paper's loop taken literally)");
   cmd->add_option("--start", o->start, "start pose index of the scene")->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of sensor noise, pose noise and random choice")
       ->capture_default_str();
