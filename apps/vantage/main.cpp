@@ -8,6 +8,7 @@
 #include <exception>
 
 #include "commands/commands.hpp"
+#include "vantage/perception/registration.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app("Vantage: next-best-view planning in cluttered 3D scenes", "vantage");
@@ -19,6 +20,7 @@ int main(int argc, char** argv) {
   vantage::cli::add_ray_command(app);
   vantage::cli::add_scan_command(app);
   vantage::cli::add_scene_command(app);
+  vantage::perception::silence_pcl_console();  // failures are reported per scan, in one line
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

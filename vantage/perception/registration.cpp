@@ -1,5 +1,6 @@
 #include "vantage/perception/registration.hpp"
 
+#include <pcl/console/print.h>
 #include <pcl/registration/icp.h>
 #include <pcl/registration/transformation_estimation_point_to_plane_lls.h>
 #include <pcl/search/kdtree.h>
@@ -221,6 +222,8 @@ IcpResult register_scan(const PointCloud& points_sensor,
   result.inlier_fraction = static_cast<double>(inliers) / static_cast<double>(source.size());
   return result;
 }
+
+void silence_pcl_console() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
 
 PoseError pose_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   const Eigen::AngleAxisd relative(a.linear().transpose() * b.linear());

@@ -76,6 +76,12 @@ IcpResult register_scan(const PointCloud& points_sensor,
                         const Eigen::Isometry3d& T_world_sensor_guess,
                         const PointCloud& reference_world, const IcpConfig& config);
 
+/// Silences what PCL prints to stderr on its own, such as ICP's "Not enough correspondences
+/// found": Vantage reports each outcome itself (IcpResult::converged, the segmentation's result).
+/// PCL's verbosity is a process-wide setting, so this is the application's call; the vantage CLI
+/// makes it.
+void silence_pcl_console();
+
 /// Distance between two poses.
 struct PoseError {
   double translation = 0.0;  ///< [m] between the origins
