@@ -552,8 +552,9 @@ struct Walk {
     linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
   }
 
-  /// Moves to the next cell; false at the end.
-  bool advance() {
+  /// Moves to the next cell; false at the end. Always inlined: GCC kept it a call, about a tenth
+  /// of the fast mode's time on 80 M steps.
+  [[gnu::always_inline]] bool advance() {
     constexpr double kInf = std::numeric_limits<double>::infinity();
     const double t = std::min(tx, std::min(ty, tz));
     if (t == kInf) return false;  // no axis has steps left
@@ -691,17 +692,29 @@ bool jump_uniform(const GridSpec& spec, const Blocks& blocks, const Eigen::Vecto
   return true;
 }
 
-/// The pixel that owns a point: the one whose footprint holds the point's image.
-inline bool owns(const RayGroup& rays, const Eigen::Vector3d& p_world, int col, int row) {
-  const Eigen::Vector3d p = rays.Rt * (p_world - rays.origin);
-  if (p.x() <= 0.0) return false;
-  const double inv = 1.0 / p.x();
-  const int c =
-      std::clamp(static_cast<int>(std::floor((p.y() * inv - rays.u0) / rays.du)), 0, rays.cols - 1);
-  const int r =
-      std::clamp(static_cast<int>(std::floor((p.z() * inv - rays.v0) / rays.du)), 0, rays.rows - 1);
-  return c == col && r == row;
-}
+/// The footprint of one pixel in the plane x = 1 of its group's frame, widened to infinity on
+/// the border of the image, so that every point in front of the sensor has exactly one owner.
+struct Footprint {
+  double u_lo, u_hi, v_lo, v_hi;
+
+  Footprint(const RayGroup& rays, int col, int row) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    // NOTE: a shared edge is the same expression for both pixels beside it, so the comparisons
+    // in owns() split the points between them exactly.
+    u_lo = col == 0 ? -kInf : rays.u0 + col * rays.du;
+    u_hi = col == rays.cols - 1 ? kInf : rays.u0 + (col + 1) * rays.du;
+    v_lo = row == 0 ? -kInf : rays.v0 + row * rays.du;
+    v_hi = row == rays.rows - 1 ? kInf : rays.v0 + (row + 1) * rays.du;
+  }
+
+  /// Whether the image of a point holds in this footprint: the point in the group frame is
+  /// compared against the footprint scaled to its depth, without a division.
+  bool owns(const RayGroup& rays, const Eigen::Vector3d& p_world) const {
+    const Eigen::Vector3d p = rays.Rt * (p_world - rays.origin);
+    return p.x() > 0.0 && p.y() >= u_lo * p.x() && p.y() < u_hi * p.x() && p.z() >= v_lo * p.x() &&
+           p.z() < v_hi * p.x();
+  }
+};
 
 template <typename CodeT>
 RaySum cast_ray(const Shared& sh, const CodeT* codes, const RayGroup& rays, int col, int row) {
@@ -717,6 +730,7 @@ RaySum cast_ray(const Shared& sh, const CodeT* codes, const RayGroup& rays, int 
   walk.start(spec, o, dir, rays.origin_inside ? rays.origin_cell : cell_at(spec, o + s_in * dir),
              last, rays.origin_cell);
   const int m0 = walk.m;
+  const Footprint footprint(rays, col, row);
 
   const double eps = sh.epsilon;
   std::size_t last_block = std::numeric_limits<std::size_t>::max();
@@ -744,7 +758,7 @@ RaySum cast_ray(const Shared& sh, const CodeT* codes, const RayGroup& rays, int 
     const bool deep = sh.blocks.code[block] == code_index && sh.blocks.radius[block] >= kSkipMargin;
     if (code.state == CellState::kUnobserved && !(deep && odds.pinned(eps))) {
       const Eigen::Vector3d c = spec.center(walk.cell);
-      if (owns(rays, c, col, row)) {
+      if (footprint.owns(rays, c)) {
         double g = 0.0;  // replayed once, for the first member that holds the cell
         bool replayed = false;
         for (std::size_t k = 0; k < rays.views.size(); ++k) {

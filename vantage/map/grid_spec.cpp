@@ -42,13 +42,6 @@ Index3 GridSpec::unravel(std::size_t linear_index) const {
           static_cast<int>(linear_index / (nx * ny))};
 }
 
-Index3 GridSpec::lattice_index(const Eigen::Vector3d& p_world) const {
-  const Eigen::Vector3d scaled = (p_world - origin) / resolution;
-  // NOTE: clamp before the cast so that far-away points cannot overflow int.
-  constexpr double kLimit = 1e9;
-  return scaled.array().floor().max(-kLimit).min(kLimit).cast<int>();
-}
-
 std::optional<Index3> GridSpec::find(const Eigen::Vector3d& p_world) const {
   if (!p_world.allFinite()) return std::nullopt;
   const Index3 cell = lattice_index(p_world);

@@ -57,7 +57,13 @@ struct GridSpec {
   }
 
   /// Index of the lattice cell holding p, extending the grid's lattice beyond its bounds.
-  Index3 lattice_index(const Eigen::Vector3d& p_world) const;
+  /// Inline: the gain evaluation calls it for every replayed cell and every jump.
+  Index3 lattice_index(const Eigen::Vector3d& p_world) const {
+    const Eigen::Vector3d scaled = (p_world - origin) / resolution;
+    // NOTE: clamp before the cast so that far-away points cannot overflow int.
+    constexpr double kLimit = 1e9;
+    return scaled.array().floor().max(-kLimit).min(kLimit).cast<int>();
+  }
 
   /// Index of the grid cell holding p, or nothing when p is outside the grid (or not finite).
   std::optional<Index3> find(const Eigen::Vector3d& p_world) const;
