@@ -120,7 +120,7 @@ struct Decision {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< true pose of the next scan
   int view = -1;
   std::optional<double> predicted, greedy_predicted;
-  double seconds = 0.0, candidate_seconds = 0.0;
+  double seconds = 0.0, candidate_seconds = 0.0, reference_seconds = 0.0;
   double travel = 0.0;
   bool fallback = false;
   std::optional<Eigen::Vector3d> goal;
@@ -197,6 +197,7 @@ class Explorer {
       record.greedy_predicted_gain = next.greedy_predicted;
       record.seconds.plan = next.seconds;
       record.seconds.candidates = next.candidate_seconds;
+      record.seconds.reference = next.reference_seconds;
       record.travel = next.travel;
       record.fallback = next.fallback;
       record.goal = next.goal;
@@ -352,6 +353,7 @@ class Explorer {
     }
     const Plan plan = plan_next_view(mapper_.grid(), open, planner_, seed);
     d.seconds = plan.seconds;
+    d.reference_seconds = plan.reference_seconds;
     double best_gain = 0.0;  // of any candidate, whichever the method chose
     for (const ViewGain& g : plan.gains) best_gain = std::max(best_gain, g.gain);
     if (best_gain < config_.min_gain) {
@@ -422,6 +424,7 @@ class Explorer {
       for (const Frustum& f : views) frusta.push_back({f, s.travel, s.reachable});
     }
     const Plan plan = plan_next_view(grid, frusta, planner_, seed);
+    d.reference_seconds = plan.reference_seconds;
     std::vector<double> scores(stops.size(), 0.0), gains(stops.size(), 0.0),
         greedy(stops.size(), 0.0);
     for (std::size_t i = 0; i < frusta.size(); ++i) {

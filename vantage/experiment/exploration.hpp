@@ -88,6 +88,7 @@ struct StageTimes {
   double integrate = 0.0;
   double plan = 0.0;        ///< the decision that chose this scan's view, candidates included
   double candidates = 0.0;  ///< ... of which finding the candidates (office: frontiers, travel)
+  double reference = 0.0;   ///< ... of which greedy's prediction for the same views (Fig. 11)
 };
 
 /// Everything recorded after one scan (office: one stop, all steps of its sweep).

@@ -93,7 +93,8 @@ json scan_json(const ScanRecord& r) {
               {"segment", r.seconds.segment},
               {"integrate", r.seconds.integrate},
               {"plan", r.seconds.plan},
-              {"candidates", r.seconds.candidates}}},
+              {"candidates", r.seconds.candidates},
+              {"reference", r.seconds.reference}}},
             {"travel_m", r.travel},
             {"fallback", r.fallback},
             {"candidates", r.candidates}};

@@ -74,7 +74,10 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   if (!probabilistic) {
     plan.greedy_gains = values(plan.gains);
   } else if (config.greedy_reference) {
+    const auto reference_start = std::chrono::steady_clock::now();
     plan.greedy_gains = values(gains_of(grid, candidates, config.gain, GainMethod::kGreedy));
+    plan.reference_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start).count();
   }
 
   plan.scores = values(plan.gains);

@@ -57,6 +57,9 @@ struct Plan {
   std::vector<double> greedy_gains;  ///< each candidate's greedy gain (when requested or used)
   std::vector<double> scores;        ///< what was maximised
   double seconds = 0.0;              ///< wall time of the decision [s]
+  /// ... of which evaluating the greedy reference (PlannerConfig::greedy_reference), which the
+  /// decision itself does not need [s]
+  double reference_seconds = 0.0;
 };
 
 /// Scores the candidates and chooses one. Ties go to the lower index; kRandom uses `seed`.
