@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <stdexcept>
+#include <string>
+
 #include "test_scene.hpp"
 
 namespace vantage {
@@ -54,6 +57,37 @@ TEST(Bench, ResumesAfterAnInterruptionWithTheSameResult) {
   EXPECT_EQ(testing::without_timing(testing::read_text(merged / "scans.csv")),
             testing::without_timing(testing::read_text(whole / "scans.csv")));
   EXPECT_EQ(testing::parse_csv(testing::read_text(merged / "scans.csv")).size(), 1u + 4u * 2u);
+}
+
+// A folder never mixes trials run with different settings: resuming it with other ones fails
+// before any trial runs, naming the setting, and leaves its files as they were.
+TEST(Bench, RefusesToResumeAFolderWithOtherSettings) {
+  BenchConfig config = tiny_sweep();
+  config.scenes.resize(1);
+  config.methods = {PlannerMethod::kRandom};
+  config.trials = 1;
+  const auto dir = testing::fresh_dir("bench-settings");
+  ASSERT_EQ(run_bench(dir, config), 1u);
+  const std::string rows = testing::read_text(dir / "scans.csv");
+
+  BenchConfig longer = config;
+  longer.exploration.scans += 1;
+  try {
+    run_bench(dir, longer);
+    FAIL() << "resumed a folder run with another number of scans";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("scans"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("sweep.json"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(testing::read_text(dir / "scans.csv"), rows);
+  EXPECT_EQ(run_bench(dir, config), 0u);  // the same settings resume as before
+
+  const auto other = testing::fresh_dir("bench-settings-other");
+  longer.exploration.seed += 1;
+  longer.exploration.scans = config.exploration.scans;
+  run_bench(other, longer);
+  EXPECT_THROW(merge_bench({dir, other}, testing::fresh_dir("bench-settings-merged")),
+               std::invalid_argument);
 }
 
 TEST(Bench, RejectsBadShardsAndUnknownScenes) {

@@ -8,8 +8,10 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <thread>
 
 #include "vantage/experiment/results.hpp"
@@ -32,6 +34,53 @@ std::string read_file(const fs::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+/// The file in a sweep folder that holds the settings its trials were run with.
+constexpr const char* kSettingsFile = "sweep.json";
+
+/// What every trial of one folder must share, so that its files can be resumed and merged: the
+/// settings that change a trial's rows besides the scene, method, a and start in its key.
+nlohmann::json trial_settings(const BenchConfig& config) {
+  const ExplorationConfig& e = config.exploration;
+  const MapperConfig& m = e.mapper;
+  return {{"scans", e.scans},
+          {"seed", e.seed},
+          {"min_gain", e.min_gain},
+          {"revisit", e.revisit},
+          {"evaluation", to_string(e.planner.gain.evaluation)},
+          {"epsilon", e.planner.gain.epsilon},
+          {"lambda", e.planner.lambda},
+          {"integration", to_string(m.integration.mode)},
+          {"hole_filling", m.integration.hole_filling.enabled},
+          {"icp", m.register_scans},
+          {"segmentation", m.segment_table},
+          {"mapper_from_scene", config.mapper_from_scene}};
+}
+
+/// The settings a folder's trials were run with, or null when it has none yet.
+nlohmann::json read_settings(const fs::path& dir) {
+  const fs::path path = dir / kSettingsFile;
+  if (!fs::exists(path)) return nullptr;
+  try {
+    return nlohmann::json::parse(read_file(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(
+        fmt::format("{}: not a sweep settings file: {}", path.string(), e.what()));
+  }
+}
+
+/// Throws std::invalid_argument naming the first setting in which `found` (from `where`) differs
+/// from `wanted`.
+void require_same_settings(const nlohmann::json& found, const nlohmann::json& wanted,
+                           const fs::path& where, std::string_view remedy) {
+  for (const auto& [key, value] : wanted.items()) {
+    if (!found.contains(key) || found[key] != value) {
+      throw std::invalid_argument(
+          fmt::format("{}: its trials were run with {} = {}, not {}; {}", where.string(), key,
+                      found.contains(key) ? found[key].dump() : "(unset)", value.dump(), remedy));
+    }
+  }
 }
 
 /// Trial files in a folder's trials/, by key.
@@ -127,6 +176,15 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
   config.validate();
   const std::vector<TrialSpec> all = bench_trials(config);  // fails on a bad scene before any work
   fs::create_directories(dir / "trials");
+  // NOTE: trial files are resumed by key alone, so a folder must never mix trials run with
+  // different settings (12 stops and 20, say) into one scans.csv.
+  const nlohmann::json settings = trial_settings(config);
+  if (const nlohmann::json found = read_settings(dir); !found.is_null()) {
+    require_same_settings(found, settings, dir / kSettingsFile,
+                          "resume with the same settings or choose another --out");
+  } else {
+    write_atomically(dir / kSettingsFile, settings.dump(2) + "\n");
+  }
   const std::map<std::string, fs::path> done = trial_files(dir);
 
   std::vector<TrialSpec> mine;
@@ -184,7 +242,16 @@ void write_bench_csv(const fs::path& dir) {
 void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
   if (dirs.empty()) throw std::invalid_argument("bench merge needs at least one folder");
   std::map<std::string, std::string> trials;
+  nlohmann::json settings = nullptr;  // of the first folder that has them; all must agree
   for (const fs::path& dir : dirs) {
+    if (const nlohmann::json found = read_settings(dir); !found.is_null()) {
+      if (settings.is_null()) {
+        settings = found;
+      } else {
+        require_same_settings(found, settings, dir / kSettingsFile,
+                              "only folders run with the same settings can be merged");
+      }
+    }
     const auto files = trial_files(dir);
     if (files.empty()) {
       throw std::runtime_error(fmt::format("{}: no trials/ with trial files", dir.string()));
@@ -201,6 +268,7 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
     }
   }
   fs::create_directories(out / "trials");
+  if (!settings.is_null()) write_atomically(out / kSettingsFile, settings.dump(2) + "\n");
   for (const auto& [key, rows] : trials) write_atomically(out / "trials" / (key + ".csv"), rows);
   write_bench_csv(out);
 }

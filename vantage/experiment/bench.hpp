@@ -62,14 +62,16 @@ struct TrialEvent {
 };
 
 /// Runs this shard's trials that `dir/trials/` does not hold yet, then writes `dir/scans.csv`
-/// from all trial files present. Returns the number of trials run now. `on_trial` is called from
-/// the worker threads, one call at a time.
+/// from all trial files present. Returns the number of trials run now. The settings that shape a
+/// trial's rows (stops, seed, evaluation, mapping, ...) are kept in `dir/sweep.json`; resuming a
+/// folder with other settings throws std::invalid_argument naming the first that differs.
+/// `on_trial` is called from the worker threads, one call at a time.
 std::size_t run_bench(const std::filesystem::path& dir, const BenchConfig& config,
                       const std::function<void(const TrialEvent&)>& on_trial = {});
 
 /// Joins the trial files of several sweep folders (e.g. shards) into `out/trials/` and writes
 /// `out/scans.csv`. Throws std::runtime_error when two folders hold the same trial with different
-/// contents.
+/// contents, and std::invalid_argument when their sweep.json settings differ.
 void merge_bench(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out);
 
 /// Writes `dir/scans.csv`: the header and every trial file's rows, in key order.
