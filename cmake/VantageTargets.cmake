@@ -10,6 +10,11 @@ function(vantage_target_defaults target)
   if(VANTAGE_SANITIZE)
     target_compile_options(${target} PUBLIC -fsanitize=address,undefined -fno-omit-frame-pointer)
     target_link_options(${target} PUBLIC -fsanitize=address,undefined)
+    # NOTE: under ASan, Eigen stops trusting malloc's 16-byte alignment and pads its own
+    # allocations. Eigen's inline allocator in our binary then interposes on PCL's (built
+    # without ASan), and PCL frees with plain free() what our copy allocated padded: a bad free
+    # in RANSAC. Debian's PCL trusts malloc, so our code must too.
+    target_compile_definitions(${target} PUBLIC EIGEN_MALLOC_ALREADY_ALIGNED=1)
   endif()
 endfunction()
 
