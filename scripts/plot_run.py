@@ -158,13 +158,31 @@ def plot_map(run_dir, run):
         ax.arrow(px, py, 0.12 * math.cos(yaw), 0.12 * math.sin(yaw), color="#bdbdbd",
                  width=0.004, head_width=0.03, length_includes_head=True)
     path = [s["pose"]["position"][:2] for s in run["scans"]]
-    ax.plot([p[0] for p in path], [p[1] for p in path], "-", color="#e65100", lw=1.5)
+    # The robot walks around the table, the shorter way along the ring: draw arcs, not chords.
+    cx, cy = ox + w / 2, oy + h / 2
+    walk_x, walk_y = [], []
+    for (x0, y0), (x1, y1) in zip(path, path[1:]):
+        a0, a1 = math.atan2(y0 - cy, x0 - cx), math.atan2(y1 - cy, x1 - cx)
+        r0, r1 = math.hypot(x0 - cx, y0 - cy), math.hypot(x1 - cx, y1 - cy)
+        da = (a1 - a0 + math.pi) % (2 * math.pi) - math.pi
+        for k in range(41):
+            t = k / 40
+            walk_x.append(cx + (r0 + t * (r1 - r0)) * math.cos(a0 + t * da))
+            walk_y.append(cy + (r0 + t * (r1 - r0)) * math.sin(a0 + t * da))
+    ax.plot(walk_x, walk_y, "-", color="#e65100", lw=1.5, alpha=0.7)
+    labels = {}  # scans taken from the same place share one label
     for s in run["scans"]:
         px, py = s["pose"]["position"][:2]
         yaw = yaw_of(s["pose"]["quaternion_xyzw"])
         ax.arrow(px, py, 0.2 * math.cos(yaw), 0.2 * math.sin(yaw), color="#e65100",
                  width=0.008, head_width=0.05, length_includes_head=True)
-        ax.annotate(str(s["scan"]), (px, py), textcoords="offset points", xytext=(6, 6),
+        labels.setdefault((round(px, 2), round(py, 2)), []).append(str(s["scan"]))
+    for (px, py), scans in labels.items():
+        # Outward from the table, so that labels do not cover the map.
+        ux, uy = px - cx, py - cy
+        norm = math.hypot(ux, uy) or 1.0
+        ax.annotate(",".join(scans), (px, py), textcoords="offset points",
+                    xytext=(14 * ux / norm, 14 * uy / norm), ha="center", va="center",
                     fontsize=9, color="#e65100", weight="bold")
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
