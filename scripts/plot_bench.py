@@ -107,60 +107,56 @@ def grid_axes(n):
     return fig, [ax for row in axes for ax in row]
 
 
-def plot_unobserved(out, scenes, g):
+def plot_curves(out, name, xlabel, scenes, g, curve):
+    """One panel per scene with the mean +- std of unobserved cells of every (method, a):
+    `curve(by_scan)` gives (xs, per-x lists over trials, line style, band opacity), or None."""
     fig, axes = grid_axes(len(scenes))
     for ax, scene in zip(axes, scenes):
         for (s, method, alpha), by_scan in sorted(g.items()):
             if s != scene:
                 continue
-            scans = sorted(by_scan)
-            stats = [mean_std([float(r["unobserved"]) for r in by_scan[k]]) for k in scans]
+            drawn = curve(by_scan)
+            if drawn is None:
+                continue
+            xs, samples, style, opacity = drawn
+            stats = [mean_std(v) for v in samples]
             m = [x[0] for x in stats]
             sd = [x[1] for x in stats]
             c = colour(g, method, alpha)
-            ax.plot(scans, m, "o-", ms=3, color=c, label=label(method, alpha))
-            ax.fill_between(scans, [a - b for a, b in zip(m, sd)], [a + b for a, b in zip(m, sd)],
-                            color=c, alpha=0.15)
+            ax.plot(xs, m, style, ms=3, color=c, label=label(method, alpha))
+            ax.fill_between(xs, [a - b for a, b in zip(m, sd)], [a + b for a, b in zip(m, sd)],
+                            color=c, alpha=opacity)
         ax.set_title(scene)
-        ax.set_xlabel("scan")
+        ax.set_xlabel(xlabel)
         ax.set_ylabel("unobserved cells")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     for ax in axes[len(scenes):]:
         ax.axis("off")
     fig.tight_layout()
-    fig.savefig(os.path.join(out, "unobserved.png"), dpi=110)
+    fig.savefig(os.path.join(out, name), dpi=110)
     plt.close(fig)
+
+
+def plot_unobserved(out, scenes, g):
+    def by_scan_curve(by_scan):
+        scans = sorted(by_scan)
+        return scans, [[float(r["unobserved"]) for r in by_scan[k]] for k in scans], "o-", 0.15
+
+    plot_curves(out, "unobserved.png", "scan", scenes, g, by_scan_curve)
 
 
 def plot_unobserved_by_travel(out, scenes, g):
-    fig, axes = grid_axes(len(scenes))
-    for ax, scene in zip(axes, scenes):
-        for (s, method, alpha), by_scan in sorted(g.items()):
-            if s != scene:
-                continue
-            curves = travelled(by_scan)
-            longest = max(c[-1][0] for c in curves.values())
-            if longest <= 0:
-                continue
-            xs = [longest * i / 200 for i in range(201)]
-            stats = [mean_std([at_distance(c, d) for c in curves.values()]) for d in xs]
-            m = [x[0] for x in stats]
-            sd = [x[1] for x in stats]
-            c = colour(g, method, alpha)
-            ax.plot(xs, m, "-", color=c, label=label(method, alpha))
-            ax.fill_between(xs, [a - b for a, b in zip(m, sd)], [a + b for a, b in zip(m, sd)],
-                            color=c, alpha=0.12)
-        ax.set_title(scene)
-        ax.set_xlabel("distance travelled [m]")
-        ax.set_ylabel("unobserved cells")
-        ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
-    for ax in axes[len(scenes):]:
-        ax.axis("off")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "unobserved_by_travel.png"), dpi=110)
-    plt.close(fig)
+    def by_travel_curve(by_scan):
+        curves = travelled(by_scan)
+        longest = max(c[-1][0] for c in curves.values())
+        if longest <= 0:
+            return None
+        xs = [longest * i / 200 for i in range(201)]
+        return xs, [[at_distance(c, d) for c in curves.values()] for d in xs], "-", 0.12
+
+    plot_curves(out, "unobserved_by_travel.png", "distance travelled [m]", scenes, g,
+                by_travel_curve)
 
 
 def prediction_errors(by_scan):
