@@ -21,23 +21,25 @@ double total(const std::vector<ViewGain>& gains) {
   return sum;
 }
 
-void BM_Gain30_Exact(benchmark::State& state) {
+/// The 30 ring views of the table top after one scan, evaluated by `evaluate` with the argument's
+/// thread count.
+template <typename Evaluate>
+void gain30(benchmark::State& state, Evaluate evaluate) {
   const World& world = table_top_after_one_scan();
   const GainConfig config = with_threads(state);
   double gain = 0.0;
-  for (auto _ : state) gain = total(exact_view_gains(world.grid, world.views, config));
+  for (auto _ : state) gain = total(evaluate(world.grid, world.views, config));
   state.counters["views"] = static_cast<double>(world.views.size());
   state.counters["gain_bits"] = gain;
+}
+
+void BM_Gain30_Exact(benchmark::State& state) {
+  gain30(state, [](const auto&... args) { return exact_view_gains(args...); });
 }
 BENCHMARK(BM_Gain30_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_Gain30_Fast(benchmark::State& state) {
-  const World& world = table_top_after_one_scan();
-  const GainConfig config = with_threads(state);
-  double gain = 0.0;
-  for (auto _ : state) gain = total(fast_view_gains(world.grid, world.views, config));
-  state.counters["views"] = static_cast<double>(world.views.size());
-  state.counters["gain_bits"] = gain;
+  gain30(state, [](const auto&... args) { return fast_view_gains(args...); });
 }
 BENCHMARK(BM_Gain30_Fast)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 

@@ -43,9 +43,7 @@ void check_scene(const std::string& name) {
     GainConfig reference;
     reference.epsilon = 0.0;  // the literal model
     const auto exact = exact_view_gains(grid, views, reference);
-    GainConfig fast_config;
-    fast_config.evaluation = GainEvaluation::kFast;
-    const auto fast = fast_view_gains(grid, views, fast_config);
+    const auto fast = fast_view_gains(grid, views, GainConfig{});
     // The exact mode's own early stop (a ray hidden below epsilon) against the
     // literal model.
     const auto exact_default = exact_view_gains(grid, views, exact_defaults());

@@ -816,22 +816,20 @@ constexpr int kCostStride = 3;
 /// differently lie within 6% of each other in both modes (BENCHMARK.md, "The built-in scenes").
 constexpr double kExactStepPerRay = 2.2e-3;
 
-bool exact_is_cheaper(const GainCost& cost) {
-  return cost.exact_steps * kExactStepPerRay < cost.fast_rays;
-}
-
-GainCost estimate_cost(const GainMap& map, std::span<const Frustum> views,
-                       std::span<const RayGroup> groups,
-                       std::span<const std::vector<std::uint8_t>> live) {
-  GainCost cost;
+/// Whether the exact evaluation of `views` costs less than casting the rays of `groups` through
+/// their `live` tiles.
+bool exact_is_cheaper(const GainMap& map, std::span<const Frustum> views,
+                      std::span<const RayGroup> groups,
+                      std::span<const std::vector<std::uint8_t>> live) {
+  double fast_rays = 0.0;
   for (std::size_t g = 0; g < groups.size(); ++g) {
     const int tiles_x = (groups[g].cols + kTile - 1) / kTile;
     for (std::size_t i = 0; i < live[g].size(); ++i) {
       if (live[g][i] == 0) continue;
       const int tx = static_cast<int>(i % static_cast<std::size_t>(tiles_x));
       const int ty = static_cast<int>(i / static_cast<std::size_t>(tiles_x));
-      cost.fast_rays += static_cast<double>(std::min(kTile, groups[g].cols - tx * kTile)) *
-                        std::min(kTile, groups[g].rows - ty * kTile);
+      fast_rays += static_cast<double>(std::min(kTile, groups[g].cols - tx * kTile)) *
+                   std::min(kTile, groups[g].rows - ty * kTile);
     }
   }
   const GridSpec& spec = map.spec();
@@ -839,14 +837,12 @@ GainCost estimate_cost(const GainMap& map, std::span<const Frustum> views,
   tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
     const Frustum& view = views[v];
     const Index3 origin = spec.lattice_index(view.origin());
-    const Eigen::AlignedBox3d box = view.bounds();
-    const Index3 lo = spec.lattice_index(box.min()).cwiseMax(Index3::Zero());
-    const Index3 hi = spec.lattice_index(box.max()).cwiseMin(spec.dims - Index3::Ones());
+    const detail::CellBox box = detail::cells_under(spec, view);
     double steps = 0.0;
     Index3 c;
-    for (c.z() = lo.z(); c.z() <= hi.z(); c.z() += kCostStride) {
-      for (c.y() = lo.y(); c.y() <= hi.y(); c.y() += kCostStride) {
-        for (c.x() = lo.x(); c.x() <= hi.x(); c.x() += kCostStride) {
+    for (c.z() = box.lo.z(); c.z() <= box.hi.z(); c.z() += kCostStride) {
+      for (c.y() = box.lo.y(); c.y() <= box.hi.y(); c.y() += kCostStride) {
+        for (c.x() = box.lo.x(); c.x() <= box.hi.x(); c.x() += kCostStride) {
           if (map.value(spec.linear(c)).state != CellState::kUnobserved ||
               !view.contains(spec.center(c))) {
             continue;
@@ -857,13 +853,16 @@ GainCost estimate_cost(const GainMap& map, std::span<const Frustum> views,
     }
     per_view[v] = steps * kCostStride * kCostStride * kCostStride;
   });
-  for (const double steps : per_view) cost.exact_steps += steps;
-  return cost;
+  double exact_steps = 0.0;
+  for (const double steps : per_view) exact_steps += steps;
+  return exact_steps * kExactStepPerRay < fast_rays;
 }
 
+/// The fast evaluation; with `pick_cheaper` it first weighs it against the exact one and returns
+/// that when it is cheaper (exact_is_cheaper).
 template <typename CodeT>
 std::vector<ViewGain> evaluate(const GainMap& map, std::span<const Frustum> views,
-                               const GainConfig& config) {
+                               const GainConfig& config, bool pick_cheaper) {
   const GridSpec& spec = map.spec();
   const RayModel model(config.alpha);
   std::vector<RayGroup> groups = group_views(views);
@@ -884,6 +883,13 @@ std::vector<ViewGain> evaluate(const GainMap& map, std::span<const Frustum> view
   sh.codes = code_table.data();
   const CodeT* codes = map.codes<CodeT>();
   sh.blocks = summarize_blocks(spec, codes, code_table);
+  std::vector<std::vector<std::uint8_t>> live(groups.size());
+  tbb::parallel_for(std::size_t{0}, groups.size(),
+                    [&](std::size_t g) { live[g] = live_tiles(spec, sh.blocks, groups[g]); });
+  if (pick_cheaper && exact_is_cheaper(map, views, groups, live)) {
+    return exact_view_gains(map, views, config);
+  }
+
   sh.t.resize(static_cast<std::size_t>(max_cells) + 1);
   sh.t[0] = 1.0;
   for (std::size_t m = 1; m < sh.t.size(); ++m) sh.t[m] = sh.t[m - 1] * config.alpha;
@@ -908,14 +914,6 @@ std::vector<ViewGain> evaluate(const GainMap& map, std::span<const Frustum> view
       for (int m = 0; m <= max_cells; ++m)
         table[static_cast<std::size_t>(m)] = detail::Odds(run.at(m + 1));
     }
-  }
-
-  std::vector<std::vector<std::uint8_t>> live(groups.size());
-  tbb::parallel_for(std::size_t{0}, groups.size(),
-                    [&](std::size_t g) { live[g] = live_tiles(spec, sh.blocks, groups[g]); });
-  if (config.evaluation == GainEvaluation::kAuto &&
-      exact_is_cheaper(estimate_cost(map, views, groups, live))) {
-    return exact_view_gains(map, views, config);
   }
 
   // One task per image row of every group; row sums are added per view in row order.
@@ -959,27 +957,39 @@ std::vector<ViewGain> evaluate(const GainMap& map, std::span<const Frustum> view
   return gains;
 }
 
-}  // namespace
-
-std::vector<ViewGain> fast_view_gains(const GainMap& map, std::span<const Frustum> views,
-                                      const GainConfig& config) {
+std::vector<ViewGain> evaluate_any_width(const GainMap& map, std::span<const Frustum> views,
+                                         const GainConfig& config, bool pick_cheaper) {
   config.validate();
   if (config.method == GainMethod::kGreedy) return exact_view_gains(map, views, config);
   std::vector<ViewGain> gains;
   run_with_threads(config.num_threads, [&] {
     switch (map.code_width()) {
       case 1:
-        gains = evaluate<std::uint8_t>(map, views, config);
+        gains = evaluate<std::uint8_t>(map, views, config, pick_cheaper);
         break;
       case 2:
-        gains = evaluate<std::uint16_t>(map, views, config);
+        gains = evaluate<std::uint16_t>(map, views, config, pick_cheaper);
         break;
       default:
-        gains = evaluate<std::uint32_t>(map, views, config);
+        gains = evaluate<std::uint32_t>(map, views, config, pick_cheaper);
         break;
     }
   });
   return gains;
+}
+
+}  // namespace
+
+std::vector<ViewGain> fast_view_gains(const GainMap& map, std::span<const Frustum> views,
+                                      const GainConfig& config) {
+  return evaluate_any_width(map, views, config, /*pick_cheaper=*/false);
+}
+
+std::vector<ViewGain> cheapest_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
+                                          const GainConfig& config) {
+  config.validate();
+  return evaluate_any_width(GainMap(grid, config.num_threads), views, config,
+                            /*pick_cheaper=*/true);
 }
 
 std::vector<ViewGain> fast_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,

@@ -112,17 +112,23 @@ struct Odds {
   bool pinned(double epsilon) const { return std::abs(a - b) < 2.0 * epsilon * (a + b); }
 };
 
-}  // namespace detail
-
-/// What the two evaluations would cost on one map state, counted before any ray is cast.
-struct GainCost {
-  double exact_steps = 0.0;  ///< cell steps of the exact mode's rays, estimated by sampling
-  double fast_rays = 0.0;    ///< rays the fast mode casts
+/// Inclusive index box of the grid cells that may lie inside a frustum (its bounding box, cut to
+/// the grid); empty when the frustum misses the grid.
+struct CellBox {
+  Index3 lo, hi;
+  bool empty() const { return (hi.array() < lo.array()).any(); }
 };
 
-/// Fast evaluation of every view (GainEvaluation::kFast). The grid is only read. With
-/// `config.evaluation` = kAuto it first weighs the two evaluations' costs (GainCost) and returns
-/// the exact evaluation when that is cheaper.
+inline CellBox cells_under(const GridSpec& spec, const Frustum& view) {
+  const Eigen::AlignedBox3d box = view.bounds();
+  return {spec.lattice_index(box.min()).cwiseMax(Index3::Zero()),
+          spec.lattice_index(box.max()).cwiseMin(spec.dims - Index3::Ones())};
+}
+
+}  // namespace detail
+
+/// Fast evaluation of every view (GainEvaluation::kFast), whatever `config.evaluation` says. The
+/// grid is only read.
 ///
 /// The probabilistic method casts rays; the greedy one has no state to carry along a ray, and an
 /// exact line of sight stops at the first occupied cell, so its fast mode is the exact one.
@@ -132,6 +138,12 @@ std::vector<ViewGain> fast_view_gains(const OccupancyGrid& grid, std::span<const
 /// The same on a snapshot taken earlier, for callers that evaluate one map state repeatedly.
 std::vector<ViewGain> fast_view_gains(const GainMap& map, std::span<const Frustum> views,
                                       const GainConfig& config);
+
+/// The cheaper of the fast and the exact evaluation on this map state (GainEvaluation::kAuto,
+/// docs/fast-gain.md "Choosing per map state"), bit for bit the one chosen. The choice comes from
+/// counts taken before any ray is cast, so it does not depend on time or threads.
+std::vector<ViewGain> cheapest_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
+                                          const GainConfig& config);
 
 /// The exact evaluation (exact_view_gains) on a snapshot taken earlier.
 std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,

@@ -108,27 +108,13 @@ double greedy_gain(const Cells& map, const Eigen::Vector3d& origin, const Index3
   return clear ? 1.0 : 0.0;
 }
 
-/// Index box of the grid cells that may lie inside the frustum.
-struct CellBox {
-  Index3 lo, hi;  // inclusive
-  bool empty() const { return (hi.array() < lo.array()).any(); }
-};
-
-CellBox cells_under(const GridSpec& spec, const Frustum& view) {
-  const Eigen::AlignedBox3d box = view.bounds();
-  CellBox cells;
-  cells.lo = spec.lattice_index(box.min()).cwiseMax(Index3::Zero());
-  cells.hi = spec.lattice_index(box.max()).cwiseMin(spec.dims - Index3::Ones());
-  return cells;
-}
-
 /// Sums a per-target gain over the unobserved cells inside the frustum. The frustum and the
 /// cell's class are tested before any traversal. Rows (fixed y, z) run in parallel; the row sums
 /// are added in row order, so the result does not depend on threads.
 template <typename CellGain>
 ViewGain sum_over_targets(const GainMap& map, const Frustum& view, CellGain&& cell_gain) {
   const GridSpec& spec = map.spec();
-  const CellBox box = cells_under(spec, view);
+  const detail::CellBox box = detail::cells_under(spec, view);
   if (box.empty()) return {};
   const int ny = box.hi.y() - box.lo.y() + 1;
   const int nz = box.hi.z() - box.lo.z() + 1;
@@ -234,8 +220,9 @@ std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const 
     case GainEvaluation::kExact:
       return exact_view_gains(grid, views, config);
     case GainEvaluation::kFast:
-    case GainEvaluation::kAuto:  // fast_view_gains makes the choice
       return fast_view_gains(grid, views, config);
+    case GainEvaluation::kAuto:
+      return cheapest_view_gains(grid, views, config);
   }
   throw std::invalid_argument("gain.evaluation is not a known evaluation");
 }
