@@ -10,6 +10,11 @@
 
 namespace vantage {
 
+/// The paper's observability parameter a for a cluttered table top (§5.1, §6): the default.
+inline constexpr double kTableTopAlpha = 0.997;
+/// The paper's a for an office building (§5.2): little penalty for looking into unobserved space.
+inline constexpr double kOfficeAlpha = 0.9999;
+
 /// Binary entropy of p in bits; 0 at p = 0 and p = 1.
 double entropy_bits(double p);
 

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vantage/gain/ray_model.hpp"
 #include "vantage/map/occupancy_grid.hpp"
 #include "vantage/views/frustum.hpp"
 
@@ -45,7 +46,7 @@ GainEvaluation parse_gain_evaluation(std::string_view name);
 struct GainConfig {
   GainMethod method = GainMethod::kProbabilistic;
   GainEvaluation evaluation = GainEvaluation::kAuto;  ///< used by evaluate_views
-  double alpha = 0.997;                               ///< observability parameter a, in (0, 1]
+  double alpha = kTableTopAlpha;                      ///< observability parameter a, in (0, 1]
   /// Early stop, in [0, 0.5): a ray stops once its visibility falls below epsilon. In the fast
   /// mode an unobserved cell whose posterior lies within epsilon of 0.5 ("pinned", gain below
   /// 3 epsilon^2 bits) is not credited, and a pinned ray crosses uniform unobserved space in one
