@@ -1,0 +1,67 @@
+#include "vantage/planner/observability.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "vantage/util/text.hpp"
+
+namespace vantage {
+
+void ObservabilityFitConfig::validate() const {
+  if (alphas.empty()) throw std::invalid_argument("observability.alphas must not be empty");
+  for (std::size_t j = 0; j < alphas.size(); ++j) {
+    if (!(alphas[j] > 0.0 && alphas[j] <= 1.0)) {
+      throw std::invalid_argument(
+          cat("observability.alphas[", j, "] must lie in (0, 1], got ", alphas[j]));
+    }
+    if (j > 0 && !(alphas[j] > alphas[j - 1])) {
+      throw std::invalid_argument(cat("observability.alphas must ascend, but [", j,
+                                      "] = ", alphas[j], " follows ", alphas[j - 1]));
+    }
+  }
+  if (!(prior > 0.0 && prior <= 1.0)) {
+    throw std::invalid_argument(cat("observability.prior must lie in (0, 1], got ", prior));
+  }
+  if (!(recency > 0.0 && recency <= 1.0)) {
+    throw std::invalid_argument(cat("observability.recency must lie in (0, 1], got ", recency));
+  }
+}
+
+ObservabilityFit::ObservabilityFit(ObservabilityFitConfig config) : config_(std::move(config)) {
+  config_.validate();
+  error_.assign(config_.alphas.size(), 0.0);
+}
+
+void ObservabilityFit::record(std::span<const double> expected_cells, double actual_cells) {
+  if (expected_cells.size() != error_.size()) {
+    throw std::invalid_argument(cat("observability fit: ", expected_cells.size(),
+                                    " predictions for ", error_.size(), " values of a"));
+  }
+  if (!(actual_cells >= 0.0 && std::isfinite(actual_cells))) {
+    throw std::invalid_argument(
+        cat("observability fit: actual cells ", actual_cells, " must be finite and >= 0"));
+  }
+  for (std::size_t j = 0; j < error_.size(); ++j) {
+    if (!(expected_cells[j] >= 0.0 && std::isfinite(expected_cells[j]))) {
+      throw std::invalid_argument(cat("observability fit: expected cells ", expected_cells[j],
+                                      " under a = ", config_.alphas[j],
+                                      " must be finite and >= 0"));
+    }
+  }
+  for (std::size_t j = 0; j < error_.size(); ++j) {
+    error_[j] = config_.recency * error_[j] +
+                std::abs(std::log((expected_cells[j] + 1.0) / (actual_cells + 1.0)));
+  }
+  ++outcomes_;
+}
+
+double ObservabilityFit::alpha() const {
+  if (outcomes_ == 0) return config_.prior;
+  std::size_t best = 0;
+  for (std::size_t j = 1; j < error_.size(); ++j) {
+    if (error_[j] < error_[best]) best = j;
+  }
+  return config_.alphas[best];
+}
+
+}  // namespace vantage

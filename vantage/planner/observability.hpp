@@ -1,0 +1,66 @@
+#pragma once
+/// @file
+/// The observability parameter a chosen automatically from the run's own outcomes: the paper's
+/// §6 future work ("recognizes ... what observability strategy is the best").
+///
+/// No fixed a predicts well through a whole run: early, with the scene mostly unknown, a view
+/// sees deep into unobserved space (a near 1); once the visible surfaces are known, what is left
+/// hides behind objects not yet seen (a lower). So before each scan the chosen view's expected
+/// number of cells seen, E(a) (docs/model.md), is predicted under every candidate a; after the
+/// scan the cells it really turned known are counted; the next decision uses the a whose
+/// predictions have matched best, recent scans weighing more.
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "vantage/gain/ray_model.hpp"
+
+namespace vantage {
+
+/// Settings of the online fit.
+struct ObservabilityFitConfig {
+  /// The candidate values of a, ascending, each in (0, 1]. The default spans the paper's
+  /// table-top (0.997) and office (0.9999) values and a decade either side in 1 - a.
+  std::vector<double> alphas = {0.97,   0.99,   0.995,  0.997,   0.998,   0.999,
+                                0.9995, 0.9998, 0.9999, 0.99995, 0.99998, 0.99999};
+  double prior = kTableTopAlpha;  ///< the a in force until the first outcome, in (0, 1]
+  /// Weight of an outcome relative to the one after it, in (0, 1]: 1 weighs all scans alike,
+  /// 0.5 halves the weight of each older scan.
+  double recency = 0.5;
+
+  /// Throws std::invalid_argument naming the field.
+  void validate() const;
+};
+
+/// Fits a to the predictions and outcomes of the scans taken so far. Deterministic: the same
+/// outcomes give the same a.
+class ObservabilityFit {
+ public:
+  /// Validates the config; throws std::invalid_argument naming the field.
+  explicit ObservabilityFit(ObservabilityFitConfig config = {});
+
+  /// The candidate values of a, in the order record() expects its predictions.
+  const std::vector<double>& alphas() const { return config_.alphas; }
+
+  /// Records one scan: `expected_cells[j]`, the cells the scan's view was predicted to see under
+  /// alphas()[j] before it was taken [cells], and `actual_cells`, the cells it turned known.
+  /// Throws std::invalid_argument for a size mismatch or a negative or non-finite count.
+  void record(std::span<const double> expected_cells, double actual_cells);
+
+  /// The a for the next decision: the prior before any outcome, then the candidate with the
+  /// least recency-weighted error |ln((E + 1) / (actual + 1))| (a ratio, so that a scan that
+  /// sees 100 000 cells and one that sees 1 000 count alike). Ties go to the lower a.
+  double alpha() const;
+
+  /// Each candidate's recency-weighted error so far (the sum alpha() minimises).
+  const std::vector<double>& errors() const { return error_; }
+  std::size_t outcomes() const { return outcomes_; }
+
+ private:
+  ObservabilityFitConfig config_;
+  std::vector<double> error_;  // per candidate a
+  std::size_t outcomes_ = 0;
+};
+
+}  // namespace vantage
