@@ -84,6 +84,22 @@ TEST(Navigation, UnreachableGoalGivesTheNearestReachablePlace) {
   EXPECT_NEAR(closed.length, 4.0 + std::sqrt(2.0), 1e-12);  // one diagonal step
 }
 
+TEST(Navigation, AFrontierStopIsTheRegionsOwnReachableCellNearestItsCentroid) {
+  const NavigationGrid nav = maze();
+  const TravelMap travel(nav, centre(0, 4));
+  // A region along the wall at y = 3 and the corridor below it: its centroid (2, 3) lies in the
+  // wall. The fallback drives to (2, 2) whatever the region; the projection picks the region's
+  // own reachable cell nearest the centroid, (3, 2) before (1, 2) here because it comes first.
+  const std::vector<Eigen::Vector2d> region = {centre(3, 3), centre(3, 2), centre(1, 3),
+                                               centre(1, 2), centre(0, 0)};
+  const std::optional<Index2> stop = travel.nearest_reachable_among(region, centre(2, 3));
+  ASSERT_TRUE(stop.has_value());
+  EXPECT_EQ(*stop, Index2(3, 2));
+  // Cells in walls or outside the grid are never chosen; none reachable gives nothing.
+  const std::vector<Eigen::Vector2d> walled = {centre(1, 3), centre(2, 3), {9.0, 9.0}};
+  EXPECT_FALSE(travel.nearest_reachable_among(walled, centre(2, 3)).has_value());
+}
+
 TEST(Navigation, InflationKeepsTheBaseClearOfObstacles) {
   // One obstacle in the middle of a 21 x 21 grid of 0.1 m cells; footprint 0.668 m.
   std::vector<std::uint8_t> obstacles(21 * 21, 0);

@@ -282,6 +282,22 @@ Index2 TravelMap::nearest_reachable(const Eigen::Vector2d& p) const {
   return nav_.unravel(best);
 }
 
+std::optional<Index2> TravelMap::nearest_reachable_among(std::span<const Eigen::Vector2d> places,
+                                                         const Eigen::Vector2d& p) const {
+  std::optional<Index2> best;
+  double best_d2 = kInfinity;
+  for (const Eigen::Vector2d& place : places) {
+    const std::optional<Index2> cell = nav_.cell_of(place);
+    if (!cell || !reachable(*cell)) continue;
+    const double d2 = (nav_.center(*cell) - p).squaredNorm();
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = cell;
+    }
+  }
+  return best;
+}
+
 NavigationPath find_path(const NavigationGrid& nav, const Eigen::Vector2d& start,
                          const Eigen::Vector2d& goal) {
   if (!goal.allFinite()) throw std::invalid_argument("navigation: the goal is not finite");

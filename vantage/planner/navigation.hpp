@@ -117,6 +117,12 @@ class TravelMap {
   /// The reachable cell whose centre is nearest to p (ties to the lower index): the goal itself
   /// when it is reachable, else the fallback.
   Index2 nearest_reachable(const Eigen::Vector2d& p) const;
+  /// Of `places` (e.g. the cells of a frontier region), the one in a reachable cell whose centre
+  /// is nearest p (ties to the earlier place); nothing when none is reachable. A frontier
+  /// centroid can fall inside furniture; the region's own reachable cell nearest it is a stop on
+  /// the frontier, where the paper's fallback (nearest_reachable) may end far from it.
+  std::optional<Index2> nearest_reachable_among(std::span<const Eigen::Vector2d> places,
+                                                const Eigen::Vector2d& p) const;
 
  private:
   NavigationGrid nav_;
