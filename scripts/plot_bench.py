@@ -5,8 +5,12 @@ Figs. 15 and 16 (office).
 Usage: plot_bench.py DIR
 Reads DIR/scans.csv; writes DIR/unobserved.png (mean +- std of unobserved cells per scan, per
 method and scene), DIR/unobserved_by_travel.png (the same against the distance travelled),
-DIR/prediction_error.png (absolute error of predicted vs actual gain per scan, probabilistic vs
-greedy predictions on the probabilistic run's poses) and DIR/summary.md.
+DIR/prediction_error.png (absolute error of the predicted vs the actual number of cells seen
+per scan: the probabilistic method's expected cells seen (predicted_cells) against greedy's count
+on the same poses, the paper's Fig. 11) and DIR/summary.md.
+
+The probabilistic method's curves are told apart by its a setting (a number or 'auto') and its
+objective (what it ranks by: bits or cells).
 
 A trial that stopped early (no frontier left) keeps its last map: its last figures stand for the
 later scans, so that every mean is over all trials.
@@ -38,17 +42,29 @@ def mean_std(values):
 PROBABILISTIC_SHADES = ["#d32f2f", "#ff8a80", "#8e0000", "#f06292", "#5d4037"]
 
 
-def colour(g, method, alpha):
-    """The colour of one curve: the method's, and for the probabilistic method one shade per a
-    value in the sweep (in ascending order of a), so that an a study's curves can be told apart."""
+def setting_order(setting):
+    """Sorts the probabilistic settings: numeric a ascending, then 'auto'; bits before cells."""
+    alpha, objective = setting
+    try:
+        return (0, float(alpha), objective)
+    except ValueError:
+        return (1, 0.0, objective)
+
+
+def colour(g, method, setting):
+    """The colour of one curve: the method's, and for the probabilistic method one shade per
+    setting (a and objective) in the sweep, so that an a study's curves can be told apart."""
     if method != "probabilistic":
         return COLOURS.get(method)
-    alphas = sorted({float(a) for (_, m, a) in g if m == "probabilistic"})
-    return PROBABILISTIC_SHADES[alphas.index(float(alpha)) % len(PROBABILISTIC_SHADES)]
+    settings = sorted({k[2] for k in g if k[1] == "probabilistic"}, key=setting_order)
+    return PROBABILISTIC_SHADES[settings.index(setting) % len(PROBABILISTIC_SHADES)]
 
 
-def label(method, alpha):
-    return f"{method} (a={alpha})" if method == "probabilistic" else method
+def label(method, setting):
+    if method != "probabilistic":
+        return method
+    alpha, objective = setting
+    return f"{method} (a={alpha}, {objective})" if objective else f"{method} (a={alpha})"
 
 
 def load(path):
@@ -64,7 +80,8 @@ def grouped(rows):
     carried forward to the group's last scan."""
     trials = defaultdict(lambda: defaultdict(list))
     for r in rows:
-        trials[(r["scene"], r["method"], r["alpha"])][r["trial"]].append(r)
+        setting = (r["alpha"], r.get("objective") or "")
+        trials[(r["scene"], r["method"], setting)][r["trial"]].append(r)
     g = defaultdict(lambda: defaultdict(list))
     for key, by_trial in trials.items():
         last = max(int(r["scan"]) for rs in by_trial.values() for r in rs)
@@ -74,8 +91,8 @@ def grouped(rows):
                 g[key][int(r["scan"])].append(r)
             for k in range(int(rs[-1]["scan"]) + 1, last + 1):
                 g[key][k].append(dict(rs[-1], scan=str(k), predicted_gain="",
-                                      greedy_predicted_gain="", actual_gain="0", travel_m="0",
-                                      fallback="0", carried="1"))
+                                      predicted_cells="", greedy_predicted_gain="",
+                                      actual_gain="0", travel_m="0", fallback="0", carried="1"))
     return g
 
 
@@ -159,13 +176,20 @@ def plot_unobserved_by_travel(out, scenes, g):
                 by_travel_curve)
 
 
+def predicted_cells(r):
+    """The method's prediction of the cells a scan sees [cells], or '' for the first scan. Sweeps
+    from before predicted_cells existed predicted only in bits: those carry no cell prediction."""
+    return r.get("predicted_cells") or ""
+
+
 def prediction_errors(by_scan):
-    """scan -> (errors of the method's prediction, errors of greedy's on the same poses)."""
+    """scan -> (errors of the method's prediction, errors of greedy's on the same poses), both
+    in cells seen, as the paper's §5.2 defines the error."""
     result = {}
     for k, rows in sorted(by_scan.items()):
         rows = [r for r in rows if "carried" not in r]
-        own = [abs(float(r["predicted_gain"]) - float(r["actual_gain"]))
-               for r in rows if r["predicted_gain"]]
+        own = [abs(float(predicted_cells(r)) - float(r["actual_gain"]))
+               for r in rows if predicted_cells(r)]
         greedy = [abs(float(r["greedy_predicted_gain"]) - float(r["actual_gain"]))
                   for r in rows if r["greedy_predicted_gain"]]
         if own:
@@ -185,13 +209,13 @@ def plot_prediction_error(out, scenes, g):
             greedy = [mean_std(errs[k][1]) for k in scans]
             ax.errorbar(scans, [x[0] for x in own], yerr=[x[1] for x in own], fmt="o-", ms=3,
                         capsize=2, color=colour(g, method, alpha),
-                        label=f"probabilistic prediction (a={alpha})")
+                        label=f"{label(method, alpha)}: expected cells seen")
             ax.errorbar(scans, [x[0] for x in greedy], yerr=[x[1] for x in greedy], fmt="s--",
-                        ms=3, capsize=2, color=COLOURS["greedy"],
-                        label=f"greedy prediction, same poses (a={alpha} run)")
+                        ms=3, capsize=2, color=COLOURS["greedy"], alpha=0.6,
+                        label=f"greedy's count on the same poses ({label(method, alpha)} run)")
         ax.set_title(scene)
         ax.set_xlabel("scan")
-        ax.set_ylabel("|predicted - actual| gain [cells]")
+        ax.set_ylabel("|predicted - actual| cells seen [cells]")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=8)
     for ax in axes[len(scenes):]:
@@ -230,29 +254,41 @@ def summary(out, scenes, g):
     marks = checkpoints(last)
     lines = ["# Sweep summary", "",
              f"Mean unobserved cells after scans {', '.join(map(str, marks))} (over trials); AUC =",
-             "area under the mean unobserved-cells curve (trapezoid, per scan); prediction error =",
-             "mean |predicted - actual| gain over scans 2.. of the method's own prediction",
-             "(greedy's prediction on the same poses in brackets); plan time = mean seconds per",
-             "decision; travel = mean distance travelled per trial [m]; fallbacks = mean stops per",
-             "trial whose goal was not reachable; scans to X% = the scan at which the method's mean",
-             "reduction of unobserved cells since scan 1 reaches X% of the largest mean reduction",
-             "any method of the scene reached by the last scan (interpolated; '-' = not reached).",
+             "area under the mean unobserved-cells curve (trapezoid, per scan) [cells x scans], and",
+             "as a share of greedy's; coverage = mean observed share of the observable surface",
+             "after the last scan; prediction error = mean |predicted - actual| cells seen over",
+             "scans 2.. of the method's own prediction in cells (greedy's count on the same poses",
+             "in brackets); plan time = mean seconds per decision; travel = mean distance",
+             "travelled per trial [m]; fallbacks = mean stops per trial whose goal was not",
+             "reachable; scans to X% = the scan at which the method's mean reduction of",
+             "unobserved cells since scan 1 reaches X% of the largest mean reduction any method of",
+             "the scene reached by the last scan (interpolated; '-' = not reached).",
              ""]
     for scene in scenes:
         curves = {key: reduction_curve(by_scan) for key, by_scan in g.items() if key[0] == scene}
         best = max(c[max(c)] for c in curves.values())
+        aucs = {}
+        for key, by_scan in g.items():
+            if key[0] != scene:
+                continue
+            scans = sorted(by_scan)
+            means = [mean_std([float(r["unobserved"]) for r in by_scan[k]])[0] for k in scans]
+            aucs[key] = sum((a + b) / 2 for a, b in zip(means, means[1:]))
+        greedy_auc = [v for k, v in aucs.items() if k[1] == "greedy"]
         lines += [f"## {scene}", "",
                   "| method | trials | " + " | ".join(f"@{k}" for k in marks) +
-                  " | AUC | prediction error | plan [s] | travel [m] | fallbacks |"
-                  " scans to 50% | scans to 75% |",
-                  "|---|---|" + "---|" * len(marks) + "---|---|---|---|---|---|---|"]
-        for (s, method, alpha), by_scan in sorted(g.items()):
+                  " | AUC | AUC / greedy | coverage | prediction error [cells] | plan [s] |"
+                  " travel [m] | fallbacks | scans to 50% | scans to 75% |",
+                  "|---|---|" + "---|" * len(marks) + "---|---|---|---|---|---|---|---|---|"]
+        for key, by_scan in sorted(g.items(), key=lambda kv: (kv[0][1], setting_order(kv[0][2]))):
+            s, method, setting = key
             if s != scene:
                 continue
             scans = sorted(by_scan)
             means = {k: mean_std([float(r["unobserved"]) for r in by_scan[k]])[0] for k in scans}
             cells = [f"{means[k]:.0f}" if k in means else "-" for k in marks]
-            auc = sum((means[a] + means[b]) / 2 for a, b in zip(scans, scans[1:]))
+            ratio = f"{aucs[key] / greedy_auc[0]:.3f}" if greedy_auc else "-"
+            coverage = mean_std([float(r["coverage"]) for r in by_scan[scans[-1]]])[0]
             errs = prediction_errors(by_scan)
             own = [e for k in errs for e in errs[k][0]]
             greedy = [e for k in errs for e in errs[k][1]]
@@ -262,11 +298,12 @@ def summary(out, scenes, g):
             trials = len(by_scan[scans[0]])
             travel = sum(float(r.get("travel_m") or 0.0) for r in real) / trials
             fallbacks = sum(int(r.get("fallback") or 0) for r in real) / trials
-            reach = [scans_to(curves[(s, method, alpha)], share * best) for share in (0.5, 0.75)]
+            reach = [scans_to(curves[key], share * best) for share in (0.5, 0.75)]
             reach = [f"{x:.1f}" if x is not None else "-" for x in reach]
-            lines.append(f"| {label(method, alpha)} | {trials} | " + " | ".join(cells) +
-                         f" | {auc:.0f} | {err} | {mean_std(plan)[0]:.3f} | {travel:.1f} |"
-                         f" {fallbacks:.1f} | {reach[0]} | {reach[1]} |")
+            lines.append(f"| {label(method, setting)} | {trials} | " + " | ".join(cells) +
+                         f" | {aucs[key]:.0f} | {ratio} | {100 * coverage:.1f}% | {err} |"
+                         f" {mean_std(plan)[0]:.3f} | {travel:.1f} | {fallbacks:.1f} |"
+                         f" {reach[0]} | {reach[1]} |")
         lines.append("")
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines))
