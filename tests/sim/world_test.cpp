@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "test_scenes.hpp"
 #include "vantage/views/ring.hpp"
@@ -103,6 +105,30 @@ TEST(World, RgbdDepthNoiseGrowsWithDepthAsTheModelSays) {
     EXPECT_NEAR(s.sd, sigma, sigma * 0.05) << "depth " << depth;
     EXPECT_NEAR(s.mean, 0.0, 5 * sigma / std::sqrt(static_cast<double>(errors.size())));
   }
+}
+
+TEST(World, FarAwayPosesAreRefusedNotPassedToEmbree) {
+  // Embree aborts on ray origins beyond ~1.8e18 (its ray.valid() assertion); the world refuses
+  // any origin beyond 1e5 m with a line that says which coordinate.
+  const SensorConfig sensor = quiet_rgbd();
+  const World world(wall_scene(sensor, 2.0));
+  for (const double x : {1e20, -1e6, 1e300}) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.translation().x() = x;
+    try {
+      (void)world.scan(T, 1);
+      FAIL() << "a scan from x = " << x << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("x = "), std::string::npos) << e.what();
+    }
+    EXPECT_THROW((void)world.cast(T.translation(), Eigen::Vector3d::UnitX(), 5.0),
+                 std::invalid_argument);
+    EXPECT_THROW((void)world.occluded(T.translation(), Eigen::Vector3d::UnitX(), 5.0),
+                 std::invalid_argument);
+  }
+  Eigen::Isometry3d near = Eigen::Isometry3d::Identity();
+  near.translation().z() = 9e4;  // far, but within range: a valid (empty) scan
+  EXPECT_EQ(world.scan(near, 1).points_sensor.size(), 0u);
 }
 
 TEST(World, RaysThatHitNothingGiveNoPoints) {

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "vantage/sim/random.hpp"
 #include "vantage/util/parallel.hpp"
@@ -123,6 +124,26 @@ World::World(Scene scene, const WorldConfig& config)
   e.check("building the scene");
 }
 
+namespace {
+
+/// How far from the world's origin a ray may start [m]. Embree works in float and aborts on
+/// origins beyond ~1.8e18; long before that a float position is meaningless (at 1e5 m its
+/// spacing is 8 mm, a table-top cell).
+constexpr double kMaxCoordinate = 1e5;
+
+/// Throws std::invalid_argument unless `origin` is finite and within kMaxCoordinate.
+void check_origin(const Eigen::Vector3d& origin, std::string_view what) {
+  for (int a = 0; a < 3; ++a) {
+    if (!(std::abs(origin[a]) <= kMaxCoordinate)) {
+      throw std::invalid_argument(cat(what, " ", "xyz"[a], " = ", origin[a],
+                                      " m lies outside the simulated world's range of +-",
+                                      kMaxCoordinate, " m"));
+    }
+  }
+}
+
+}  // namespace
+
 World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
@@ -135,6 +156,7 @@ std::optional<double> World::cast(const Eigen::Vector3d& origin, const Eigen::Ve
         "World::cast needs a finite origin, a non-zero direction and "
         "max_range >= 0");
   }
+  check_origin(origin, "ray origin");
   const float t = intersect(embree_->scene, origin.cast<float>(), (direction / n).cast<float>(),
                             static_cast<float>(std::min(max_range, 1e30)));
   if (t < 0.0f) return std::nullopt;
@@ -148,6 +170,7 @@ bool World::occluded(const Eigen::Vector3d& origin, const Eigen::Vector3d& direc
     throw std::invalid_argument(
         "World::occluded needs a finite origin, a non-zero direction and distance >= 0");
   }
+  check_origin(origin, "ray origin");
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay ray{};
@@ -196,6 +219,7 @@ SimulatedScan World::scan_with(const Eigen::Isometry3d& T_true, const Eigen::Iso
                                const std::vector<Eigen::Vector3d>& directions,
                                std::uint64_t noise_seed) const {
   if (!T_true.matrix().allFinite()) throw std::invalid_argument("scan pose must be finite");
+  check_origin(T_true.translation(), "scan pose");
   const std::size_t n = directions.size();
   const Eigen::Matrix3d R = T_true.linear();
   const Eigen::Vector3f origin = T_true.translation().cast<float>();
