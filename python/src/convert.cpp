@@ -68,9 +68,9 @@ std::vector<Eigen::Isometry3d> to_poses(const DoubleArray& poses, const char* wh
   return out;
 }
 
-std::vector<Frustum> to_views(const DoubleArray& poses, const SensorFov& fov) {
+std::vector<Frustum> to_views(const DoubleArray& poses, const SensorFov& fov, const char* what) {
   std::vector<Frustum> views;
-  for (const Eigen::Isometry3d& pose : to_poses(poses, "poses")) views.emplace_back(pose, fov);
+  for (const Eigen::Isometry3d& pose : to_poses(poses, what)) views.emplace_back(pose, fov);
   return views;
 }
 

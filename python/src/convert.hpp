@@ -38,8 +38,8 @@ Eigen::Isometry3d to_pose(const Eigen::Matrix4d& matrix, const std::string& what
 /// A K x 4 x 4 array (or a list of 4 x 4 matrices) as poses; pose k is named `what[k]`.
 std::vector<Eigen::Isometry3d> to_poses(const DoubleArray& poses, const char* what);
 
-/// Frusta of K x 4 x 4 sensor poses with one field of view.
-std::vector<Frustum> to_views(const DoubleArray& poses, const SensorFov& fov);
+/// Frusta of K x 4 x 4 sensor poses with one field of view; pose k is named `what[k]`.
+std::vector<Frustum> to_views(const DoubleArray& poses, const SensorFov& fov, const char* what);
 
 /// Poses as a K x 4 x 4 array.
 py::array_t<double> from_poses(const std::vector<Eigen::Isometry3d>& poses);

@@ -119,7 +119,7 @@ void bind_gain(py::module_& m) {
       [](const OccupancyGrid& grid, const DoubleArray& poses, const SensorFov& fov,
          const GainConfig& config) {
         config.validate();
-        const std::vector<Frustum> views = to_views(poses, fov);
+        const std::vector<Frustum> views = to_views(poses, fov, "poses");
         py::gil_scoped_release release;
         return evaluate_views(grid, views, config);
       },

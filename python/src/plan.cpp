@@ -31,7 +31,7 @@ RankedPlan decide(const OccupancyGrid& grid, const DoubleArray& candidates, cons
                   const PlannerConfig& config, std::uint64_t seed) {
   config.validate();
   std::vector<Candidate> views;
-  for (const Frustum& view : to_views(candidates, fov)) views.push_back({view});
+  for (const Frustum& view : to_views(candidates, fov, "candidates")) views.push_back({view});
   RankedPlan out;
   {
     py::gil_scoped_release release;
