@@ -95,14 +95,19 @@ void bind_gain(py::module_& m) {
            "(0, 1]; epsilon (early stop) in [0, 0.5); ray_spacing [cells] in (0, 1] for the fast "
            "evaluation; num_threads 0 = all cores (results do not depend on it). ValueError "
            "naming the field when one is bad.")
-      .def_property_readonly("method",
-                             [](const GainConfig& c) { return std::string(to_string(c.method)); })
       .def_property_readonly(
-          "evaluation", [](const GainConfig& c) { return std::string(to_string(c.evaluation)); })
-      .def_readonly("alpha", &GainConfig::alpha)
-      .def_readonly("epsilon", &GainConfig::epsilon)
-      .def_readonly("ray_spacing", &GainConfig::ray_spacing)
-      .def_readonly("num_threads", &GainConfig::num_threads);
+          "method", [](const GainConfig& c) { return std::string(to_string(c.method)); },
+          "'probabilistic' (the paper's model) or 'greedy' (infinite visibility).")
+      .def_property_readonly(
+          "evaluation", [](const GainConfig& c) { return std::string(to_string(c.evaluation)); },
+          "'exact' (a ray to every target cell), 'fast' (rays cast outward) or 'auto'.")
+      .def_readonly("alpha", &GainConfig::alpha, "Observability parameter a, in (0, 1].")
+      .def_readonly("epsilon", &GainConfig::epsilon,
+                    "Early stop: a ray stops once its visibility falls below it, in [0, 0.5).")
+      .def_readonly("ray_spacing", &GainConfig::ray_spacing,
+                    "Fast mode: spacing of neighbouring rays at the farthest cell [cells].")
+      .def_readonly("num_threads", &GainConfig::num_threads,
+                    "0 = all cores; results are identical for any count.");
 
   py::class_<ViewGain>(m, "ViewGain", "The predicted gain of one view.")
       .def_readonly("gain", &ViewGain::gain,

@@ -197,10 +197,12 @@ void bind_plan(py::module_& m) {
            "GainConfig (its method follows from `method`); lambda_: latombe's travel penalty "
            "[1/m]; greedy_reference: also predict every candidate's greedy gain.")
       .def_property_readonly(
-          "method", [](const PlannerConfig& c) { return std::string(to_string(c.method)); })
-      .def_readonly("gain", &PlannerConfig::gain)
-      .def_readonly("lambda_", &PlannerConfig::lambda)
-      .def_readonly("greedy_reference", &PlannerConfig::greedy_reference);
+          "method", [](const PlannerConfig& c) { return std::string(to_string(c.method)); },
+          "How the next view is chosen.")
+      .def_readonly("gain", &PlannerConfig::gain, "The GainConfig of the gain evaluation.")
+      .def_readonly("lambda_", &PlannerConfig::lambda, "Latombe's travel penalty [1/m].")
+      .def_readonly("greedy_reference", &PlannerConfig::greedy_reference,
+                    "Whether every candidate's greedy gain is predicted too.");
 
   py::class_<RankedPlan>(m, "Plan", "The decision and everything behind it.")
       .def_property_readonly(
@@ -249,6 +251,14 @@ void bind_plan(py::module_& m) {
            py::arg("spec"), py::arg("integration") = "paper", py::arg("table_segmentation") = false,
            py::arg("icp") = false, py::arg("num_threads") = 0,
            "A mapper over a fresh grid; the switches are a manifest's options.")
+      .def(py::init([](const OccupancyGrid& grid, const std::string& integration,
+                       bool table_segmentation, bool icp, int num_threads) {
+             return Mapper(
+                 grid, recorded_mapper_config(integration, table_segmentation, icp, num_threads));
+           }),
+           py::arg("grid"), py::arg("integration") = "paper", py::arg("table_segmentation") = false,
+           py::arg("icp") = false, py::arg("num_threads") = 0,
+           "A mapper that continues a copy of an existing map (one read from OctoMap, say).")
       .def("add_scan", &add_scan, py::arg("points_sensor"), py::arg("T_world_sensor"),
            py::arg("fov"),
            "Adds an N x 3 array of points in the sensor frame (x forward, y left, z up) taken "

@@ -57,7 +57,7 @@ void bind_sim(py::module_& m) {
       .def(py::init(&load), py::arg("name_or_path"),
            "A built-in scene by name (builtin_scene_names()) or a scene YAML file. ValueError "
            "naming the file, line and key for a bad scene; OSError for a missing file.")
-      .def_readonly("name", &sim::Scene::name)
+      .def_readonly("name", &sim::Scene::name, "The scene's name.")
       .def_readonly("source", &sim::Scene::source, "'built-in' or the YAML file's path.")
       .def_property_readonly(
           "kind", [](const sim::Scene& s) { return std::string(sim::to_string(s.kind)); },
