@@ -22,12 +22,14 @@ std::string repr(const GridSpec& s) {
              s.dims.z(), "))");
 }
 
-Index3 to_index(const py::tuple& dims, const char* what) {
-  if (dims.size() != 3) throw std::invalid_argument(cat(what, " must hold 3 integers"));
-  return {dims[0].cast<int>(), dims[1].cast<int>(), dims[2].cast<int>()};
+Index3 to_index(const std::vector<int>& dims, const char* what) {
+  if (dims.size() != 3) {
+    throw std::invalid_argument(cat(what, " must hold 3 integers, got ", dims.size()));
+  }
+  return {dims[0], dims[1], dims[2]};
 }
 
-GridSpec make_spec(const DoubleArray& origin, double resolution, const py::tuple& dims) {
+GridSpec make_spec(const DoubleArray& origin, double resolution, const std::vector<int>& dims) {
   GridSpec spec;
   spec.origin = to_vector3(origin, "origin");
   spec.resolution = resolution;
@@ -123,7 +125,7 @@ void bind_map(py::module_& m) {
            "nz) cells. Raises ValueError naming the field when unusable.")
       .def_static(
           "centered",
-          [](const DoubleArray& center, double resolution, const py::tuple& dims) {
+          [](const DoubleArray& center, double resolution, const std::vector<int>& dims) {
             GridSpec spec = GridSpec::centered(to_vector3(center, "center"), resolution,
                                                to_index(dims, "dims"));
             spec.validate();

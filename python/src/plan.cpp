@@ -80,8 +80,8 @@ MapperUpdate add_scan(Mapper& mapper, const DoubleArray& points_sensor,
 
 /// Maps clouds given in `frame` at poses T_world_cloud into a fresh grid, as map_recorded maps a
 /// manifest's clouds, then plans: the path `vantage plan` takes, with arrays for files.
-py::tuple plan_recorded(const py::list& clouds, const DoubleArray& poses, const SensorFov& fov,
-                        const GridSpec& spec, const DoubleArray& candidates,
+py::tuple plan_recorded(const std::vector<DoubleArray>& clouds, const DoubleArray& poses,
+                        const SensorFov& fov, const GridSpec& spec, const DoubleArray& candidates,
                         const std::string& frame, bool table_segmentation, bool icp,
                         const std::string& integration, PlannerConfig config, std::uint64_t seed) {
   const CloudFrame cloud_frame = parse_cloud_frame(frame);
@@ -98,7 +98,7 @@ py::tuple plan_recorded(const py::list& clouds, const DoubleArray& poses, const 
   const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(cloud_frame).transpose();
   for (std::size_t i = 0; i < clouds.size(); ++i) {
     const std::string name = cat("clouds[", i, "]");
-    PointCloud points = to_cloud(clouds[i].cast<DoubleArray>(), name.c_str());
+    PointCloud points = to_cloud(clouds[i], name.c_str());
     for (Eigen::Vector3d& p : points) p = R_sensor_cloud * p;
     try {
       py::gil_scoped_release release;

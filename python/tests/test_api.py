@@ -65,3 +65,14 @@ def test_a_mapper_continues_an_existing_map():
     states = mapper.grid.states()
     assert states[5, 5, 5] == vt.OCCUPIED and states[4, 2, 2] == vt.OCCUPIED
     assert start.counts()["occupied"] == 1  # the mapper took a copy
+
+
+def test_sequences_of_any_kind_are_taken():
+    spec = vt.GridSpec([0, 0, 0], 0.1, np.array([6, 6, 6]))
+    assert spec == vt.GridSpec((0, 0, 0), 0.1, (6, 6, 6)) and spec.dims == (6, 6, 6)
+    with pytest.raises(ValueError, match="dims must hold 3 integers, got 2"):
+        vt.GridSpec((0, 0, 0), 0.1, [6, 6])
+    cloud = np.array([[0.45, 0.25, 0.25]])
+    fov = vt.SensorFov(min_range=0.0)
+    grid, plan = vt.plan((cloud,), [np.eye(4)], fov, spec, [vt.look_at((0, 0.3, 0.3), (1, 0.3, 0.3))])
+    assert grid.counts()["occupied"] >= 1 and plan.best == 0
