@@ -78,6 +78,20 @@ MapperUpdate add_scan(Mapper& mapper, const DoubleArray& points_sensor,
   return mapper.add_scan(points, pose, fov);
 }
 
+/// Mapper(start, integration=..., table_segmentation=..., icp=..., num_threads=...), where
+/// `start` is a GridSpec (a fresh grid) or an OccupancyGrid (continued).
+template <typename Start>
+void def_mapper_init(py::class_<Mapper>& mapper, const char* start, const char* doc) {
+  mapper.def(py::init([](const Start& from, const std::string& integration, bool table_segmentation,
+                         bool icp, int num_threads) {
+               return Mapper(
+                   from, recorded_mapper_config(integration, table_segmentation, icp, num_threads));
+             }),
+             py::arg(start), py::arg("integration") = "paper",
+             py::arg("table_segmentation") = false, py::arg("icp") = false,
+             py::arg("num_threads") = 0, doc);
+}
+
 /// Maps clouds given in `frame` at poses T_world_cloud into a fresh grid, as map_recorded maps a
 /// manifest's clouds, then plans: the path `vantage plan` takes, with arrays for files.
 py::tuple plan_recorded(const std::vector<DoubleArray>& clouds, const DoubleArray& poses,
@@ -240,25 +254,17 @@ void bind_plan(py::module_& m) {
                     "Points integrated (after table segmentation).")
       .def_readonly("integration", &MapperUpdate::integration, "The IntegrationResult.");
 
-  py::class_<Mapper>(m, "Mapper",
-                     "Builds a map scan by scan as `vantage plan` does: optional ICP against the "
-                     "points so far (§4.2), optional table segmentation (§5.1), integration.")
-      .def(py::init([](const GridSpec& spec, const std::string& integration,
-                       bool table_segmentation, bool icp, int num_threads) {
-             return Mapper(
-                 spec, recorded_mapper_config(integration, table_segmentation, icp, num_threads));
-           }),
-           py::arg("spec"), py::arg("integration") = "paper", py::arg("table_segmentation") = false,
-           py::arg("icp") = false, py::arg("num_threads") = 0,
-           "A mapper over a fresh grid; the switches are a manifest's options.")
-      .def(py::init([](const OccupancyGrid& grid, const std::string& integration,
-                       bool table_segmentation, bool icp, int num_threads) {
-             return Mapper(
-                 grid, recorded_mapper_config(integration, table_segmentation, icp, num_threads));
-           }),
-           py::arg("grid"), py::arg("integration") = "paper", py::arg("table_segmentation") = false,
-           py::arg("icp") = false, py::arg("num_threads") = 0,
-           "A mapper that continues a copy of an existing map (one read from OctoMap, say).")
+  py::class_<Mapper> mapper_class(
+      m, "Mapper",
+      "Builds a map scan by scan as `vantage plan` does: optional ICP "
+      "against the points so far (§4.2), optional table segmentation (§5.1), "
+      "integration.");
+  def_mapper_init<GridSpec>(mapper_class, "spec",
+                            "A mapper over a fresh grid; the switches are a manifest's options.");
+  def_mapper_init<OccupancyGrid>(
+      mapper_class, "grid",
+      "A mapper that continues a copy of an existing map (one read from OctoMap).");
+  mapper_class
       .def("add_scan", &add_scan, py::arg("points_sensor"), py::arg("T_world_sensor"),
            py::arg("fov"),
            "Adds an N x 3 array of points in the sensor frame (x forward, y left, z up) taken "
