@@ -5,7 +5,7 @@ set -euo pipefail
 
 core=(cmake g++ make pkg-config libeigen3-dev libtbb-dev libgtest-dev libbenchmark-dev
       libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libyaml-cpp-dev
-      python3-matplotlib)
+      python3-matplotlib pybind11-dev python3-dev python3-numpy python3-pytest)
 edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev npm)
 
 wanted=("${core[@]}")

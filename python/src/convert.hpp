@@ -1,0 +1,81 @@
+#pragma once
+/// @file
+/// What the binding files share: numpy <-> Vantage value conversions, checks of poses, and the
+/// mapping of file errors to Python's OSError.
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <Eigen/Geometry>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "vantage/map/grid_spec.hpp"
+#include "vantage/map/point_cloud.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage::python {
+
+namespace py = pybind11;
+
+/// A C-ordered array of doubles, converted from whatever numpy can convert.
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// An N x 3 array as a point cloud; throws std::invalid_argument naming `what` and the shape
+/// when it is not N x 3. Non-finite points pass: the library names them where it checks them.
+PointCloud to_cloud(const DoubleArray& points, const char* what);
+
+/// A point cloud as an N x 3 array [m].
+py::array_t<double> from_cloud(const PointCloud& cloud);
+
+/// A 4 x 4 rigid transform; throws std::invalid_argument naming `what` when the matrix is not
+/// rigid (not finite, bottom row not [0 0 0 1], rotation not orthonormal or a reflection).
+Eigen::Isometry3d to_pose(const Eigen::Matrix4d& matrix, const std::string& what);
+
+/// A K x 4 x 4 array (or a list of 4 x 4 matrices) as poses; pose k is named `what[k]`.
+std::vector<Eigen::Isometry3d> to_poses(const DoubleArray& poses, const char* what);
+
+/// Frusta of K x 4 x 4 sensor poses with one field of view; pose k is named `what[k]`.
+std::vector<Frustum> to_views(const DoubleArray& poses, const SensorFov& fov, const char* what);
+
+/// Poses as a K x 4 x 4 array.
+py::array_t<double> from_poses(const std::vector<Eigen::Isometry3d>& poses);
+
+/// A vector of 3 numbers; throws std::invalid_argument naming `what` otherwise.
+Eigen::Vector3d to_vector3(const DoubleArray& values, const char* what);
+
+/// Values per cell (linear index, x fastest) as an array of shape `spec.dims`, indexed [i, j, k].
+template <typename T>
+py::array_t<T> grid_array(const GridSpec& spec, const std::vector<T>& values) {
+  const auto nx = static_cast<py::ssize_t>(spec.dims.x());
+  const auto ny = static_cast<py::ssize_t>(spec.dims.y());
+  const auto nz = static_cast<py::ssize_t>(spec.dims.z());
+  const auto s = static_cast<py::ssize_t>(sizeof(T));
+  // NOTE: x runs fastest in memory, so the [i, j, k] array is Fortran-ordered: no reordering.
+  py::array_t<T> out({nx, ny, nz}, {s, s * nx, s * nx * ny});
+  std::copy(values.begin(), values.end(), out.mutable_data());
+  return out;
+}
+
+/// Raises FileNotFoundError (an OSError) with `message` when `path` does not exist and OSError
+/// when `writing`; returns otherwise, so the caller rethrows the library's own error.
+void raise_if_file_error(const std::filesystem::path& path, const char* message, bool writing);
+
+/// Calls `f`, turning a std::runtime_error about `path` into OSError as raise_if_file_error says.
+/// The message stays the library's one line.
+template <typename F>
+auto with_file(const std::filesystem::path& path, bool writing, F&& f) {
+  try {
+    return f();
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    raise_if_file_error(path, e.what(), writing);
+    throw;
+  }
+}
+
+}  // namespace vantage::python

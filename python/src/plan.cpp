@@ -1,0 +1,328 @@
+// Bindings of planning: candidate poses, the next-best-view decision, the mapping pipeline and
+// recorded data (clouds and poses, as `vantage plan` takes them).
+
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+
+#include "bindings.hpp"
+#include "convert.hpp"
+#include "vantage/experiment/recorded.hpp"
+#include "vantage/perception/cloud_io.hpp"
+#include "vantage/planner/planner.hpp"
+#include "vantage/util/text.hpp"
+#include "vantage/views/ring.hpp"
+#include "vantage/views/sphere.hpp"
+
+namespace vantage::python {
+
+namespace {
+
+/// A Plan and the candidates ranked as `vantage plan` ranks them.
+struct RankedPlan {
+  Plan plan;
+  std::vector<std::size_t> ranking;  // by score, highest first, the chosen candidate first
+};
+
+RankedPlan decide(const OccupancyGrid& grid, const DoubleArray& candidates, const SensorFov& fov,
+                  const PlannerConfig& config, std::uint64_t seed) {
+  config.validate();
+  std::vector<Candidate> views;
+  for (const Frustum& view : to_views(candidates, fov, "candidates")) views.push_back({view});
+  RankedPlan out;
+  {
+    py::gil_scoped_release release;
+    out.plan = plan_next_view(grid, views, config, seed);
+  }
+  out.ranking.resize(views.size());
+  std::iota(out.ranking.begin(), out.ranking.end(), std::size_t{0});
+  const std::vector<double>& scores = out.plan.scores;
+  std::stable_sort(out.ranking.begin(), out.ranking.end(),
+                   [&](std::size_t a, std::size_t b) { return scores[a] > scores[b]; });
+  std::swap(*std::find(out.ranking.begin(), out.ranking.end(), out.plan.best), out.ranking.front());
+  return out;
+}
+
+PlannerConfig make_planner_config(const std::string& method, const GainConfig& gain, double lambda,
+                                  bool greedy_reference) {
+  PlannerConfig config;
+  config.method = parse_planner_method(method);
+  config.gain = gain;
+  config.lambda = lambda;
+  config.greedy_reference = greedy_reference;
+  config.validate();
+  return config;
+}
+
+/// The mapping settings `vantage plan` derives from a manifest with these options.
+MapperConfig recorded_mapper_config(const std::string& integration, bool table_segmentation,
+                                    bool icp, int num_threads) {
+  Manifest manifest;
+  manifest.options.integration = parse_integration_mode(integration);
+  manifest.options.table_segmentation = table_segmentation;
+  manifest.options.icp = icp;
+  MapperConfig config = mapper_config_for(manifest);
+  config.integration.num_threads = num_threads;
+  config.validate();
+  return config;
+}
+
+MapperUpdate add_scan(Mapper& mapper, const DoubleArray& points_sensor,
+                      const Eigen::Matrix4d& T_world_sensor, const SensorFov& fov) {
+  const PointCloud points = to_cloud(points_sensor, "points_sensor");
+  const Eigen::Isometry3d pose = to_pose(T_world_sensor, "T_world_sensor");
+  py::gil_scoped_release release;
+  return mapper.add_scan(points, pose, fov);
+}
+
+/// Mapper(start, integration=..., table_segmentation=..., icp=..., num_threads=...), where
+/// `start` is a GridSpec (a fresh grid) or an OccupancyGrid (continued).
+template <typename Start>
+void def_mapper_init(py::class_<Mapper>& mapper, const char* start, const char* doc) {
+  mapper.def(py::init([](const Start& from, const std::string& integration, bool table_segmentation,
+                         bool icp, int num_threads) {
+               return Mapper(
+                   from, recorded_mapper_config(integration, table_segmentation, icp, num_threads));
+             }),
+             py::arg(start), py::arg("integration") = "paper",
+             py::arg("table_segmentation") = false, py::arg("icp") = false,
+             py::arg("num_threads") = 0, doc);
+}
+
+/// Maps clouds given in `frame` at poses T_world_cloud into a fresh grid, as map_recorded maps a
+/// manifest's clouds, then plans: the path `vantage plan` takes, with arrays for files.
+py::tuple plan_recorded(const std::vector<DoubleArray>& clouds, const DoubleArray& poses,
+                        const SensorFov& fov, const GridSpec& spec, const DoubleArray& candidates,
+                        const std::string& frame, bool table_segmentation, bool icp,
+                        const std::string& integration, PlannerConfig config, std::uint64_t seed) {
+  const CloudFrame cloud_frame = parse_cloud_frame(frame);
+  const std::vector<Eigen::Isometry3d> T_world_cloud = to_poses(poses, "poses");
+  if (T_world_cloud.size() != clouds.size()) {
+    throw std::invalid_argument(cat("got ", clouds.size(), " clouds but ", T_world_cloud.size(),
+                                    " poses; give one pose per cloud"));
+  }
+  config.greedy_reference = true;  // as `vantage plan`: its JSON lists each greedy gain
+  Mapper mapper(
+      spec, recorded_mapper_config(integration, table_segmentation, icp, config.gain.num_threads));
+  Eigen::Isometry3d T_cloud_sensor = Eigen::Isometry3d::Identity();
+  T_cloud_sensor.linear() = R_cloud_sensor(cloud_frame);
+  const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(cloud_frame).transpose();
+  for (std::size_t i = 0; i < clouds.size(); ++i) {
+    const std::string name = cat("clouds[", i, "]");
+    PointCloud points = to_cloud(clouds[i], name.c_str());
+    for (Eigen::Vector3d& p : points) p = R_sensor_cloud * p;
+    try {
+      py::gil_scoped_release release;
+      mapper.add_scan(points, T_world_cloud[i] * T_cloud_sensor, fov);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(cat(name, ": ", e.what()));
+    }
+  }
+  return py::make_tuple(mapper.grid(), decide(mapper.grid(), candidates, fov, config, seed));
+}
+
+py::dict manifest_dict(const Manifest& manifest) {
+  py::list clouds;
+  for (const ManifestCloud& c : manifest.clouds) {
+    py::dict cloud;
+    cloud["file"] = c.file;
+    cloud["T_world_cloud"] = Eigen::Matrix4d(c.T_world_cloud.matrix());
+    cloud["T_world_sensor"] = Eigen::Matrix4d(c.T_world_sensor.matrix());
+    cloud["stamp"] = c.stamp;
+    clouds.append(cloud);
+  }
+  py::dict out;
+  out["file"] = manifest.file;
+  out["clouds"] = clouds;
+  out["frame"] = std::string(to_string(manifest.frame));
+  out["fov"] = manifest.fov;
+  out["roi"] =
+      py::make_tuple(Eigen::Vector3d(manifest.roi.min()), Eigen::Vector3d(manifest.roi.max()));
+  out["grid"] = manifest.grid;
+  out["table_segmentation"] = manifest.options.table_segmentation;
+  out["icp"] = manifest.options.icp;
+  out["integration"] = std::string(to_string(manifest.options.integration));
+  out["skip_non_finite"] = manifest.options.skip_non_finite;
+  return out;
+}
+
+}  // namespace
+
+void bind_plan(py::module_& m) {
+  m.def(
+      "look_at",
+      [](const DoubleArray& eye, const DoubleArray& target) {
+        return Eigen::Matrix4d(
+            look_at(to_vector3(eye, "eye"), to_vector3(target, "target")).matrix());
+      },
+      py::arg("eye"), py::arg("target"),
+      "4 x 4 pose of a sensor at `eye` looking at `target`, its z axis as close to world +z as "
+      "the direction allows [m].");
+  m.def(
+      "ring_poses",
+      [](const DoubleArray& center, double radius, double height, int positions, double start_angle,
+         const std::vector<double>& yaw_offsets) {
+        RingConfig ring;
+        ring.center = to_vector3(center, "center");
+        ring.radius = radius;
+        ring.height = height;
+        ring.positions = positions;
+        ring.start_angle = start_angle;
+        ring.yaw_offsets = yaw_offsets;
+        ring.validate();
+        return from_poses(ring_poses(ring));
+      },
+      py::arg("center"), py::arg("radius"), py::arg("height"), py::arg("positions") = 10,
+      py::arg("start_angle") = 0.0, py::arg("yaw_offsets") = RingConfig{}.yaw_offsets,
+      "Candidate views on a horizontal circle around `center` (§5.1): `positions` sensor "
+      "positions at `height`, each looking at the centre turned by every yaw offset [m, rad]. "
+      "Returns a K x 4 x 4 array, view (k, j) at index k * len(yaw_offsets) + j.");
+  m.def(
+      "sphere_poses",
+      [](const DoubleArray& center, double radius, int views) {
+        SphereConfig sphere;
+        sphere.center = to_vector3(center, "center");
+        sphere.radius = radius;
+        sphere.views = views;
+        sphere.validate();
+        return from_poses(sphere_poses(sphere));
+      },
+      py::arg("center"), py::arg("radius"), py::arg("views") = 50,
+      "Candidate views spread over a sphere around `center`, each looking at it [m]; K x 4 x 4.");
+  m.def(
+      "grid_for_roi",
+      [](const DoubleArray& roi_min, const DoubleArray& roi_max, double resolution) {
+        return grid_for_roi(
+            Eigen::AlignedBox3d(to_vector3(roi_min, "roi_min"), to_vector3(roi_max, "roi_max")),
+            resolution);
+      },
+      py::arg("roi_min"), py::arg("roi_max"), py::arg("resolution"),
+      "The grid `vantage plan` maps a region of interest into: whole cells on the lattice "
+      "through the world origin (OctoMap's) that hold the box [m].");
+
+  py::class_<PlannerConfig>(m, "PlannerConfig", "Settings of the next-best-view decision.")
+      .def(py::init(&make_planner_config), py::arg("method") = "probabilistic",
+           py::arg("gain") = GainConfig{}, py::arg("lambda_") = PlannerConfig{}.lambda,
+           py::arg("greedy_reference") = false,
+           "method 'probabilistic', 'greedy', 'random', 'latombe' or 'yamauchi'; gain: a "
+           "GainConfig (its method follows from `method`); lambda_: latombe's travel penalty "
+           "[1/m]; greedy_reference: also predict every candidate's greedy gain.")
+      .def_property_readonly(
+          "method", [](const PlannerConfig& c) { return std::string(to_string(c.method)); },
+          "How the next view is chosen.")
+      .def_readonly("gain", &PlannerConfig::gain, "The GainConfig of the gain evaluation.")
+      .def_readonly("lambda_", &PlannerConfig::lambda, "Latombe's travel penalty [1/m].")
+      .def_readonly("greedy_reference", &PlannerConfig::greedy_reference,
+                    "Whether every candidate's greedy gain is predicted too.");
+
+  py::class_<RankedPlan>(m, "Plan", "The decision and everything behind it.")
+      .def_property_readonly(
+          "best", [](const RankedPlan& p) { return p.plan.best; }, "Index of the chosen view.")
+      .def_property_readonly(
+          "gains", [](const RankedPlan& p) { return p.plan.gains; },
+          "Each candidate's predicted gain under the method's model (list of ViewGain).")
+      .def_property_readonly(
+          "greedy_gains", [](const RankedPlan& p) { return p.plan.greedy_gains; },
+          "Each candidate's greedy gain [bits] (when requested or used; else empty).")
+      .def_property_readonly(
+          "scores", [](const RankedPlan& p) { return p.plan.scores; }, "What was maximised.")
+      .def_readonly("ranking", &RankedPlan::ranking,
+                    "Candidate indices by score, highest first, the chosen one first (the order "
+                    "of `vantage plan`'s table and JSON).")
+      .def_property_readonly(
+          "seconds", [](const RankedPlan& p) { return p.plan.seconds; },
+          "Wall time of the decision [s].");
+
+  m.def("plan_next_view", &decide, py::arg("grid"), py::arg("candidates"), py::arg("fov"),
+        py::arg("config") = PlannerConfig{}, py::arg("seed") = 1,
+        "Scores K x 4 x 4 candidate sensor poses seen with `fov` on the grid and chooses one "
+        "(eq. 1; ties to the lower index, 'random' uses `seed`). Returns a Plan.");
+
+  py::class_<MapperUpdate>(m, "MapperUpdate", "What adding one scan to a Mapper did.")
+      .def_property_readonly(
+          "T_world_sensor",
+          [](const MapperUpdate& u) { return Eigen::Matrix4d(u.T_world_sensor.matrix()); },
+          "The pose the scan was integrated at (after ICP, when it ran).")
+      .def_readonly("registered", &MapperUpdate::registered, "ICP ran and converged.")
+      .def_readonly("icp_fitness", &MapperUpdate::icp_fitness,
+                    "ICP's mean squared correspondence distance [m^2].")
+      .def_readonly("points", &MapperUpdate::points, "Points in the scan.")
+      .def_readonly("object_points", &MapperUpdate::object_points,
+                    "Points integrated (after table segmentation).")
+      .def_readonly("integration", &MapperUpdate::integration, "The IntegrationResult.");
+
+  py::class_<Mapper> mapper_class(
+      m, "Mapper",
+      "Builds a map scan by scan as `vantage plan` does: optional ICP "
+      "against the points so far (§4.2), optional table segmentation (§5.1), "
+      "integration.");
+  def_mapper_init<GridSpec>(mapper_class, "spec",
+                            "A mapper over a fresh grid; the switches are a manifest's options.");
+  def_mapper_init<OccupancyGrid>(
+      mapper_class, "grid",
+      "A mapper that continues a copy of an existing map (one read from OctoMap).");
+  mapper_class
+      .def("add_scan", &add_scan, py::arg("points_sensor"), py::arg("T_world_sensor"),
+           py::arg("fov"),
+           "Adds an N x 3 array of points in the sensor frame (x forward, y left, z up) taken "
+           "from the 4 x 4 pose. ValueError for a non-finite point or a pose that is not rigid; "
+           "the map is unchanged then.")
+      .def_property_readonly(
+          "grid", [](const Mapper& mp) { return mp.grid(); }, "A copy of the map so far.")
+      .def_property_readonly("scans", &Mapper::scans, "Scans added.")
+      .def_property_readonly(
+          "object_cloud", [](const Mapper& mp) { return from_cloud(mp.object_cloud()); },
+          "The points that went into the grid, in the world [m].");
+
+  m.def("plan", &plan_recorded, py::arg("clouds"), py::arg("poses"), py::arg("fov"),
+        py::arg("spec"), py::arg("candidates"), py::arg("frame") = "x_forward",
+        py::arg("table_segmentation") = false, py::arg("icp") = false,
+        py::arg("integration") = "paper", py::arg("config") = PlannerConfig{}, py::arg("seed") = 1,
+        "Real scans in, next view out, as `vantage plan` does: maps the clouds (N x 3 arrays in "
+        "the cloud frame `frame`, 'x_forward' or 'optical') at their 4 x 4 poses T_world_cloud "
+        "into a fresh grid of `spec`, then scores the candidate sensor poses (x forward). "
+        "Returns (grid, plan).");
+  m.def(
+      "read_manifest",
+      [](const std::filesystem::path& path) {
+        return manifest_dict(with_file(path, false, [&] { return read_manifest(path); }));
+      },
+      py::arg("path"),
+      "Reads a manifest (a YAML file or a folder holding manifest.yaml, docs/manifest.md) into a "
+      "dict: clouds (file, T_world_cloud, T_world_sensor, stamp), frame, fov, roi, grid and the "
+      "options.");
+  m.def(
+      "map_recorded",
+      [](const std::filesystem::path& path, int num_threads) {
+        const Manifest manifest = with_file(path, false, [&] { return read_manifest(path); });
+        MapperConfig config = mapper_config_for(manifest);
+        config.integration.num_threads = num_threads;
+        Mapper mapper(manifest.grid, config);
+        py::gil_scoped_release release;
+        map_recorded(manifest, mapper);
+        return mapper.grid();
+      },
+      py::arg("path"), py::arg("num_threads") = 0,
+      "Maps a manifest's clouds from disk exactly as `vantage plan` does; returns the grid.");
+  m.def(
+      "read_point_cloud",
+      [](const std::filesystem::path& path, bool skip_non_finite) {
+        return from_cloud(
+            with_file(path, false, [&] { return read_point_cloud(path, {skip_non_finite}); }));
+      },
+      py::arg("path"), py::arg("skip_non_finite") = false,
+      "The x, y, z of every point of a .pcd or .ply file as an N x 3 array [m].");
+  m.def(
+      "write_point_cloud",
+      [](const std::filesystem::path& path, const DoubleArray& points) {
+        const PointCloud cloud = to_cloud(points, "points");
+        with_file(path, true, [&] { write_point_cloud(path, cloud); });
+      },
+      py::arg("path"), py::arg("points"),
+      "Writes an N x 3 array as binary .pcd or .ply (float32 x, y, z), atomically.");
+}
+
+}  // namespace vantage::python

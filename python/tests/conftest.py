@@ -1,0 +1,54 @@
+"""Shared fixtures: the CLI binary and the source tree, as ctest passes them in the environment."""
+
+import json
+import os
+import pathlib
+import shutil
+import subprocess
+
+import pytest
+
+
+def _env_path(name):
+    value = os.environ.get(name)
+    if not value:
+        pytest.fail(f"{name} is not set; run the suite through ctest (python.*)")
+    return pathlib.Path(value)
+
+
+@pytest.fixture(scope="session")
+def vantage_bin():
+    """The `vantage` command-line tool of the same build."""
+    return _env_path("VANTAGE_BIN")
+
+
+@pytest.fixture(scope="session")
+def source_dir():
+    return _env_path("VANTAGE_SOURCE_DIR")
+
+
+def cli_error(vantage_bin, *args):
+    """The one line `vantage ARGS` prints on stderr when it fails, without its prefix."""
+    run = subprocess.run([str(vantage_bin), *args], capture_output=True, text=True)
+    assert run.returncode != 0, f"vantage {' '.join(args)} succeeded"
+    lines = run.stderr.splitlines()
+    assert len(lines) == 1, run.stderr
+    prefix = "vantage: error: "
+    assert lines[0].startswith(prefix), lines[0]
+    return lines[0][len(prefix):]
+
+
+@pytest.fixture(scope="session")
+def own_scans(tmp_path_factory, vantage_bin, source_dir):
+    """The own-scans example made by its own script, in a scratch copy, and `vantage plan --json`
+    run on it: (folder, the CLI's plan.json as a dict, the CLI's results folder)."""
+    folder = tmp_path_factory.mktemp("own-scans")
+    example = source_dir / "examples" / "own-scans"
+    for name in ("make-data.sh", "manifest.yaml"):
+        shutil.copy2(example / name, folder / name)
+    subprocess.run([str(folder / "make-data.sh"), str(vantage_bin)], check=True,
+                   capture_output=True)
+    out = folder / "cli-results"
+    run = subprocess.run([str(vantage_bin), "plan", str(folder), "--json", "--out", str(out)],
+                         check=True, capture_output=True, text=True)
+    return folder, json.loads(run.stdout), out

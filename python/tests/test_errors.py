@@ -1,0 +1,116 @@
+"""Bad input raises a Python exception with the library's one-line message: ValueError for bad
+arguments, OSError for files, never a crash and never a silent default."""
+
+import numpy as np
+import pytest
+
+import vantage as vt
+from conftest import cli_error
+
+FOV = vt.SensorFov()
+SPEC = vt.GridSpec((0, 0, 0), 0.1, (10, 10, 10))
+
+
+def shear():
+    pose = np.eye(4)
+    pose[0, 1] = 0.3
+    return pose
+
+
+@pytest.mark.parametrize("points", [
+    np.array([[1.0, 0.5, 0.5], [np.nan, 0.5, 0.5]]),
+    np.array([[1.0, np.inf, 0.5]]),
+])
+def test_non_finite_points_raise_and_leave_the_grid(points):
+    grid = vt.OccupancyGrid(SPEC)
+    with pytest.raises(ValueError, match="is not finite"):
+        grid.integrate(points, np.eye(4), FOV)
+    assert grid.counts()["unobserved"] == SPEC.num_cells
+    mapper = vt.Mapper(SPEC)
+    with pytest.raises(ValueError, match="is not finite"):
+        mapper.add_scan(points, np.eye(4), FOV)
+    assert mapper.scans == 0
+    with pytest.raises(ValueError, match=r"clouds\[0\]: .*is not finite"):
+        vt.plan([points], np.eye(4)[None], FOV, SPEC, np.eye(4)[None])
+
+
+@pytest.mark.parametrize("pose, problem", [
+    (shear(), "rotation is not orthonormal"),
+    (np.diag([1.0, 1.0, -1.0, 1.0]), "reflection"),
+    (np.vstack([np.eye(4)[:3], [0, 0, 1, 1]]), "bottom row"),
+    (np.full((4, 4), np.nan), "NaN"),
+])
+def test_non_rigid_poses_raise(pose, problem):
+    grid = vt.OccupancyGrid(SPEC)
+    with pytest.raises(ValueError, match=f"T_world_sensor is not a rigid transform: .*{problem}"):
+        grid.integrate(np.array([[1.0, 0.5, 0.5]]), pose, FOV)
+    with pytest.raises(ValueError, match=rf"poses\[1\] is not a rigid transform: .*{problem}"):
+        vt.evaluate_views(grid, [np.eye(4), pose], FOV)
+    with pytest.raises(ValueError, match=rf"candidates\[0\] is not a rigid transform: .*{problem}"):
+        vt.plan_next_view(grid, pose[None], FOV)
+
+
+@pytest.mark.parametrize("resolution", [0.0, -0.1, float("nan"), float("inf")])
+def test_bad_resolution_raises(resolution):
+    with pytest.raises(ValueError, match="resolution"):
+        vt.GridSpec((0, 0, 0), resolution, (10, 10, 10))
+    with pytest.raises(ValueError, match="resolution"):
+        vt.grid_for_roi((0, 0, 0), (1, 1, 1), resolution)
+
+
+def test_bad_shapes_and_names_raise():
+    grid = vt.OccupancyGrid(SPEC)
+    with pytest.raises(ValueError, match=r"N x 3 .*shape \(4, 2\)"):
+        grid.integrate(np.zeros((4, 2)), np.eye(4), FOV)
+    with pytest.raises(ValueError, match=r"K x 4 x 4 .*shape \(3, 3\)"):
+        vt.evaluate_views(grid, np.eye(3), FOV)
+    with pytest.raises(ValueError, match="dims"):
+        vt.GridSpec((0, 0, 0), 0.1, (10, 0, 10))
+    with pytest.raises(ValueError, match="too many|cells"):
+        vt.GridSpec((0, 0, 0), 0.1, (2000, 2000, 2000))
+    with pytest.raises(ValueError, match="unknown gain method 'fancy'"):
+        vt.GainConfig(method="fancy")
+    with pytest.raises(ValueError, match="epsilon"):
+        vt.GainConfig(epsilon=0.7)
+    with pytest.raises(ValueError, match="h_fov"):
+        vt.SensorFov.from_degrees(190, 40, 0.1, 3)
+    with pytest.raises(ValueError, match="frame"):
+        vt.plan([], np.zeros((0, 4, 4)), FOV, SPEC, np.eye(4)[None], frame="sideways")
+    with pytest.raises(IndexError, match="outside the grid"):
+        SPEC.index_of((5.0, 0.5, 0.5))
+
+
+def test_messages_are_the_clis(vantage_bin):
+    with pytest.raises(ValueError) as alpha:
+        vt.RayModel(1.5)
+    assert str(alpha.value) == cli_error(vantage_bin, "ray", "--alpha", "1.5", "--cells", "0.5")
+    with pytest.raises(ValueError) as cell:
+        vt.RayModel().trace([0.5, 1.2])
+    assert str(cell.value) == cli_error(vantage_bin, "ray", "--cells", "0.5,1.2")
+
+
+def test_missing_files_raise_os_errors(tmp_path, vantage_bin):
+    missing = tmp_path / "missing.bt"
+    with pytest.raises(FileNotFoundError) as load:
+        vt.OccupancyGrid.load(missing)
+    assert str(load.value) == cli_error(vantage_bin, "plan", "--map", str(missing))
+    for read in (lambda: vt.read_point_cloud(tmp_path / "missing.pcd"),
+                 lambda: vt.read_manifest(tmp_path / "missing.yaml"),
+                 lambda: vt.Scene(str(tmp_path / "missing.yaml"))):
+        with pytest.raises(FileNotFoundError, match="missing"):
+            read()
+    # A file that exists but is not a map is a RuntimeError, naming it.
+    bad = tmp_path / "bad.bt"
+    bad.write_text("not an octree\n")
+    with pytest.raises(RuntimeError, match="bad.bt"):
+        vt.OccupancyGrid.load(bad)
+    # Writing where no folder can be made is an OSError; nothing is left behind.
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    with pytest.raises(OSError, match="file"):
+        vt.OccupancyGrid(SPEC).save(blocker / "map.bt")
+    with pytest.raises(OSError):
+        vt.write_point_cloud(blocker / "cloud.pcd", np.ones((3, 3)))
+    with pytest.raises(ValueError, match=r"\.txt"):
+        vt.OccupancyGrid(SPEC).save(tmp_path / "map.txt")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.bt", "file"]

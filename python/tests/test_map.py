@@ -1,0 +1,94 @@
+"""The grid through the bindings: shapes and indexing of its arrays, integration against what a
+ray must do, and OctoMap files."""
+
+import numpy as np
+import pytest
+
+import vantage as vt
+
+FOV = vt.SensorFov.from_degrees(57, 43, 0.1, 3.0)
+
+
+@pytest.fixture
+def spec():
+    return vt.GridSpec(origin=(0.0, -0.5, -0.5), resolution=0.05, dims=(40, 20, 20))
+
+
+def test_arrays_have_the_grid_shape_and_index_order(spec):
+    grid = vt.OccupancyGrid(spec)
+    assert grid.shape == spec.shape == (40, 20, 20)
+    p = np.full(spec.shape, 0.5)
+    p[3, 7, 11] = 0.9
+    p[39, 0, 19] = 0.2  # inside the clamp [0.12, 0.97]
+    grid.set_probabilities(p)
+    np.testing.assert_allclose(grid.probabilities(), p, atol=1e-6)
+    states = grid.states()
+    assert states.dtype == np.uint8 and states.shape == spec.shape
+    assert states[3, 7, 11] == vt.OCCUPIED and states[39, 0, 19] == vt.FREE
+    assert grid.counts() == {"unobserved": spec.num_cells - 2, "free": 1, "occupied": 1}
+    assert spec.index_of(spec.center(3, 7, 11)) == (3, 7, 11)
+
+
+def test_set_probabilities_checks_every_value_first(spec):
+    grid = vt.OccupancyGrid(spec)
+    p = np.full(spec.shape, 0.9)
+    p[5, 6, 7] = 1.5
+    with pytest.raises(ValueError, match=r"probabilities\[5, 6, 7\] = 1.5 lies outside"):
+        grid.set_probabilities(p)
+    assert grid.counts()["unobserved"] == spec.num_cells  # unchanged
+    with pytest.raises(ValueError, match="grid's shape"):
+        grid.set_probabilities(np.full((2, 2, 2), 0.5))
+
+
+def test_endpoint_integration_hits_the_end_and_misses_the_way(spec):
+    # A sensor at x = 0 looking along +x; one point 1.5 m ahead on the axis.
+    grid = vt.OccupancyGrid(spec)
+    pose = np.eye(4)
+    pose[:3, 3] = [0.01, 0.01, 0.01]
+    point = np.array([[1.51, 0.01, 0.01]])
+    result = grid.integrate(point, pose, FOV, mode="endpoint")
+    assert result.points_inside == 1 and result.hit_cells == 1
+    states = grid.states()
+    hit = spec.index_of(point[0])
+    assert states[hit] == vt.OCCUPIED
+    _, j, k = hit
+    assert np.all(states[: hit[0], j, k] == vt.FREE)  # every cell the ray crossed
+    assert np.all(states[hit[0] + 1:, j, k] == vt.UNOBSERVED)  # nothing behind it
+    assert result.missed_cells == hit[0]
+    assert result.left_unobserved == hit[0] + 1
+    assert grid.counts()["free"] + grid.counts()["occupied"] == hit[0] + 1
+
+
+def test_paper_integration_is_the_same_for_any_thread_count(spec):
+    rng = np.random.default_rng(7)
+    points = np.column_stack([np.full(500, 1.5), rng.uniform(-0.3, 0.3, (500, 2))])
+    grids = []
+    for threads in (1, 2):
+        grid = vt.OccupancyGrid(spec)
+        grid.integrate(points, np.eye(4), FOV, mode="paper", num_threads=threads)
+        grids.append(grid.log_odds())
+    np.testing.assert_array_equal(grids[0], grids[1])
+    assert np.count_nonzero(grids[0] > 0) > 0
+
+
+def test_octomap_round_trips(spec, tmp_path):
+    grid = vt.OccupancyGrid(spec)
+    rng = np.random.default_rng(3)
+    grid.set_probabilities(rng.choice([0.2, 0.45, 0.5, 0.55, 0.8], size=spec.shape))
+    wrote = grid.save(tmp_path / "map.ot")
+    assert wrote["format"] == "ot"
+    assert wrote["occupied_cells"] == grid.counts()["occupied"]
+    full = vt.OccupancyGrid.load(tmp_path / "map.ot", spec=spec)
+    np.testing.assert_array_equal(full.log_odds(), grid.log_odds())  # .ot keeps every value
+    grid.save(str(tmp_path / "map.bt"))
+    binary = vt.OccupancyGrid.load(tmp_path / "map.bt", spec=spec)
+    np.testing.assert_array_equal(binary.states(), grid.states())  # .bt keeps the classes
+    derived = vt.OccupancyGrid.load(tmp_path / "map.bt")  # the box of the known voxels
+    assert derived.counts()["occupied"] == grid.counts()["occupied"]
+
+
+def test_a_copy_is_independent(spec):
+    grid = vt.OccupancyGrid(spec)
+    copy = grid.copy()
+    copy.set_probabilities(np.full(spec.shape, 0.9))
+    assert grid.counts()["occupied"] == 0 and copy.counts()["occupied"] == spec.num_cells

@@ -1,0 +1,89 @@
+"""The bindings plan as `vantage plan` does: on the own-scans example (examples/own-scans), the
+same map, the same gains bit for bit and the same ranking as the CLI's plan.json."""
+
+import numpy as np
+import pytest
+
+import vantage as vt
+
+
+def ring_of(manifest):
+    """The candidates `vantage plan` uses by default: 10 ring positions around the ROI's centre,
+    1.5 half diagonals (at least 1 m) away, 0.3 m above its top."""
+    lo, hi = (np.asarray(v) for v in manifest["roi"])
+    radius = max(1.0, 1.5 * 0.5 * np.linalg.norm((hi - lo)[:2]))
+    return vt.ring_poses((lo + hi) / 2, radius, hi[2] + 0.3, positions=10)
+
+
+@pytest.fixture(scope="module")
+def planned(own_scans):
+    folder, cli, _ = own_scans
+    manifest = vt.read_manifest(folder)
+    clouds = [vt.read_point_cloud(c["file"]) for c in manifest["clouds"]]
+    poses = np.stack([c["T_world_cloud"] for c in manifest["clouds"]])
+    candidates = ring_of(manifest)
+    grid, plan = vt.plan(clouds, poses, manifest["fov"], manifest["grid"], candidates,
+                         frame=manifest["frame"],
+                         table_segmentation=manifest["table_segmentation"],
+                         icp=manifest["icp"], integration=manifest["integration"])
+    return manifest, candidates, grid, plan, cli
+
+
+def test_the_manifest_reads_as_written(own_scans):
+    folder, _, _ = own_scans
+    manifest = vt.read_manifest(folder / "manifest.yaml")
+    assert [c["file"].name for c in manifest["clouds"]] == ["west.pcd", "south.pcd"]
+    np.testing.assert_array_equal(manifest["clouds"][0]["T_world_cloud"][:3, 3], [-1.0, 0, 1.1])
+    assert manifest["frame"] == "x_forward"
+    assert manifest["table_segmentation"] and not manifest["icp"]
+    assert manifest["grid"].resolution == 0.0078125
+    assert manifest["fov"] == vt.SensorFov.from_degrees(90, 45, 0.1, 3.0)
+
+
+def test_same_map_as_the_cli(planned, own_scans):
+    _, _, grid, _, cli = planned
+    counts = grid.counts()
+    for key in ("unobserved", "free", "occupied"):
+        assert counts[key] == cli["map"][key], key
+    assert counts["occupied"] > 0 and counts["free"] > 0
+    spec = grid.spec
+    assert list(spec.dims) == cli["map"]["grid"]["dims"]
+    assert spec.resolution == cli["map"]["grid"]["resolution"]
+    np.testing.assert_array_equal(spec.origin, cli["map"]["grid"]["origin"])
+    # The CLI's map.bt holds the same classes, cell by cell.
+    _, _, out = own_scans
+    written = vt.OccupancyGrid.load(out / "map.bt", spec=spec)
+    np.testing.assert_array_equal(written.states(), grid.states())
+
+
+def test_map_recorded_reads_the_files_to_the_same_grid(planned, own_scans):
+    folder, _, _ = own_scans
+    _, _, grid, _, _ = planned
+    from_files = vt.map_recorded(folder)
+    np.testing.assert_array_equal(from_files.log_odds(), grid.log_odds())
+
+
+def test_same_candidates_gains_and_ranking_as_the_cli(planned):
+    _, candidates, _, plan, cli = planned
+    assert len(cli["candidates"]) == len(candidates) == 30
+    assert plan.best == cli["next_best_view"]["index"]
+    assert plan.ranking == [c["index"] for c in cli["candidates"]]
+    for c in cli["candidates"]:
+        i = c["index"]
+        np.testing.assert_array_equal(candidates[i][:3, 3], c["sensor"]["position"])
+        # Bit for bit: the same grid and the same code, on any number of threads.
+        assert plan.gains[i].gain == c["predicted_gain"], i
+        assert plan.greedy_gains[i] == c["greedy_gain"], i
+        assert plan.scores[i] == c["score"], i
+    assert cli["method"] == "probabilistic" and cli["alpha"] == vt.TABLE_TOP_ALPHA
+    assert plan.gains[plan.best].gain == max(g.gain for g in plan.gains)
+
+
+def test_evaluate_views_gives_the_plan_gains(planned):
+    manifest, candidates, grid, plan, _ = planned
+    gains = vt.evaluate_views(grid, candidates, manifest["fov"])
+    assert [g.gain for g in gains] == [g.gain for g in plan.gains]
+    assert [g.targets for g in gains] == [g.targets for g in plan.gains]
+    one_thread = vt.evaluate_views(grid, candidates, manifest["fov"],
+                                   vt.GainConfig(num_threads=1))
+    assert [g.gain for g in one_thread] == [g.gain for g in gains]
