@@ -22,15 +22,9 @@ dir="$dest/$name"
 if [[ -f "$dir/.vantage-complete" && "$(cat "$dir/.vantage-complete")" == "$spec" ]]; then
   exit 0
 fi
-if ! command -v npm >/dev/null; then
-  echo "fetch-web: npm is needed to fetch $spec (install Node.js and npm, e.g. scripts/install-deps.sh)" >&2
-  exit 1
-fi
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-(cd "$tmp" && npm pack --silent --ignore-scripts "$spec" >/dev/null)
+source "$root/scripts/npm-unpack.sh"
+npm_unpack fetch-web "$spec" "${keep[@]}"
 mkdir -p "$tmp/keep"
-tar --no-same-owner -xzf "$tmp"/*.tgz -C "$tmp" "${keep[@]/#/package/}"
 for file in "${keep[@]}"; do
   mkdir -p "$tmp/keep/$(dirname "$file")"
   mv "$tmp/package/$file" "$tmp/keep/$file"
