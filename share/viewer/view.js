@@ -121,7 +121,7 @@ async function main() {
   const extent = grid.dims.map((d) => d * grid.resolution);
   const center = new THREE.Vector3(...grid.origin.map((o, i) => o + extent[i] / 2));
   // NOTE: the sensor reaches metres past a table top; frusta drawn that long would hide it.
-  const depth = Math.min(sensor.max_range, Math.max(0.1, 0.3 * Math.max(...extent)));
+  const depth = Math.min(sensor.max_range, 0.8, Math.max(0.1, 0.3 * Math.max(...extent)));
 
   $('heading').textContent = data.title;
   $('chosen-swatch').style.background = kChosen;
@@ -134,6 +134,8 @@ async function main() {
   $('gain-bar').style.background = gradient(kGainRamp);
   $('gain-bar').dataset.ramp = kGainRamp.join(',');
   const notes = [...data.notes];
+  notes.push(`frusta are drawn ${format(depth, 'm')} deep; the sensor sees ` +
+             `${format(sensor.min_range, 'm')} to ${format(sensor.max_range, 'm')}`);
 
   const renderer = new THREE.WebGLRenderer({canvas: $('canvas'), antialias: true});
   renderer.setPixelRatio(window.devicePixelRatio);
@@ -194,7 +196,7 @@ async function main() {
     part.add(linesOf(THREE, points, points.map(() => new THREE.Color(kTaken))));
     const apex = new THREE.Vector3(...s.position);
     part.add(label(THREE, String(s.scan), apex.clone().add(new THREE.Vector3(0, 0, depth * 0.3)),
-                   depth * 0.25));
+                   Math.max(depth * 0.25, 0.03 * Math.max(...extent))));
     let path = s.path.map(([x, y]) => new THREE.Vector3(x, y, grid.origin[2] + 0.02));
     if (path.length === 0 && i > 0) path = [new THREE.Vector3(...data.scans[i - 1].position), apex];
     if (path.length > 1) {

@@ -10,7 +10,9 @@
 #include <string>
 #include <tuple>
 
+#include "tests/experiment/test_scene.hpp"
 #include "tests/io/temp_dir.hpp"
+#include "vantage/experiment/results.hpp"
 #include "vantage/io/octomap_io.hpp"
 
 namespace vantage {
@@ -244,6 +246,55 @@ TEST_F(ViewerTest, ScansWhoseDecisionLacksTheViewTakenAreRejected) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("run.json"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("considered"), std::string::npos) << e.what();
+  }
+}
+
+/// A real run records, with each scan, the candidates of the decision that chose it: their number
+/// is the decision's, the view taken is among them with the scan's own predictions, and (without
+/// revisits) no view taken before is offered again. The page of that run draws them.
+TEST_F(ViewerTest, ARunRecordsEveryDecisionsCandidatesForThePage) {
+  for (const char* file :
+       {"tests/experiment/small_tabletop.yaml", "tests/experiment/small_office.yaml"}) {
+    SCOPED_TRACE(file);
+    const sim::Scene scene = sim::load_scene((testing::source_dir() / file).string());
+    ExplorationConfig config;
+    config.scans = 2;
+    config.seed = 3;
+    config.mapper = default_mapper_config(scene);
+    apply_registration_switch(scene, config);
+    Mapper mapper(scene.grid, config.mapper);
+    const ExplorationResult result = explore(scene, config, mapper);
+    ASSERT_EQ(result.scans.size(), 2u);
+    EXPECT_TRUE(result.scans[0].considered.empty());
+    const ScanRecord& second = result.scans[1];
+    ASSERT_EQ(second.considered.size(), static_cast<std::size_t>(second.candidates));
+    int taken = 0;
+    for (const CandidateRecord& c : second.considered) {
+      if (c.view != second.view) continue;
+      ++taken;
+      EXPECT_EQ(c.predicted_gain, second.predicted_gain.value());
+      EXPECT_EQ(c.greedy_predicted_gain, second.greedy_predicted_gain.value());
+      // Table top: the view is the ring's pose (an office scans where the drive ended).
+      if (scene.kind == sim::SceneKind::kTableTop) {
+        EXPECT_TRUE(c.T_world_sensor.isApprox(second.T_world_sensor, 1e-12));
+      }
+    }
+    EXPECT_EQ(taken, 1);
+    if (scene.kind == sim::SceneKind::kTableTop) {
+      for (const CandidateRecord& c : second.considered) EXPECT_NE(c.view, result.scans[0].view);
+    }
+
+    const std::filesystem::path dir = tmp_ / scene.name;
+    std::filesystem::create_directories(dir);
+    write_run_files(dir, scene, config, result, mapper);
+    const json data = page_data(build_view_page(dir, config_));
+    ASSERT_EQ(data["decisions"].size(), 1u);
+    const json& d = data["decisions"][0];
+    EXPECT_EQ(d["candidates"].size(), second.considered.size());
+    EXPECT_EQ(d["candidates"][d["chosen"].get<std::size_t>()]["view"], second.view);
+    EXPECT_EQ(data["occupied"]["total"], mapper.grid().counts().occupied);
+    EXPECT_EQ(data["office"], scene.kind == sim::SceneKind::kOffice);
+    EXPECT_DOUBLE_EQ(data["sensor"]["h_fov"].get<double>(), scene.fov().h_fov);
   }
 }
 

@@ -183,6 +183,31 @@ json pose_of(const Field& pose) {
           {"quaternion", pose["quaternion_xyzw"].numbers(4)}};
 }
 
+/// The sensor's field of view from `holder`'s "sensor", or a note on the page that `file` has
+/// none and the frusta show the default one (the page draws SensorFov's defaults then).
+void add_sensor(const Field& holder, std::string_view file, json& data) {
+  if (!holder.has("sensor")) {
+    data["notes"].push_back(fmt::format(
+        "{} does not record the sensor's field of view: views are drawn as 57°×43° frusta", file));
+    return;
+  }
+  const Field s = holder["sensor"];
+  data["sensor"] = {{"h_fov", s["h_fov_rad"].number()},
+                    {"v_fov", s["v_fov_rad"].number()},
+                    {"min_range", s["min_range_m"].number()},
+                    {"max_range", s["max_range_m"].number()}};
+}
+
+/// One candidate for the page: its pose (under `pose_key`), its index and both gains.
+json candidate_of(const Field& c, std::string_view pose_key, std::string_view index_key,
+                  std::string_view greedy_key) {
+  json candidate = pose_of(c[pose_key]);
+  candidate["view"] = c[index_key].integer();
+  candidate["gain"] = c["predicted_gain"].number();
+  candidate["greedy"] = c[greedy_key].number();
+  return candidate;
+}
+
 /// What a method's predicted gain is counted in (MODEL.md, "Bits are not cells").
 std::string gain_unit_of(std::string_view method) {
   return method == "probabilistic" ? "bits" : "cells";
@@ -209,17 +234,7 @@ json explore_data(const fs::path& dir, std::size_t cap) {
     data["units"] = {{"gain", run["gain_units"]["predicted_gain"].text()},
                      {"greedy", run["gain_units"]["greedy_predicted_gain"].text()}};
   }
-  if (scene.has("sensor")) {
-    const Field s = scene["sensor"];
-    data["sensor"] = {{"h_fov", s["h_fov_rad"].number()},
-                      {"v_fov", s["v_fov_rad"].number()},
-                      {"min_range", s["min_range_m"].number()},
-                      {"max_range", s["max_range_m"].number()}};
-  } else {
-    data["notes"].push_back(
-        "run.json does not record the sensor's field of view (made before vantage view): views "
-        "are drawn as 57°×43° frusta");
-  }
+  add_sensor(scene, "run.json (made before vantage view)", data);
   const Field scans = run["scans"];
   bool decisions_recorded = true;
   for (std::size_t i = 0; i < scans.size_of_array(); ++i) {
@@ -245,11 +260,7 @@ json explore_data(const fs::path& dir, std::size_t cap) {
     const Field considered = s["considered"];
     json decision = {{"after_scan", i}, {"chosen", nullptr}, {"candidates", json::array()}};
     for (std::size_t j = 0; j < considered.size_of_array(); ++j) {
-      const Field c = considered[j];
-      json candidate = pose_of(c["pose"]);
-      candidate["view"] = c["view"].integer();
-      candidate["gain"] = c["predicted_gain"].number();
-      candidate["greedy"] = c["greedy_predicted_gain"].number();
+      const json candidate = candidate_of(considered[j], "pose", "view", "greedy_predicted_gain");
       if (candidate["view"] == scan["view"]) decision["chosen"] = j;
       decision["candidates"].push_back(candidate);
     }
@@ -285,26 +296,12 @@ json plan_data(const fs::path& dir, std::size_t cap) {
                {"units", {{"gain", gain_unit_of(method)}, {"greedy", "cells"}}},
                {"notes", json::array()},
                {"scans", json::array()}};
-  if (plan.has("sensor")) {
-    const Field s = plan["sensor"];
-    data["sensor"] = {{"h_fov", s["h_fov_rad"].number()},
-                      {"v_fov", s["v_fov_rad"].number()},
-                      {"min_range", s["min_range_m"].number()},
-                      {"max_range", s["max_range_m"].number()}};
-  } else {
-    data["notes"].push_back(
-        "plan.json does not record the sensor's field of view: candidates are drawn as 57°×43° "
-        "frusta, the plan command's default");
-  }
+  add_sensor(plan, "plan.json", data);
   const int best = plan["next_best_view"]["index"].integer();
   const Field candidates = plan["candidates"];
   json decision = {{"after_scan", 0}, {"chosen", nullptr}, {"candidates", json::array()}};
   for (std::size_t j = 0; j < candidates.size_of_array(); ++j) {
-    const Field c = candidates[j];
-    json candidate = pose_of(c["sensor"]);
-    candidate["view"] = c["index"].integer();
-    candidate["gain"] = c["predicted_gain"].number();
-    candidate["greedy"] = c["greedy_gain"].number();
+    const json candidate = candidate_of(candidates[j], "sensor", "index", "greedy_gain");
     if (candidate["view"] == best) decision["chosen"] = j;
     decision["candidates"].push_back(candidate);
   }
