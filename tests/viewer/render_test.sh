@@ -31,7 +31,11 @@ browse() {
     --disable-background-networking --disable-component-update --disable-sync \
     --use-angle=swiftshader --enable-unsafe-swiftshader --user-data-dir="$profile" \
     --window-size=1280,800 --hide-scrollbars --virtual-time-budget=30000 "$@" \
-    "file://$(realpath "$out/view.html")" 2>"$out/chromium.log"
+    "file://$(realpath "$out/view.html")" 2>"$out/chromium.log" || {
+    echo "FAIL: chromium $1 exited with $? (its log: $out/chromium.log)" >&2
+    tail -n 20 "$out/chromium.log" >&2
+    exit 1
+  }
 }
 browse --dump-dom >"$out/dom.html"
 browse --screenshot="$out/viewer.png" >/dev/null
