@@ -179,7 +179,7 @@ async function main() {
   if (drawnUnobserved > 0) {
     unobservedMesh = cellMesh(THREE, data, unobserved.cells, new THREE.MeshBasicMaterial({
       color: kUnobserved, vertexColors: true, transparent: true, opacity: 0.18, depthWrite: false}));
-    unobservedMesh.visible = false;
+    unobservedMesh.visible = $('show-unobserved').checked;
     scene.add(unobservedMesh);
   }
   $('unobserved-count').textContent =
