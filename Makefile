@@ -12,6 +12,7 @@ all: build
 deps:
 	@scripts/install-deps.sh
 	@scripts/fetch-models.sh
+	@scripts/fetch-web.sh
 
 configure: deps
 	@cmake --preset $(PRESET) >/dev/null

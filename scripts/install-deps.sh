@@ -6,7 +6,8 @@ set -euo pipefail
 core=(cmake g++ make pkg-config libeigen3-dev libtbb-dev libgtest-dev libbenchmark-dev
       libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libyaml-cpp-dev
       python3-matplotlib pybind11-dev python3-dev python3-numpy python3-pytest)
-edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev npm)
+# chromium: the test that renders `vantage view`'s page headless (skipped without it).
+edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev npm chromium)
 
 wanted=("${core[@]}")
 [[ "${1:-full}" == "full" ]] && wanted+=("${edge[@]}")

@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   vantage::cli::add_ray_command(app);
   vantage::cli::add_scan_command(app);
   vantage::cli::add_scene_command(app);
+  vantage::cli::add_view_command(app);
   vantage::perception::silence_pcl_console();  // failures are reported per scan, in one line
   try {
     app.parse(argc, argv);

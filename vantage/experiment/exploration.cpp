@@ -126,6 +126,7 @@ struct Decision {
   std::optional<Eigen::Vector3d> goal;
   std::vector<Eigen::Vector2d> path;
   int candidates = 0;
+  std::vector<CandidateRecord> considered;
 };
 
 /// One exploration run. Table top and office share this loop; they differ in how a place is
@@ -203,6 +204,7 @@ class Explorer {
       record.goal = next.goal;
       record.path = std::move(next.path);
       record.candidates = next.candidates;
+      record.considered = std::move(next.considered);
 
       if (office_) {
         observe_sweep(k, record);
@@ -368,6 +370,10 @@ class Explorer {
     d.predicted = plan.gains[plan.best].gain;
     d.greedy_predicted = plan.greedy_gains[plan.best];
     d.travel = open[plan.best].travel;
+    for (std::size_t j = 0; j < open.size(); ++j) {
+      d.considered.push_back({static_cast<int>(index[j]), result_.candidates[index[j]],
+                              plan.gains[j].gain, plan.greedy_gains[j]});
+    }
     return d;
   }
 
@@ -442,6 +448,9 @@ class Explorer {
                           " after stop ", k);
     }
     d.view = static_cast<int>(best);
+    for (std::size_t i = 0; i < stops.size(); ++i) {
+      d.considered.push_back({static_cast<int>(i), poses[i], gains[i], greedy[i]});
+    }
     d.predicted = gains[best];
     d.greedy_predicted = greedy[best];
     d.seconds = seconds_since(start);

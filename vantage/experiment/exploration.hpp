@@ -91,6 +91,15 @@ struct StageTimes {
   double reference = 0.0;   ///< ... of which greedy's prediction for the same views (Fig. 11)
 };
 
+/// One candidate a decision weighed, as `vantage view` shows it.
+struct CandidateRecord {
+  int view = -1;  ///< table top: ring index; office: index among that decision's stops
+  /// Table top: the ring view; office: the stop's sensor pose, heading along the way there.
+  Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+  double predicted_gain = 0.0;         ///< under the method (office: summed over the sweep)
+  double greedy_predicted_gain = 0.0;  ///< under greedy, same view
+};
+
 /// Everything recorded after one scan (office: one stop, all steps of its sweep).
 struct ScanRecord {
   int scan = 0;   ///< 1-based
@@ -117,6 +126,9 @@ struct ScanRecord {
   std::optional<Eigen::Vector3d> goal;  ///< office: where the planner sent the robot [m]
   std::vector<Eigen::Vector2d> path;    ///< office: the floor path driven to this stop [m]
   int candidates = 0;                   ///< candidates the decision chose among
+  /// Every candidate of the decision that chose this view, in the decision's order (none for
+  /// the first scan).
+  std::vector<CandidateRecord> considered;
   StageTimes seconds;
 };
 

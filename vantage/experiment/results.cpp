@@ -105,6 +105,14 @@ json scan_json(const ScanRecord& r) {
   j["predicted_gain"] = r.predicted_gain ? json(*r.predicted_gain) : json(nullptr);
   j["greedy_predicted_gain"] =
       r.greedy_predicted_gain ? json(*r.greedy_predicted_gain) : json(nullptr);
+  json considered = json::array();
+  for (const CandidateRecord& c : r.considered) {
+    considered.push_back({{"view", c.view},
+                          {"pose", pose_json(c.T_world_sensor)},
+                          {"predicted_gain", c.predicted_gain},
+                          {"greedy_predicted_gain", c.greedy_predicted_gain}});
+  }
+  j["considered"] = considered;
   return j;
 }
 
@@ -194,6 +202,17 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
   }
   run["scene"]["rooms"] = rooms;
   run["scene"]["kind"] = sim::to_string(scene.kind);
+  const SensorFov& fov = scene.fov();
+  run["scene"]["sensor"] = {{"h_fov_rad", fov.h_fov},
+                            {"v_fov_rad", fov.v_fov},
+                            {"min_range_m", fov.min_range},
+                            {"max_range_m", fov.max_range},
+                            {"sweep_steps", scene.sensor.sweep_steps}};
+  // NOTE: MODEL.md, "Bits are not cells": the probabilistic gain is information, greedy's (which
+  // every other method decides by) a count of cells.
+  run["gain_units"] = {
+      {"predicted_gain", config.planner.method == PlannerMethod::kProbabilistic ? "bits" : "cells"},
+      {"greedy_predicted_gain", "cells"}};
   write_atomically(dir / "run.json", run.dump(2) + "\n");
 
   write_octomap(dir / "map.bt", grid);

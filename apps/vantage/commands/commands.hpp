@@ -12,5 +12,6 @@ void add_bench_command(CLI::App& app);
 void add_plan_command(CLI::App& app);
 void add_scan_command(CLI::App& app);
 void add_scene_command(CLI::App& app);
+void add_view_command(CLI::App& app);
 
 }  // namespace vantage::cli

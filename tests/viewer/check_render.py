@@ -1,0 +1,85 @@
+"""Checks a headless render of `vantage view`'s page (render_test.sh).
+
+The DOM must say the page finished without errors; the screenshot, outside the panel, must show
+a drawn scene holding the top-face colours of the occupied cells (the height ramp the legend
+declares) and the chosen view's colour.
+
+Usage: check_render.py DOM_HTML SCREENSHOT_PNG
+"""
+import re
+import sys
+
+import matplotlib.image
+import numpy as np
+
+kPanelRight = 380  # the panel is 330 px wide at 10 px from the left; its legend holds the colours
+kBackground = (0x1E, 0x21, 0x28)
+
+
+def fail(message):
+    print(f"FAIL: {message}")
+    sys.exit(1)
+
+
+def hex_rgb(text):
+    return np.array([int(text[i:i + 2], 16) for i in (1, 3, 5)], dtype=float)
+
+
+def attribute(dom, element_id, name):
+    match = re.search(rf'<[^>]*id="{element_id}"[^>]*>', dom)
+    if not match:
+        fail(f"the page has no #{element_id}")
+    value = re.search(rf'{name}="([^"]*)"', match.group(0))
+    if not value:
+        fail(f"#{element_id} has no {name}")
+    return value.group(1)
+
+
+def count_near(pixels, colours, tolerance):
+    """Pixels within `tolerance` (per channel, 0-255) of any of `colours`."""
+    near = np.zeros(pixels.shape[0], dtype=bool)
+    for colour in colours:
+        near |= np.all(np.abs(pixels - colour) <= tolerance, axis=1)
+    return int(near.sum())
+
+
+def main(dom_file, png_file):
+    dom = open(dom_file, encoding="utf-8").read()
+    state = attribute(dom, "status", "data-state")
+    errors = re.search(r'id="errors"[^>]*>(.*?)</div>', dom, re.S)
+    if state != "ready" or (errors and errors.group(1).strip()):
+        fail(f"the page did not finish cleanly: state '{state}', errors: "
+             f"{errors.group(1).strip() if errors else '?'}")
+    ramp = [hex_rgb(c) for c in attribute(dom, "height-bar", "data-ramp").split(",")]
+    chosen = hex_rgb(attribute(dom, "chosen-swatch", "data-color"))
+
+    image = matplotlib.image.imread(png_file)
+    rgb = np.round(image[:, :, :3] * 255.0)
+    if rgb.shape[1] <= kPanelRight + 100:
+        fail(f"screenshot too narrow: {rgb.shape[1]} px")
+    scene = rgb[:, kPanelRight:, :].reshape(-1, 3)
+
+    drawn = int((np.abs(scene - kBackground).max(axis=1) > 12).sum())
+    if drawn < 0.01 * scene.shape[0]:
+        fail(f"blank canvas: {drawn} of {scene.shape[0]} pixels differ from the background")
+    # The height ramp, interpolated in sRGB as the page does, finely enough for 8-bit colours.
+    t = np.linspace(0.0, 1.0, 512)
+    x = t * (len(ramp) - 1)
+    i = np.minimum(np.floor(x).astype(int), len(ramp) - 2)
+    stops = np.array(ramp)
+    samples = stops[i] + (stops[i + 1] - stops[i]) * (x - i)[:, None]
+    occupied = count_near(scene, samples, 3)
+    chosen_pixels = count_near(scene, [chosen], 3)
+    print(f"drawn {drawn} px, occupied-cell colours {occupied} px, chosen-view colour "
+          f"{chosen_pixels} px (of {scene.shape[0]})")
+    if occupied < 100:
+        fail(f"the occupied cells' colours cover only {occupied} px")
+    if chosen_pixels < 100:
+        fail(f"the chosen view's colour covers only {chosen_pixels} px")
+    print("ok")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit(__doc__)
+    main(sys.argv[1], sys.argv[2])

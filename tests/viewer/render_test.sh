@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# Renders `vantage view`'s page of a 2-scan exploration in headless Chromium and checks the
+# result with check_render.py: the page reports a clean render in its DOM, and the screenshot
+# shows a drawn scene with the occupied cells' and the chosen view's colours.
+# Usage: render_test.sh VANTAGE SCENE_YAML OUT_DIR     (exit 77: skipped, no chromium)
+set -euo pipefail
+vantage=$1
+scene=$2
+out=$3
+chromium=${CHROMIUM:-/usr/bin/chromium}
+if [[ ! -x "$chromium" ]]; then
+  echo "SKIP: no chromium at $chromium (scripts/install-deps.sh installs Debian's chromium)"
+  exit 77
+fi
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
+rm -rf "$out"
+mkdir -p "$out"
+profile="$(mktemp -d)"
+trap 'rm -rf "$profile"' EXIT
+
+"$vantage" explore --scene "$scene" --scans 2 --seed 1 --threads 2 --quiet --no-plots \
+  --out "$out/run" >/dev/null
+"$vantage" view "$out/run" --out "$out/view.html"
+
+# NOTE: no GPU here: WebGL runs on SwiftShader, which Chromium only enables when asked.
+# --virtual-time-budget lets the page's module finish (it imports three.js from blob: URLs)
+# before the DOM is dumped or the screenshot taken.
+browse() {
+  rm -rf "$profile"/*
+  timeout 120 "$chromium" --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
+    --disable-background-networking --disable-component-update --disable-sync \
+    --use-angle=swiftshader --enable-unsafe-swiftshader --user-data-dir="$profile" \
+    --window-size=1280,800 --hide-scrollbars --virtual-time-budget=30000 "$@" \
+    "file://$(realpath "$out/view.html")" 2>"$out/chromium.log" || {
+    echo "FAIL: chromium $1 exited with $? (its log: $out/chromium.log)" >&2
+    tail -n 20 "$out/chromium.log" >&2
+    exit 1
+  }
+}
+browse --dump-dom >"$out/dom.html"
+browse --screenshot="$out/viewer.png" >/dev/null
+/usr/bin/python3 "$here/check_render.py" "$out/dom.html" "$out/viewer.png"
