@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "vantage/io/trajectory.hpp"
-#include "vantage/perception/cloud_io.hpp"
+#include "vantage/io/cloud_io.hpp"
 
 namespace vantage {
 

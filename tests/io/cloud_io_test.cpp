@@ -1,4 +1,4 @@
-#include "vantage/perception/cloud_io.hpp"
+#include "vantage/io/cloud_io.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
