@@ -324,8 +324,8 @@ TEST_F(ManifestTest, OtherMistakesAreNamed) {
                "true or false");
   expect_error(kSensor + kRegion + kClouds + "options: {integration: fancy}\n",
                "options.integration", "fancy");
-  expect_error(replace(kSensor, "  frame: optical\n", "") + kRegion + kClouds, "sensor.frame",
-               "missing");
+  expect_error(replace(kSensor, "  frame: optical\n", "") + kRegion + kClouds, "sensor",
+               "missing key 'frame'");
   expect_error(replace(kSensor, "frame: optical", "frame: camera") + kRegion + kClouds,
                "sensor.frame", "optical or x_forward");
   expect_error(replace(kSensor, "  min_range: 0.3\n",

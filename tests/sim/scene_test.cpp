@@ -7,6 +7,8 @@
 #include <fstream>
 #include <string>
 
+#include "vantage/io/yaml_reader.hpp"
+
 namespace vantage::sim {
 namespace {
 
@@ -143,7 +145,7 @@ class SceneFiles : public ::testing::Test {
     text.replace(at, from.size(), to);
     try {
       parse_scene(text, "bad.yaml", dir_);
-    } catch (const std::invalid_argument& e) {
+    } catch (const YamlError& e) {
       return e.what();
     }
     ADD_FAILURE() << "no error for " << to;
