@@ -76,6 +76,11 @@ TEST(YamlReader, EveryMistakeIsOneLineWithFileLineAndKey) {
       {[&] { root.fail_as("", "said without a key"); }, "demo.yaml:1: said without a key"},
       {[&] { parse_yaml("a: [1, 2\n", "bad.yaml"); }, "bad.yaml:2: not valid YAML: "},
       {[&] { parse_yaml("? [a]\n: 1\n", "key.yaml"); }, "key.yaml:1: a map key must be a plain"},
+      {[&] { parse_yaml("a:\n  b: 1\n  c: 2\n  b: 3\n", "d.yaml"); },
+       "d.yaml:4: a.b: duplicate key 'b' (first at line 2)"},
+      {[&] { parse_yaml("- {x: 1, x: 1}\n", "d.yaml"); }, "d.yaml:1: [0].x: duplicate key 'x'"},
+      {[&] { parse_yaml("a: 1\n---\na: 2\n", "two.yaml"); }, "two.yaml:3: a second YAML document"},
+      {[&] { parse_yaml("a: 1\n...\n---\n", "end.yaml"); }, "end.yaml:"},
   };
   for (const auto& [action, expected] : cases) {
     const std::string message = error_of(action);

@@ -81,6 +81,12 @@ class Converter {
           throw_error(source_, key_line, key, "a map key must be a plain name");
         }
         const std::string name = item.first.Scalar();
+        // NOTE: yaml-cpp keeps both entries of a key given twice and finds the first: a silent
+        // choice between two values, refused here.
+        if (const Node::Entry* first = node->find(name)) {
+          throw_error(source_, key_line, child_key(key, name),
+                      cat("duplicate key '", name, "' (first at line ", first->key_line, ")"));
+        }
         node->entries.push_back(
             {name, key_line, convert(item.second, child_key(key, name), key_line)});
       }
@@ -255,13 +261,20 @@ Eigen::Vector3d YamlField::positive_vec3() const {
 
 YamlField parse_yaml(std::string_view text, const std::string& source) {
   auto shared_source = std::make_shared<const std::string>(source);
-  YAML::Node root;
+  std::vector<YAML::Node> documents;
   try {
-    root = YAML::Load(std::string(text));
+    documents = YAML::LoadAll(std::string(text));
   } catch (const YAML::Exception& e) {
     throw_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", cat("not valid YAML: ", e.msg));
   }
+  // NOTE: YAML::Load reads the first document and ignores the rest without a word.
+  if (documents.size() > 1) {
+    const int line = documents[1].Mark().line;
+    throw_error(source, line >= 0 ? line + 1 : 0, "",
+                "a second YAML document (after '---'): the file must hold one");
+  }
   Converter converter(*shared_source);
+  const YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   return YamlField(converter.convert(root, "", 1), "", shared_source);
 }
 

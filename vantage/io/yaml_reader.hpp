@@ -90,8 +90,8 @@ class YamlField {
 
 /// Parses `text` as one YAML document and returns its root; `source` names the text in messages
 /// (a file's path, or "scene tabletop-1"). Refuses, with one line naming the line and key, text
-/// that is not valid YAML and a map key that is not a plain scalar. Anchors and aliases are kept
-/// shared, never expanded.
+/// that is not valid YAML, a second document, a key given twice in one map, and a map key that
+/// is not a plain scalar. Anchors and aliases are kept shared, never expanded.
 YamlField parse_yaml(std::string_view text, const std::string& source);
 
 /// parse_yaml of the file at `path`; a file that cannot be read fails naming it.
