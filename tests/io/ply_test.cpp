@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace vantage {
@@ -62,38 +63,25 @@ std::string text(double value) {
 constexpr ScalarType kAllTypes[] = {{'I', 1}, {'U', 1}, {'I', 2}, {'U', 2},
                                     {'I', 4}, {'U', 4}, {'F', 4}, {'F', 8}};
 
-/// Appends `value` as a scalar of `type`, little- or big-endian.
+/// Appends `value` as a scalar of `type`, little- or big-endian: as the first of the types T
+/// whose kind and size match.
+template <typename... T>
+void put_as_one_of(std::string& out, const ScalarType& type, double value, bool big) {
+  const auto put = [&]<typename U>(U*) {
+    const char kind = std::is_floating_point_v<U> ? 'F' : (std::is_signed_v<U> ? 'I' : 'U');
+    if (kind != type.kind || type.size != static_cast<int>(sizeof(U))) return false;
+    const U v = static_cast<U>(value);
+    char bytes[sizeof(U)];
+    std::memcpy(bytes, &v, sizeof(U));
+    for (std::size_t i = 0; i < sizeof(U); ++i) out.push_back(bytes[big ? sizeof(U) - 1 - i : i]);
+    return true;
+  };
+  (put(static_cast<T*>(nullptr)) || ...);
+}
+
 void put(std::string& out, const ScalarType& type, double value, bool big) {
-  char bytes[8];
-  const auto store = [&]<typename T>(T v) { std::memcpy(bytes, &v, sizeof(T)); };
-  switch (type.kind == 'F' ? 10 * type.size : (type.kind == 'I' ? 1 : -1) * type.size) {
-    case 1:
-      store(static_cast<std::int8_t>(value));
-      break;
-    case -1:
-      store(static_cast<std::uint8_t>(value));
-      break;
-    case 2:
-      store(static_cast<std::int16_t>(value));
-      break;
-    case -2:
-      store(static_cast<std::uint16_t>(value));
-      break;
-    case 4:
-      store(static_cast<std::int32_t>(value));
-      break;
-    case -4:
-      store(static_cast<std::uint32_t>(value));
-      break;
-    case 40:
-      store(static_cast<float>(value));
-      break;
-    default:
-      store(value);
-      break;
-  }
-  const auto n = static_cast<std::size_t>(type.size);
-  for (std::size_t i = 0; i < n; ++i) out.push_back(bytes[big ? n - 1 - i : i]);
+  put_as_one_of<std::int8_t, std::uint8_t, std::int16_t, std::uint16_t, std::int32_t, std::uint32_t,
+                float, double>(out, type, value, big);
 }
 
 // Oracle: a file built from a known element list and known values, written through ply_header

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <system_error>
+#include <type_traits>
 
 #include "vantage/util/text.hpp"
 
@@ -89,43 +90,34 @@ bool ScalarType::valid() const {
   return false;
 }
 
+namespace {
+
+/// The value of the first of the types T whose kind and size are `t`'s, from bytes `b`.
+template <typename... T>
+double decode_as_one_of(const unsigned char* b, const ScalarType& t) {
+  double value = 0.0;
+  const auto decode = [&]<typename U>(U*) {
+    const char kind = std::is_floating_point_v<U> ? 'F' : (std::is_signed_v<U> ? 'I' : 'U');
+    if (kind != t.kind || t.size != static_cast<int>(sizeof(U))) return false;
+    U v;
+    std::memcpy(&v, b, sizeof(U));
+    value = static_cast<double>(v);
+    return true;
+  };
+  (decode(static_cast<T*>(nullptr)) || ...);
+  return value;
+}
+
+}  // namespace
+
 double decode_scalar(const char* p, const ScalarType& t, bool swap) {
   static_assert(std::endian::native == std::endian::little,
                 "binary scalars are decoded by copying little-endian bytes");
   unsigned char b[8];
   std::memcpy(b, p, static_cast<std::size_t>(t.size));
   if (swap) std::reverse(b, b + t.size);
-  const auto as = [&b]<typename T>(T) {
-    T value;
-    std::memcpy(&value, b, sizeof(T));
-    return static_cast<double>(value);
-  };
-  switch (t.kind) {
-    case 'F':
-      return t.size == 4 ? as(float{}) : as(double{});
-    case 'I':
-      switch (t.size) {
-        case 1:
-          return as(std::int8_t{});
-        case 2:
-          return as(std::int16_t{});
-        case 4:
-          return as(std::int32_t{});
-        default:
-          return as(std::int64_t{});
-      }
-    default:
-      switch (t.size) {
-        case 1:
-          return as(std::uint8_t{});
-        case 2:
-          return as(std::uint16_t{});
-        case 4:
-          return as(std::uint32_t{});
-        default:
-          return as(std::uint64_t{});
-      }
-  }
+  return decode_as_one_of<float, double, std::int8_t, std::int16_t, std::int32_t, std::int64_t,
+                          std::uint8_t, std::uint16_t, std::uint32_t, std::uint64_t>(b, t);
 }
 
 }  // namespace vantage
