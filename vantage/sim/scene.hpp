@@ -91,8 +91,8 @@ std::vector<std::string> builtin_scene_names();
 /// The text of a built-in scene file; throws std::invalid_argument for an unknown name.
 std::string builtin_scene_text(std::string_view name);
 
-/// A built-in scene by name, or a scene file by path. Throws YamlError (a std::runtime_error)
-/// with one line that names the file, line and key for a bad scene (unknown key, missing key,
+/// A built-in scene by name, or a scene file by path. Throws std::invalid_argument with one line
+/// that names the file, line and key for a bad scene (unknown key, missing key, key given twice,
 /// wrong type, negative size, unknown model or sensor, a missing or corrupt mesh file), and
 /// std::runtime_error when the scene is neither built in nor a readable file.
 Scene load_scene(const std::string& name_or_yaml_path);

@@ -448,10 +448,15 @@ struct Parser {
 
 Scene parse_scene(const std::string& yaml_text, const std::string& source,
                   const std::filesystem::path& base_dir) {
-  const YamlField root = parse_yaml(yaml_text, source);
   Parser parser{source, base_dir, {}};
   parser.scene.source = source;
-  parser.parse(root);
+  try {
+    parser.parse(parse_yaml(yaml_text, source));
+  } catch (const YamlError& e) {
+    // NOTE: a bad scene stays a bad argument (std::invalid_argument, Python's ValueError), as
+    // scene.hpp promises; the reader's YamlError is a std::runtime_error like other file errors.
+    throw std::invalid_argument(e.what());
+  }
   Scene& scene = parser.scene;
   if (scene.floor_area.isEmpty()) {
     scene.floor_area =
