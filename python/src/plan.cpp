@@ -11,7 +11,7 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "vantage/experiment/recorded.hpp"
-#include "vantage/perception/cloud_io.hpp"
+#include "vantage/io/cloud_io.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/ring.hpp"

@@ -11,8 +11,8 @@
 
 #include "test_scene.hpp"
 #include "vantage/experiment/results.hpp"
+#include "vantage/io/cloud_io.hpp"
 #include "vantage/io/octomap_io.hpp"
-#include "vantage/perception/cloud_io.hpp"
 
 namespace vantage {
 namespace {

@@ -12,7 +12,7 @@
 
 #include "test_scene.hpp"
 #include "vantage/experiment/exploration.hpp"
-#include "vantage/perception/cloud_io.hpp"
+#include "vantage/io/cloud_io.hpp"
 #include "vantage/sim/world.hpp"
 
 namespace vantage {

@@ -318,14 +318,24 @@ TEST_F(ManifestTest, BadRegionAndResolution) {
                "roi", "grid too large");
 }
 
+// yaml-cpp alone would take the first of two values, or read the first document only.
+TEST_F(ManifestTest, DuplicateKeysAndSecondDocumentsAreRefused) {
+  expect_error(kSensor + kRegion + kClouds + "resolution: 0.02\n", "resolution",
+               "duplicate key 'resolution' (first at line 9)");
+  expect_error(replace(kSensor, "fx: 525,", "fx: 525, fx: 500,") + kRegion + kClouds,
+               "sensor.intrinsics.fx", "duplicate key 'fx'");
+  expect_error(kSensor + kRegion + kClouds + "---\nresolution: 0.02\n", "",
+               "a second YAML document");
+}
+
 TEST_F(ManifestTest, OtherMistakesAreNamed) {
   expect_error(kSensor + kRegion + kClouds + "option: {icp: true}\n", "option", "unknown key");
   expect_error(kSensor + kRegion + kClouds + "options: {icp: maybe}\n", "options.icp",
                "true or false");
   expect_error(kSensor + kRegion + kClouds + "options: {integration: fancy}\n",
                "options.integration", "fancy");
-  expect_error(replace(kSensor, "  frame: optical\n", "") + kRegion + kClouds, "sensor.frame",
-               "missing");
+  expect_error(replace(kSensor, "  frame: optical\n", "") + kRegion + kClouds, "sensor",
+               "missing key 'frame'");
   expect_error(replace(kSensor, "frame: optical", "frame: camera") + kRegion + kClouds,
                "sensor.frame", "optical or x_forward");
   expect_error(replace(kSensor, "  min_range: 0.3\n",

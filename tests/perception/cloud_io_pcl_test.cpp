@@ -9,7 +9,7 @@
 #include <random>
 #include <string>
 
-#include "vantage/perception/cloud_io.hpp"
+#include "vantage/io/cloud_io.hpp"
 
 namespace vantage {
 namespace {

@@ -225,6 +225,23 @@ TEST_F(SceneFiles, OtherMistakesNameTheirKey) {
   EXPECT_NE(error_of("- {type: box", "- {type: box, {").find("bad.yaml:"), std::string::npos);
 }
 
+// yaml-cpp alone would take the first of two values, or read the first document only.
+TEST_F(SceneFiles, DuplicateKeysAndSecondDocumentsAreRefused) {
+  const std::string twice = error_of("kind: tabletop\n", "kind: tabletop\nkind: office\n");
+  EXPECT_NE(twice.find("bad.yaml:3: kind: duplicate key 'kind' (first at line 2)"),
+            std::string::npos)
+      << twice;
+  const std::string nested =
+      error_of("size: [0.1, 0.1, 0.2]", "size: [0.1, 0.1, 0.2], size: [1, 1, 1]");
+  EXPECT_NE(nested.find("objects[0].size: duplicate key 'size'"), std::string::npos) << nested;
+  const std::string second =
+      error_of("start_poses: ring\n", "start_poses: ring\n---\nname: other\n");
+  EXPECT_NE(second.find("bad.yaml:" + std::to_string(line_of("start_poses: ring") + 2) +
+                        ": a second YAML document"),
+            std::string::npos)
+      << second;
+}
+
 TEST(Scenes, UnknownSceneListsTheBuiltins) {
   try {
     load_scene("tabletop-9");

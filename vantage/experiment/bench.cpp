@@ -149,7 +149,7 @@ BenchConfig office_bench_config() {
                    "office-large-cluttered"};
   config.methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy, PlannerMethod::kLatombe,
                     PlannerMethod::kYamauchi, PlannerMethod::kRandom};
-  config.alphas = {0.9999, 0.999};
+  config.alphas = {kOfficeAlpha, 0.999};
   config.trials = 5;
   config.exploration.scans = 20;
   return config;

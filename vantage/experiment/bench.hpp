@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "vantage/experiment/exploration.hpp"
+#include "vantage/gain/ray_model.hpp"
 
 namespace vantage {
 
@@ -19,7 +20,7 @@ struct TrialSpec {
   std::string scene;   ///< the scene's name
   std::string source;  ///< what to load it from: a built-in name or a YAML path
   PlannerMethod method = PlannerMethod::kProbabilistic;
-  double alpha = 0.997;
+  double alpha = kTableTopAlpha;
   int trial = 0;  ///< starts from the scene's start pose `trial` (mod the number of starts)
 
   /// File-name key, e.g. "tabletop-1__probabilistic__a0.997__t3".
@@ -31,7 +32,8 @@ struct BenchConfig {
   std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
   std::vector<PlannerMethod> methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy,
                                         PlannerMethod::kRandom};
-  std::vector<double> alphas = {0.997};  ///< for the probabilistic method; one trial set each
+  /// a values for the probabilistic method; one trial set each.
+  std::vector<double> alphas = {kTableTopAlpha};
   int trials = 10;
   ExplorationConfig exploration;  ///< method, alpha, start and seed are set per trial
   bool mapper_from_scene = true;  ///< table segmentation where the scene has a table
@@ -44,8 +46,8 @@ struct BenchConfig {
 };
 
 /// The paper's office sweep (§5.2, Figs. 15 and 16): both offices at both clutter levels, all
-/// five methods (the probabilistic one with a = 0.9999 and 0.999), trial i from start pose i of
-/// 5, 20 stops each.
+/// five methods (the probabilistic one with a = kOfficeAlpha and 0.999), trial i from start pose i
+/// of 5, 20 stops each.
 BenchConfig office_bench_config();
 
 /// Every trial of the sweep in its fixed order, before sharding. Loads each scene once, to name

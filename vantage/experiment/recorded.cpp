@@ -4,8 +4,8 @@
 
 #include <stdexcept>
 
+#include "vantage/io/cloud_io.hpp"
 #include "vantage/io/trajectory.hpp"
-#include "vantage/perception/cloud_io.hpp"
 
 namespace vantage {
 

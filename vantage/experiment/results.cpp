@@ -7,8 +7,8 @@
 #include <nlohmann/json.hpp>
 
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/cloud_io.hpp"
 #include "vantage/io/octomap_io.hpp"
-#include "vantage/perception/cloud_io.hpp"
 #include "vantage/planner/navigation.hpp"
 
 namespace vantage {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "vantage/experiment/exploration.hpp"
+#include "vantage/gain/ray_model.hpp"
 
 namespace vantage {
 
@@ -23,7 +24,7 @@ inline constexpr std::string_view kScansCsvHeader =
 struct RunLabel {
   std::string scene;
   PlannerMethod method = PlannerMethod::kProbabilistic;
-  double alpha = 0.997;  ///< written only for the probabilistic method
+  double alpha = kTableTopAlpha;  ///< written only for the probabilistic method
   int trial = 0;
 };
 

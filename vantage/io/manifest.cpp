@@ -6,7 +6,6 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
-#include <initializer_list>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
@@ -16,6 +15,7 @@
 
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/trajectory.hpp"
+#include "vantage/io/yaml_reader.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -33,131 +33,30 @@ bool is_cloud_file(const fs::path& path) {
   return ext == ".pcd" || ext == ".ply";
 }
 
-// Reads one YAML document with errors of the form "file:line: key: what".
-class Reader {
- public:
-  explicit Reader(fs::path file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const YAML::Node& at, const std::string& key,
-                         const std::string& what) const {
-    const YAML::Mark mark = at.Mark();
-    const std::string line = mark.line >= 0 ? cat(":", mark.line + 1) : std::string();
-    throw std::runtime_error(cat(file_.string(), line, ": ", key, key.empty() ? "" : ": ", what));
-  }
-
-  // A map with only the allowed keys.
-  void check_map(const YAML::Node& node, const std::string& key,
-                 std::initializer_list<std::string_view> allowed) const {
-    if (!node.IsMap()) fail(node, key, "must be a map");
-    for (const auto& entry : node) {
-      const std::string name = entry.first.Scalar();
-      if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
-        std::string list;
-        for (std::string_view a : allowed) list += cat(list.empty() ? "" : ", ", a);
-        fail(entry.first, key.empty() ? name : cat(key, ".", name),
-             cat("unknown key (expected one of: ", list, ")"));
+// 4 rows of 4 numbers, or 16 numbers row by row; then checked to be rigid.
+Eigen::Isometry3d rigid(const YamlField& f) {
+  Eigen::Matrix4d m;
+  if (f.is_sequence() && f.size() == 4 && f[0].is_sequence()) {
+    for (std::size_t r = 0; r < 4; ++r) {
+      const YamlField row = f[r];
+      if (!row.is_sequence() || row.size() != 4) row.fail("must be a row of 4 numbers");
+      for (std::size_t c = 0; c < 4; ++c) {
+        m(static_cast<int>(r), static_cast<int>(c)) = row[c].number();
       }
     }
-  }
-
-  YAML::Node required(const YAML::Node& map, const std::string& key, const char* name) const {
-    const YAML::Node node = map[name];
-    if (!node) fail(map, join(key, name), "missing");
-    return node;
-  }
-
-  static std::string join(const std::string& key, const char* name) {
-    return key.empty() ? std::string(name) : cat(key, ".", name);
-  }
-
-  double number(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar()) fail(node, key, "must be a number");
-    const std::string text = node.Scalar();
-    const std::string l = lower(text);
-    if (l == ".nan" || l == "nan") fail(node, key, "is NaN");
-    if (l == ".inf" || l == "+.inf" || l == "-.inf" || l == "inf" || l == "-inf") {
-      fail(node, key, "is infinite");
+  } else if (f.is_sequence() && f.size() == 16) {
+    for (std::size_t k = 0; k < 16; ++k) {
+      m(static_cast<int>(k / 4), static_cast<int>(k % 4)) = f[k].number();
     }
-    std::string_view view = text;
-    if (view.starts_with("+")) view.remove_prefix(1);
-    double value = 0.0;
-    const auto [ptr, ec] = std::from_chars(view.data(), view.data() + view.size(), value);
-    if (ec != std::errc() || ptr != view.data() + view.size() || view.empty()) {
-      fail(node, key, cat("'", text, "' is not a number"));
-    }
-    if (!std::isfinite(value)) fail(node, key, "is not finite");
-    return value;
+  } else {
+    f.fail("must be a 4x4 matrix: 4 rows of 4 numbers, or 16 numbers row by row");
   }
-
-  double positive(const YAML::Node& node, const std::string& key) const {
-    const double value = number(node, key);
-    if (!(value > 0.0)) fail(node, key, cat("must be positive, got ", value));
-    return value;
-  }
-
-  int positive_integer(const YAML::Node& node, const std::string& key) const {
-    const double value = number(node, key);
-    if (value != std::floor(value) || value < 1.0 || value > std::numeric_limits<int>::max()) {
-      fail(node, key, cat("must be a positive whole number, got ", node.Scalar()));
-    }
-    return static_cast<int>(value);
-  }
-
-  bool boolean(const YAML::Node& node, const std::string& key) const {
-    bool value = false;
-    if (!node.IsScalar() || !YAML::convert<bool>::decode(node, value)) {
-      fail(node, key, "must be true or false");
-    }
-    return value;
-  }
-
-  std::string text(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsScalar() || node.Scalar().empty()) fail(node, key, "must be a non-empty string");
-    return node.Scalar();
-  }
-
-  Eigen::Vector3d vector3(const YAML::Node& node, const std::string& key) const {
-    if (!node.IsSequence() || node.size() != 3) fail(node, key, "must be a list of 3 numbers");
-    Eigen::Vector3d v;
-    for (std::size_t i = 0; i < 3; ++i)
-      v[static_cast<int>(i)] = number(node[i], cat(key, "[", i, "]"));
-    return v;
-  }
-
-  // 4 rows of 4 numbers, or 16 numbers row by row; then checked to be rigid.
-  Eigen::Isometry3d rigid(const YAML::Node& node, const std::string& key) const {
-    Eigen::Matrix4d m;
-    if (node.IsSequence() && node.size() == 4 && node[0].IsSequence()) {
-      for (std::size_t r = 0; r < 4; ++r) {
-        const YAML::Node row = node[r];
-        if (!row.IsSequence() || row.size() != 4) {
-          fail(row, cat(key, "[", r, "]"), "must be a row of 4 numbers");
-        }
-        for (std::size_t c = 0; c < 4; ++c) {
-          m(static_cast<int>(r), static_cast<int>(c)) =
-              number(row[c], cat(key, "[", r, "][", c, "]"));
-        }
-      }
-    } else if (node.IsSequence() && node.size() == 16) {
-      for (std::size_t k = 0; k < 16; ++k) {
-        m(static_cast<int>(k / 4), static_cast<int>(k % 4)) =
-            number(node[k], cat(key, "[", k, "]"));
-      }
-    } else {
-      fail(node, key, "must be a 4x4 matrix: 4 rows of 4 numbers, or 16 numbers row by row");
-    }
-    const std::string problem = rigid_transform_problem(m);
-    if (!problem.empty()) fail(node, key, cat("not a rigid transform: ", problem));
-    Eigen::Isometry3d T;
-    T.matrix() = m;
-    return T;
-  }
-
-  const fs::path& file() const { return file_; }
-
- private:
-  fs::path file_;
-};
+  const std::string problem = rigid_transform_problem(m);
+  if (!problem.empty()) f.fail(cat("not a rigid transform: ", problem));
+  Eigen::Isometry3d T;
+  T.matrix() = m;
+  return T;
+}
 
 // The stamp a cloud is matched by: its `stamp`, else its file name if that is a number.
 std::optional<double> stamp_from_name(const fs::path& file) {
@@ -266,129 +165,108 @@ Manifest read_manifest(const fs::path& path) {
     throw std::runtime_error(cat(manifest.file.string(), ": no such manifest"));
   }
   const fs::path folder = manifest.file.parent_path();
-  const Reader in(manifest.file);
-
-  YAML::Node root;
-  try {
-    root = YAML::LoadFile(manifest.file.string());
-  } catch (const YAML::Exception& e) {
-    const std::string line = e.mark.line >= 0 ? cat(":", e.mark.line + 1) : std::string();
-    throw std::runtime_error(cat(manifest.file.string(), line, ": ", e.msg));
-  }
-  if (!root.IsMap()) in.fail(root, "manifest", "must be a YAML map of settings");
-  in.check_map(root, "",
-               {"version", "clouds", "trajectory", "sensor", "roi", "resolution", "options"});
-  if (const YAML::Node version = root["version"]) {
-    if (in.number(version, "version") != 1.0) in.fail(version, "version", "only version 1 exists");
+  const YamlField root = read_yaml_file(manifest.file);
+  root.allow_keys({"version", "clouds", "trajectory", "sensor", "roi", "resolution", "options"});
+  if (const auto version = root.get("version")) {
+    if (version->number() != 1.0) version->fail("only version 1 exists");
   }
 
   // Sensor.
   {
-    const YAML::Node sensor = in.required(root, "", "sensor");
-    in.check_map(sensor, "sensor", {"frame", "intrinsics", "fov_deg", "min_range", "max_range"});
-    const YAML::Node frame = in.required(sensor, "sensor", "frame");
+    const YamlField sensor = root.at("sensor");
+    sensor.allow_keys({"frame", "intrinsics", "fov_deg", "min_range", "max_range"});
+    const YamlField frame = sensor.at("frame");
     try {
-      manifest.frame = parse_cloud_frame(in.text(frame, "sensor.frame"));
+      manifest.frame = parse_cloud_frame(frame.text());
     } catch (const std::invalid_argument& e) {
-      in.fail(frame, "sensor.frame", e.what());
+      frame.fail(e.what());
     }
-    const double min_range =
-        in.number(in.required(sensor, "sensor", "min_range"), "sensor.min_range");
-    const double max_range =
-        in.number(in.required(sensor, "sensor", "max_range"), "sensor.max_range");
-    const YAML::Node intrinsics = sensor["intrinsics"];
-    const YAML::Node fov_deg = sensor["fov_deg"];
-    if (intrinsics && fov_deg) in.fail(sensor, "sensor", "give intrinsics or fov_deg, not both");
+    const double min_range = sensor.at("min_range").number();
+    const double max_range = sensor.at("max_range").number();
+    const auto intrinsics = sensor.get("intrinsics");
+    const auto fov_deg = sensor.get("fov_deg");
+    if (intrinsics && fov_deg) sensor.fail("give intrinsics or fov_deg, not both");
     try {
       if (intrinsics) {
-        in.check_map(intrinsics, "sensor.intrinsics", {"fx", "fy", "cx", "cy", "width", "height"});
+        intrinsics->allow_keys({"fx", "fy", "cx", "cy", "width", "height"});
         PinholeIntrinsics k;
-        const auto field = [&](const char* name) {
-          return in.required(intrinsics, "sensor.intrinsics", name);
-        };
-        k.fx = in.number(field("fx"), "sensor.intrinsics.fx");
-        k.fy = in.number(field("fy"), "sensor.intrinsics.fy");
-        k.cx = in.number(field("cx"), "sensor.intrinsics.cx");
-        k.cy = in.number(field("cy"), "sensor.intrinsics.cy");
-        k.width = in.positive_integer(field("width"), "sensor.intrinsics.width");
-        k.height = in.positive_integer(field("height"), "sensor.intrinsics.height");
+        k.fx = intrinsics->at("fx").number();
+        k.fy = intrinsics->at("fy").number();
+        k.cx = intrinsics->at("cx").number();
+        k.cy = intrinsics->at("cy").number();
+        k.width = intrinsics->at("width").integer(1, std::numeric_limits<int>::max());
+        k.height = intrinsics->at("height").integer(1, std::numeric_limits<int>::max());
         manifest.intrinsics = k;
         manifest.fov = fov_from_intrinsics(k, min_range, max_range);
       } else if (fov_deg) {
-        in.check_map(fov_deg, "sensor.fov_deg", {"horizontal", "vertical"});
-        manifest.fov.h_fov = deg2rad(in.number(in.required(fov_deg, "sensor.fov_deg", "horizontal"),
-                                               "sensor.fov_deg.horizontal"));
-        manifest.fov.v_fov = deg2rad(in.number(in.required(fov_deg, "sensor.fov_deg", "vertical"),
-                                               "sensor.fov_deg.vertical"));
+        fov_deg->allow_keys({"horizontal", "vertical"});
+        manifest.fov.h_fov = deg2rad(fov_deg->at("horizontal").number());
+        manifest.fov.v_fov = deg2rad(fov_deg->at("vertical").number());
         manifest.fov.min_range = min_range;
         manifest.fov.max_range = max_range;
         manifest.fov.validate();
       } else {
-        in.fail(sensor, "sensor", "give the field of view as intrinsics or fov_deg");
+        sensor.fail("give the field of view as intrinsics or fov_deg");
       }
     } catch (const std::invalid_argument& e) {
-      in.fail(sensor, "sensor", e.what());
+      sensor.fail(e.what());
     }
   }
 
   // Region of interest and resolution.
   {
-    const YAML::Node roi = in.required(root, "", "roi");
-    in.check_map(roi, "roi", {"min", "max"});
-    const Eigen::Vector3d lo = in.vector3(in.required(roi, "roi", "min"), "roi.min");
-    const Eigen::Vector3d hi = in.vector3(in.required(roi, "roi", "max"), "roi.max");
-    manifest.roi = Eigen::AlignedBox3d(lo, hi);
-    const YAML::Node resolution = in.required(root, "", "resolution");
-    const double res = in.number(resolution, "resolution");
-    if (!(res > 0.0)) in.fail(resolution, "resolution", cat("must be positive, got ", res));
+    const YamlField roi = root.at("roi");
+    roi.allow_keys({"min", "max"});
+    manifest.roi = Eigen::AlignedBox3d(roi.at("min").vec3(), roi.at("max").vec3());
+    const double resolution = root.at("resolution").positive();
     try {
-      manifest.grid = grid_for_roi(manifest.roi, res);
+      manifest.grid = grid_for_roi(manifest.roi, resolution);
     } catch (const std::invalid_argument& e) {
-      in.fail(roi, "", e.what());  // the message names roi or resolution
+      roi.fail_as("", e.what());  // the message names roi or resolution
     }
   }
 
   // Options.
-  if (const YAML::Node options = root["options"]) {
-    in.check_map(options, "options",
-                 {"table_segmentation", "icp", "integration", "skip_non_finite"});
-    if (const YAML::Node n = options["skip_non_finite"]) {
-      manifest.options.skip_non_finite = in.boolean(n, "options.skip_non_finite");
+  if (const auto options = root.get("options")) {
+    options->allow_keys({"table_segmentation", "icp", "integration", "skip_non_finite"});
+    if (const auto n = options->get("skip_non_finite")) {
+      manifest.options.skip_non_finite = n->boolean();
     }
-    if (const YAML::Node n = options["table_segmentation"]) {
-      manifest.options.table_segmentation = in.boolean(n, "options.table_segmentation");
+    if (const auto n = options->get("table_segmentation")) {
+      manifest.options.table_segmentation = n->boolean();
     }
-    if (const YAML::Node n = options["icp"]) manifest.options.icp = in.boolean(n, "options.icp");
-    if (const YAML::Node n = options["integration"]) {
+    if (const auto n = options->get("icp")) manifest.options.icp = n->boolean();
+    if (const auto n = options->get("integration")) {
       try {
-        manifest.options.integration = parse_integration_mode(in.text(n, "options.integration"));
+        manifest.options.integration = parse_integration_mode(n->text());
       } catch (const std::invalid_argument& e) {
-        in.fail(n, "options.integration", e.what());
+        n->fail(e.what());
       }
     }
   }
 
   // Clouds: listed, or every .pcd/.ply beside the manifest.
-  // The YAML entry of each cloud, for poses and errors; a null node for clouds found in the folder.
-  std::vector<YAML::Node> entries;
-  const auto listed = [&](std::size_t i) -> const YAML::Node& { return entries[i]; };
-  if (const YAML::Node clouds = root["clouds"]) {
-    if (!clouds.IsSequence()) in.fail(clouds, "clouds", "must be a list");
-    if (clouds.size() == 0) in.fail(clouds, "clouds", "is empty");
-    for (std::size_t i = 0; i < clouds.size(); ++i) {
-      const std::string key = cat("clouds[", i, "]");
-      const YAML::Node entry = clouds[i];
-      in.check_map(entry, key, {"file", "pose", "stamp"});
-      const YAML::Node file = in.required(entry, key, "file");
+  // The YAML entry of each cloud, for poses and errors; nothing for clouds found in the folder.
+  std::vector<std::optional<YamlField>> entries;
+  // Where a cloud's problem is reported: its entry, else the manifest's root.
+  const auto at_entry = [&](std::size_t i) -> const YamlField& {
+    return entries[i] ? *entries[i] : root;
+  };
+  if (const auto clouds = root.get("clouds")) {
+    const std::vector<YamlField> items = clouds->items();
+    if (items.empty()) clouds->fail("is empty");
+    for (const YamlField& entry : items) {
+      entry.allow_keys({"file", "pose", "stamp"});
+      const YamlField file = entry.at("file");
       ManifestCloud cloud;
-      cloud.file = (folder / in.text(file, key + ".file")).lexically_normal();
+      cloud.file = (folder / file.text()).lexically_normal();
       if (!is_cloud_file(cloud.file)) {
-        in.fail(file, key + ".file", cat("'", cloud.file.string(), "' is not a .pcd or .ply file"));
+        file.fail(cat("'", cloud.file.string(), "' is not a .pcd or .ply file"));
       }
       if (!fs::is_regular_file(cloud.file, error)) {
-        in.fail(file, key + ".file", cat("no such file: ", cloud.file.string()));
+        file.fail(cat("no such file: ", cloud.file.string()));
       }
-      if (const YAML::Node stamp = entry["stamp"]) cloud.stamp = in.number(stamp, key + ".stamp");
+      if (const auto stamp = entry.get("stamp")) cloud.stamp = stamp->number();
       manifest.clouds.push_back(cloud);
       entries.push_back(entry);
     }
@@ -406,58 +284,55 @@ Manifest read_manifest(const fs::path& path) {
                 return a.file.filename().string() < b.file.filename().string();
               });
     if (manifest.clouds.empty()) {
-      in.fail(root, "clouds",
-              cat("missing, and the folder ", folder.string(), " holds no .pcd or .ply file"));
+      root.fail_as("clouds",
+                   cat("missing, and the folder ", folder.string(), " holds no .pcd or .ply file"));
     }
-    entries.assign(manifest.clouds.size(), YAML::Node());
+    entries.assign(manifest.clouds.size(), std::nullopt);
   }
 
   // Poses: one matrix per cloud, or a trajectory.
-  if (const YAML::Node trajectory = root["trajectory"]) {
-    in.check_map(trajectory, "trajectory", {"file", "match", "max_time_difference"});
-    for (std::size_t i = 0; i < entries.size(); ++i) {
-      if (listed(i).IsMap() && listed(i)["pose"]) {
-        in.fail(listed(i)["pose"], cat("clouds[", i, "].pose"),
-                "give poses per cloud or a trajectory, not both");
+  if (const auto trajectory = root.get("trajectory")) {
+    trajectory->allow_keys({"file", "match", "max_time_difference"});
+    for (const std::optional<YamlField>& entry : entries) {
+      if (entry && entry->has("pose")) {
+        entry->at("pose").fail("give poses per cloud or a trajectory, not both");
       }
     }
-    const YAML::Node file = in.required(trajectory, "trajectory", "file");
-    manifest.trajectory = (folder / in.text(file, "trajectory.file")).lexically_normal();
-    if (const YAML::Node match = trajectory["match"]) {
-      const std::string name = in.text(match, "trajectory.match");
+    const YamlField file = trajectory->at("file");
+    manifest.trajectory = (folder / file.text()).lexically_normal();
+    if (const auto match = trajectory->get("match")) {
+      const std::string name = match->text();
       if (name == "order") {
         manifest.match = PoseMatch::kOrder;
       } else if (name == "timestamp") {
         manifest.match = PoseMatch::kTimestamp;
       } else {
-        in.fail(match, "trajectory.match",
-                cat("unknown '", name, "' (expected order or timestamp)"));
+        match->fail(cat("unknown '", name, "' (expected order or timestamp)"));
       }
     }
-    if (const YAML::Node dt = trajectory["max_time_difference"]) {
-      manifest.max_time_difference = in.positive(dt, "trajectory.max_time_difference");
+    if (const auto dt = trajectory->get("max_time_difference")) {
+      manifest.max_time_difference = dt->positive();
     }
     if (!fs::is_regular_file(*manifest.trajectory, error)) {
-      in.fail(file, "trajectory.file", cat("no such file: ", manifest.trajectory->string()));
+      file.fail(cat("no such file: ", manifest.trajectory->string()));
     }
     const std::vector<StampedPose> poses = read_tum_trajectory(*manifest.trajectory);
     const std::string traj = manifest.trajectory->filename().string();
     if (manifest.match == PoseMatch::kOrder) {
       if (poses.size() != manifest.clouds.size()) {
-        in.fail(trajectory, "trajectory",
-                cat(traj, " holds ", poses.size(), " poses but there are ", manifest.clouds.size(),
-                    " clouds (match: order pairs them one to one)"));
+        trajectory->fail(cat(traj, " holds ", poses.size(), " poses but there are ",
+                             manifest.clouds.size(),
+                             " clouds (match: order pairs them one to one)"));
       }
       for (std::size_t i = 0; i < poses.size(); ++i) {
         manifest.clouds[i].T_world_cloud = poses[i].T_world_frame;
       }
     } else {
-      if (poses.empty()) in.fail(trajectory, "trajectory", cat(traj, " holds no poses"));
+      if (poses.empty()) trajectory->fail(cat(traj, " holds no poses"));
       for (std::size_t i = 1; i < poses.size(); ++i) {
         if (!(poses[i].stamp > poses[i - 1].stamp)) {
-          in.fail(trajectory, "trajectory",
-                  cat(traj, ": time stamps must increase for match: timestamp (pose ", i, " at ",
-                      poses[i].stamp, " s follows ", poses[i - 1].stamp, " s)"));
+          trajectory->fail(cat(traj, ": time stamps must increase for match: timestamp (pose ", i,
+                               " at ", poses[i].stamp, " s follows ", poses[i - 1].stamp, " s)"));
         }
       }
       for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
@@ -465,10 +340,9 @@ Manifest read_manifest(const fs::path& path) {
         const std::string key = cat("clouds[", i, "]");
         if (!cloud.stamp) cloud.stamp = stamp_from_name(cloud.file);
         if (!cloud.stamp) {
-          in.fail(listed(i).IsMap() ? listed(i) : root, key,
-                  cat("no stamp to match the trajectory by: give ", key,
-                      ".stamp, or name the file by its time stamp (",
-                      cloud.file.filename().string(), ")"));
+          at_entry(i).fail_as(key, cat("no stamp to match the trajectory by: give ", key,
+                                       ".stamp, or name the file by its time stamp (",
+                                       cloud.file.filename().string(), ")"));
         }
         const double t = *cloud.stamp;
         // Nearest pose in time; ties go to the earlier pose.
@@ -482,22 +356,21 @@ Manifest read_manifest(const fs::path& path) {
         }
         const double dt = std::abs(best->stamp - t);
         if (dt > manifest.max_time_difference) {
-          in.fail(listed(i).IsMap() ? listed(i) : trajectory, key,
-                  cat("no pose in ", traj, " within ", manifest.max_time_difference, " s of stamp ",
-                      t, " (the nearest is ", dt, " s away)"));
+          (entries[i] ? *entries[i] : *trajectory)
+              .fail_as(key, cat("no pose in ", traj, " within ", manifest.max_time_difference,
+                                " s of stamp ", t, " (the nearest is ", dt, " s away)"));
         }
         cloud.T_world_cloud = best->T_world_frame;
       }
     }
   } else {
     for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
-      const std::string key = cat("clouds[", i, "]");
-      if (!listed(i).IsMap() || !listed(i)["pose"]) {
-        in.fail(listed(i).IsMap() ? listed(i) : root, key + ".pose",
-                cat("missing: cloud ", manifest.clouds[i].file.filename().string(),
-                    " has no pose (give a pose per cloud, or a trajectory)"));
+      const std::string key = cat("clouds[", i, "].pose");
+      if (!entries[i] || !entries[i]->has("pose")) {
+        at_entry(i).fail_as(key, cat("missing: cloud ", manifest.clouds[i].file.filename().string(),
+                                     " has no pose (give a pose per cloud, or a trajectory)"));
       }
-      manifest.clouds[i].T_world_cloud = in.rigid(listed(i)["pose"], key + ".pose");
+      manifest.clouds[i].T_world_cloud = rigid(entries[i]->at("pose"));
     }
   }
 

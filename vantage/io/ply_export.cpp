@@ -5,9 +5,12 @@
 #include <cstdint>
 #include <cstring>
 #include <ostream>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/ply.hpp"
 
 namespace vantage {
 namespace {
@@ -44,16 +47,26 @@ CellPlyExport write_cells_ply(const std::filesystem::path& path, const Occupancy
     }
   }
 
+  // NOTE: a fresh stream's 6 significant digits (not cat()'s 10), as this comment always had.
+  std::ostringstream resolution;
+  resolution << "resolution " << spec.resolution << " m";
+  constexpr ScalarType kFloat{'F', 4}, kByte{'U', 1};
+  const PlyElement vertex{"vertex",
+                          cells.size(),
+                          {{"x", kFloat},
+                           {"y", kFloat},
+                           {"z", kFloat},
+                           {"red", kByte},
+                           {"green", kByte},
+                           {"blue", kByte},
+                           {"probability", kFloat}}};
+  const std::string header = ply_header(
+      config.binary ? PlyFormat::kBinaryLittleEndian : PlyFormat::kAscii,
+      {"Vantage occupancy grid: occupied cells red, unobserved cells yellow", resolution.str()},
+      {vertex});
+
   write_atomically(path, [&](std::ostream& out) {
-    out << "ply\n"
-        << (config.binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n")
-        << "comment Vantage occupancy grid: occupied cells red, unobserved cells yellow\n"
-        << "comment resolution " << spec.resolution << " m\n"
-        << "element vertex " << cells.size() << "\n"
-        << "property float x\nproperty float y\nproperty float z\n"
-        << "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-        << "property float probability\n"
-        << "end_header\n";
+    out << header;
     std::vector<char> buffer;
     constexpr std::size_t kRecord = 3 * 4 + 3 + 4;
     constexpr std::size_t kBlock = 1 << 16;

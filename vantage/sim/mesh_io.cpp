@@ -3,18 +3,19 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <optional>
-#include <sstream>
+#include <span>
 #include <stdexcept>
 #include <type_traits>
 
+#include "vantage/io/format_parsing.hpp"
+#include "vantage/io/ply.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage::sim {
@@ -116,11 +117,11 @@ class JsArrayReader {
 };
 
 std::string read_text(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(cat(path.string(), ": cannot open the file"));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  try {
+    return read_file_bytes(path);
+  } catch (const FormatError& e) {
+    throw std::runtime_error(cat("mesh file ", path.string(), ": ", e.what()));
+  }
 }
 
 bool has_extension(const std::filesystem::path& path, std::string_view ext) {
@@ -142,270 +143,47 @@ TriangleMesh checked(TriangleMesh mesh, const std::filesystem::path& path) {
   return mesh;
 }
 
-// --- PLY -----------------------------------------------------------------------------------
-// NOTE: Vantage reads PLY itself: Debian's assimp 5.2 hangs on a truncated PLY header and
-// crashes on some truncated bodies, and a corrupt file must give an error, never a crash.
-
-enum class PlyType { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32, kFloat32, kFloat64 };
-
-std::optional<PlyType> parse_ply_type(std::string_view name) {
-  if (name == "char" || name == "int8") return PlyType::kInt8;
-  if (name == "uchar" || name == "uint8") return PlyType::kUint8;
-  if (name == "short" || name == "int16") return PlyType::kInt16;
-  if (name == "ushort" || name == "uint16") return PlyType::kUint16;
-  if (name == "int" || name == "int32") return PlyType::kInt32;
-  if (name == "uint" || name == "uint32") return PlyType::kUint32;
-  if (name == "float" || name == "float32") return PlyType::kFloat32;
-  if (name == "double" || name == "float64") return PlyType::kFloat64;
-  return std::nullopt;
-}
-
-std::size_t ply_size(PlyType type) {
-  switch (type) {
-    case PlyType::kInt8:
-    case PlyType::kUint8:
-      return 1;
-    case PlyType::kInt16:
-    case PlyType::kUint16:
-      return 2;
-    case PlyType::kInt32:
-    case PlyType::kUint32:
-    case PlyType::kFloat32:
-      return 4;
-    case PlyType::kFloat64:
-      return 8;
-  }
-  return 8;
-}
-
-bool ply_integral(PlyType type) { return type != PlyType::kFloat32 && type != PlyType::kFloat64; }
-
-struct PlyProperty {
-  std::string name;
-  PlyType type = PlyType::kFloat32;
-  bool list = false;
-  PlyType count_type = PlyType::kUint8;
-};
-
-struct PlyElement {
-  std::string name;
-  std::size_t count = 0;
-  std::vector<PlyProperty> properties;
-};
-
-/// Reads the values of a PLY body, ASCII or binary, in order.
-class PlyBody {
- public:
-  enum class Format { kAscii, kLittleEndian, kBigEndian };
-
-  PlyBody(const std::string& data, std::size_t pos, Format format,
-          const std::filesystem::path& path)
-      : data_(data), pos_(pos), format_(format), path_(path) {}
-
-  std::size_t remaining() const { return data_.size() - pos_; }
-  Format format() const { return format_; }
-
-  double read(PlyType type, std::string_view what) {
-    if (format_ == Format::kAscii) return read_ascii(type, what);
-    const std::size_t n = ply_size(type);
-    if (remaining() < n) fail(cat("the file ends inside ", what));
-    unsigned char bytes[8];
-    for (std::size_t i = 0; i < n; ++i) {
-      bytes[i] =
-          static_cast<unsigned char>(data_[pos_ + (format_ == Format::kBigEndian ? n - 1 - i : i)]);
-    }
-    pos_ += n;
-    switch (type) {
-      case PlyType::kInt8:
-        return static_cast<double>(static_cast<std::int8_t>(bytes[0]));
-      case PlyType::kUint8:
-        return bytes[0];
-      case PlyType::kInt16:
-        return load<std::int16_t>(bytes);
-      case PlyType::kUint16:
-        return load<std::uint16_t>(bytes);
-      case PlyType::kInt32:
-        return load<std::int32_t>(bytes);
-      case PlyType::kUint32:
-        return load<std::uint32_t>(bytes);
-      case PlyType::kFloat32:
-        return load<float>(bytes);
-      case PlyType::kFloat64:
-        return load<double>(bytes);
-    }
-    return 0.0;
-  }
-
-  [[noreturn]] void fail(std::string_view message) const {
-    throw std::runtime_error(cat("mesh file ", path_.string(), " is corrupt: ", message));
-  }
-
- private:
-  template <typename T>
-  static double load(const unsigned char* bytes) {
-    T value;
-    std::memcpy(&value, bytes, sizeof(T));
-    return static_cast<double>(value);
-  }
-
-  double read_ascii(PlyType type, std::string_view what) {
-    while (pos_ < data_.size() && std::isspace(static_cast<unsigned char>(data_[pos_]))) ++pos_;
-    if (pos_ >= data_.size()) fail(cat("the file ends inside ", what));
-    const char* begin = data_.c_str() + pos_;
-    char* end = nullptr;
-    const double value = std::strtod(begin, &end);
-    if (end == begin) fail(cat(what, " is not a number at byte ", pos_));
-    pos_ += static_cast<std::size_t>(end - begin);
-    if (ply_integral(type) && value != std::floor(value)) {
-      fail(cat(what, " is not a whole number at byte ", pos_));
-    }
-    return value;
-  }
-
-  const std::string& data_;
-  std::size_t pos_;
-  Format format_;
-  const std::filesystem::path& path_;
-};
-
+/// The triangles of a PLY file: the vertex element's x, y, z and the face element's
+/// vertex_indices (or vertex_index) lists as fans; read by io's one PLY reader.
 TriangleMesh read_ply(const std::filesystem::path& path) {
-  const std::string data = read_text(path);
-  auto fail = [&](std::string_view message) -> void {
-    throw std::runtime_error(cat("mesh file ", path.string(), " is corrupt: ", message));
-  };
-  // Header: lines up to "end_header".
-  std::size_t pos = 0;
-  auto next_line = [&](std::string& line) {
-    if (pos >= data.size()) return false;
-    const std::size_t end = data.find('\n', pos);
-    if (end == std::string::npos) return false;
-    line = data.substr(pos, end - pos);
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    pos = end + 1;
-    return true;
-  };
-  std::string line;
-  if (!next_line(line) || line != "ply") fail("it does not start with 'ply'");
-  std::optional<PlyBody::Format> format;
-  std::vector<PlyElement> elements;
-  bool ended = false;
-  while (next_line(line)) {
-    std::istringstream words(line);
-    std::string keyword;
-    words >> keyword;
-    if (keyword == "end_header") {
-      ended = true;
-      break;
-    }
-    if (keyword == "comment" || keyword == "obj_info" || keyword.empty()) continue;
-    if (keyword == "format") {
-      std::string name;
-      words >> name;
-      if (name == "ascii")
-        format = PlyBody::Format::kAscii;
-      else if (name == "binary_little_endian")
-        format = PlyBody::Format::kLittleEndian;
-      else if (name == "binary_big_endian")
-        format = PlyBody::Format::kBigEndian;
-      else
-        fail(cat("unknown format '", name, "'"));
-    } else if (keyword == "element") {
-      PlyElement element;
-      long long count = -1;
-      words >> element.name >> count;
-      if (!words || count < 0) fail(cat("bad element line '", line, "'"));
-      element.count = static_cast<std::size_t>(count);
-      elements.push_back(element);
-    } else if (keyword == "property") {
-      if (elements.empty()) fail("a property before any element");
-      PlyProperty property;
-      std::string type;
-      words >> type;
-      if (type == "list") {
-        std::string count_type, item_type;
-        words >> count_type >> item_type >> property.name;
-        const auto c = parse_ply_type(count_type), i = parse_ply_type(item_type);
-        if (!c || !i || !ply_integral(*c)) fail(cat("bad list property '", line, "'"));
-        property.list = true;
-        property.count_type = *c;
-        property.type = *i;
-      } else {
-        words >> property.name;
-        const auto t = parse_ply_type(type);
-        if (!t) fail(cat("unknown property type '", type, "'"));
-        property.type = *t;
-      }
-      if (property.name.empty()) fail(cat("a property without a name: '", line, "'"));
-      elements.back().properties.push_back(property);
-    } else {
-      fail(cat("unknown header line '", line, "'"));
-    }
-  }
-  if (!ended) fail("the header has no end_header");
-  if (!format) fail("the header has no format line");
-
-  PlyBody body(data, pos, *format, path);
+  const std::string bytes = read_text(path);
   TriangleMesh mesh;
-  bool have_vertices = false;
-  for (const PlyElement& element : elements) {
-    // Every instance takes at least one byte per value (two in ASCII): guard the allocation.
-    const std::size_t min_bytes = std::max<std::size_t>(1, element.properties.size());
-    if (element.count > body.remaining() / min_bytes + 1) {
-      fail(cat("element '", element.name, "' claims ", element.count,
-               " items, more than the file holds"));
+  try {
+    const PlyReader ply(bytes);
+    const auto v = ply.find("vertex");
+    if (!v) throw FormatError("no vertex element");
+    const PlyElement& vertex = ply.elements()[*v];
+    const auto x = vertex.find("x"), y = vertex.find("y"), z = vertex.find("z");
+    if (!x || !y || !z) throw FormatError("the vertex element lacks x, y or z");
+    const auto f = ply.find("face");
+    std::optional<std::size_t> indices;
+    if (f) {
+      const PlyElement& face = ply.elements()[*f];
+      indices = face.find("vertex_indices", true);
+      if (!indices) indices = face.find("vertex_index", true);
+      if (!indices) throw FormatError("the face element has no vertex_indices list");
     }
-    const bool is_vertex = element.name == "vertex";
-    const bool is_face = element.name == "face";
-    int ix = -1, iy = -1, iz = -1, iface = -1;
-    for (std::size_t k = 0; k < element.properties.size(); ++k) {
-      const PlyProperty& p = element.properties[k];
-      if (is_vertex && !p.list && p.name == "x") ix = static_cast<int>(k);
-      if (is_vertex && !p.list && p.name == "y") iy = static_cast<int>(k);
-      if (is_vertex && !p.list && p.name == "z") iz = static_cast<int>(k);
-      if (is_face && p.list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
-        iface = static_cast<int>(k);
-      }
-    }
-    if (is_vertex) {
-      if (ix < 0 || iy < 0 || iz < 0) fail("the vertex element lacks x, y or z");
-      have_vertices = true;
-      mesh.vertices.reserve(element.count);
-    }
-    if (is_face && iface < 0) fail("the face element has no vertex_indices list");
-    std::vector<int> polygon;
-    for (std::size_t n = 0; n < element.count; ++n) {
-      Eigen::Vector3d v = Eigen::Vector3d::Zero();
-      for (std::size_t k = 0; k < element.properties.size(); ++k) {
-        const PlyProperty& p = element.properties[k];
-        const std::string what = cat(element.name, " ", n, " ", p.name);
-        if (!p.list) {
-          const double value = body.read(p.type, what);
-          const int kk = static_cast<int>(k);
-          if (kk == ix) v.x() = value;
-          if (kk == iy) v.y() = value;
-          if (kk == iz) v.z() = value;
-          continue;
+    mesh.vertices.reserve(vertex.count);  // the reader checked that the data can hold them
+    ply.read(std::max(*v, f.value_or(0)), [&](std::size_t e, std::uint64_t i, const PlyRecord& r) {
+      if (e == *v) {
+        mesh.vertices.emplace_back(r.scalar(*x), r.scalar(*y), r.scalar(*z));
+      } else if (e == f) {
+        const std::span<const double> polygon = r.list(*indices);
+        for (const double index : polygon) {
+          if (index < 0 || index > 2e9)
+            throw FormatError(cat("face ", i, " has a bad index ", index));
         }
-        const double count = body.read(p.count_type, what);
-        if (count < 0 || count > static_cast<double>(body.remaining())) {
-          body.fail(cat(what, " has a bad length ", count));
-        }
-        polygon.clear();
-        for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
-          const double index = body.read(p.type, what);
-          if (static_cast<int>(k) == iface) {
-            if (index < 0 || index > 2e9) body.fail(cat(what, " has a bad index ", index));
-            polygon.push_back(static_cast<int>(index));
-          }
-        }
-        for (std::size_t i = 2; i < polygon.size(); ++i) {
-          mesh.triangles.emplace_back(polygon[0], polygon[i - 1], polygon[i]);
+        // Polygons become fans.
+        for (std::size_t k = 2; k < polygon.size(); ++k) {
+          mesh.triangles.emplace_back(static_cast<int>(polygon[0]),
+                                      static_cast<int>(polygon[k - 1]),
+                                      static_cast<int>(polygon[k]));
         }
       }
-      if (is_vertex) mesh.vertices.push_back(v);
-    }
+    });
+  } catch (const FormatError& e) {
+    throw std::runtime_error(cat("mesh file ", path.string(), " is corrupt: ", e.what()));
   }
-  if (!have_vertices) fail("no vertex element");
   return mesh;
 }
 

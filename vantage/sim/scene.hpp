@@ -92,8 +92,9 @@ std::vector<std::string> builtin_scene_names();
 std::string builtin_scene_text(std::string_view name);
 
 /// A built-in scene by name, or a scene file by path. Throws std::invalid_argument with one line
-/// that names the file, line and key for a bad scene (unknown key, missing key, wrong type,
-/// negative size, unknown model or sensor), std::runtime_error when a file or model is missing.
+/// that names the file, line and key for a bad scene (unknown key, missing key, key given twice,
+/// wrong type, negative size, unknown model or sensor, a missing or corrupt mesh file), and
+/// std::runtime_error when the scene is neither built in nor a readable file.
 Scene load_scene(const std::string& name_or_yaml_path);
 
 /// Parses scene YAML text; `source` names it in messages, relative mesh paths resolve against

@@ -13,6 +13,7 @@
 #include "commands/commands.hpp"
 #include "commands/options.hpp"
 #include "shell.hpp"
+#include "vantage/gain/ray_model.hpp"
 
 namespace vantage::cli {
 namespace {
@@ -22,7 +23,7 @@ namespace fs = std::filesystem;
 struct BenchOptions {
   std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
   std::vector<std::string> methods = {"probabilistic", "greedy", "random"};
-  std::string alphas = "0.997";
+  std::string alphas = fmt::format("{}", kTableTopAlpha);
   int trials = 10;
   int scans = 10;
   std::uint64_t seed = 1;

@@ -14,6 +14,7 @@
 #include "shell.hpp"
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/results.hpp"
+#include "vantage/gain/ray_model.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/sim/scene.hpp"
 
@@ -36,9 +37,6 @@ struct ExploreOptions {
   bool quiet = false;
   bool alpha_given = false;  ///< --alpha on the command line (else the scene kind's default)
 };
-
-/// The paper's a for an office (§5.2) when --alpha is not given; table tops keep 0.997.
-constexpr double kOfficeAlpha = 0.9999;
 
 fs::path default_out(const ExploreOptions& o) {
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -69,6 +67,7 @@ void run(const ExploreOptions& o) {
   const sim::Scene scene = sim::load_scene(o.scene);
   const bool office = scene.kind == sim::SceneKind::kOffice;
   PlanningOptions planning = o.planning;
+  // The paper's a for an office (§5.2) when --alpha is not given; table tops keep the default.
   if (office && !o.alpha_given) planning.alpha = kOfficeAlpha;
   ExplorationConfig config;
   config.planner = planning.planner_config();
@@ -118,7 +117,8 @@ void add_explore_command(CLI::App& app) {
       ->capture_default_str();
   o->planning.add_to(*cmd);
   cmd->get_option("--alpha")->description(
-      "observability parameter a of the probabilistic method (table top 0.997, office 0.9999)");
+      fmt::format("observability parameter a of the probabilistic method (table top {}, office {})",
+                  kTableTopAlpha, kOfficeAlpha));
   o->mapping.add_to(*cmd);
   cmd->add_option("--scans,-n", o->scans, "number of scans to take (office: stops, a sweep each)")
       ->capture_default_str();

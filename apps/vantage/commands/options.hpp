@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "vantage/gain/ray_model.hpp"
 #include "vantage/perception/mapper.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"
@@ -15,7 +16,7 @@ namespace vantage::cli {
 /// --method, --alpha, --evaluation, --epsilon, --lambda, --threads.
 struct PlanningOptions {
   std::string method = "probabilistic";
-  double alpha = 0.997;
+  double alpha = kTableTopAlpha;
   std::string evaluation = "auto";
   double epsilon = GainConfig{}.epsilon;
   double lambda = PlannerConfig{}.lambda;

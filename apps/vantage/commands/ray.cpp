@@ -59,7 +59,7 @@ std::string to_csv(const std::vector<RayState>& states) {
 }
 
 struct RayOptions {
-  double alpha = 0.997;
+  double alpha = kTableTopAlpha;
   std::string cells;
   int scenario = 0;
   std::string csv_path;

@@ -11,7 +11,7 @@
 
 #include "commands/commands.hpp"
 #include "shell.hpp"
-#include "vantage/perception/cloud_io.hpp"
+#include "vantage/io/cloud_io.hpp"
 #include "vantage/sim/world.hpp"
 
 namespace vantage::cli {

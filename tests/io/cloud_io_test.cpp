@@ -1,7 +1,6 @@
-#include "vantage/perception/cloud_io.hpp"
+#include "vantage/io/cloud_io.hpp"
 
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <bit>
 #include <cmath>
@@ -15,28 +14,20 @@
 #include <stdexcept>
 #include <string>
 
+#include "temp_dir.hpp"
+
 namespace vantage {
 namespace {
 namespace fs = std::filesystem;
 
 class CloudIo : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() /
-           ("vantage_cloud_io_" + std::to_string(::getpid()) + "_" + info->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
   fs::path write(const std::string& name, const std::string& bytes) const {
-    const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
+    test::write_file(dir_ / name, bytes);
+    return dir_ / name;
   }
 
-  fs::path dir_;
+  test::TempDir dir_;
 };
 
 /// Points whose coordinates are exact in float, so a round trip must return them unchanged.
@@ -290,7 +281,7 @@ TEST_F(CloudIo, BadPointsAreRefusedAndTheOldFileKept) {
         << message;
   }
   EXPECT_EQ(read_point_cloud(path), good);
-  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_.path()), fs::directory_iterator()), 1);
 }
 
 }  // namespace

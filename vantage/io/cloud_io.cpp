@@ -1,0 +1,118 @@
+#include "vantage/io/cloud_io.hpp"
+
+// NOTE: PCL's readers are not used. PCL 1.13's PCDReader crashes (SIGSEGV) on a file that is not
+// a PCD file, and both its PCD and PLY readers turn a non-numeric ASCII value into 0 without a
+// word; this module must name the file and never return a partial or invented cloud. Nor is
+// pcl_io linked for its LZF decoder: it drags some 60 shared libraries (VTK, Qt) into every
+// program that reads a cloud, so binary_compressed PCD data is decoded in pcd.cpp. PLY goes
+// through the one PLY reader (ply.hpp), which reads meshes too.
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "vantage/io/atomic_file.hpp"
+#include "vantage/io/detail/pcd.hpp"
+#include "vantage/io/format_parsing.hpp"
+#include "vantage/io/ply.hpp"
+#include "vantage/util/text.hpp"
+
+namespace vantage {
+namespace {
+namespace fs = std::filesystem;
+
+enum class Format { kPcd, kPly };
+
+Format format_of(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (extension == ".pcd") return Format::kPcd;
+  if (extension == ".ply") return Format::kPly;
+  throw std::invalid_argument(cat(path.string(), ": unsupported point-cloud format '", extension,
+                                  "' (expected .pcd or .ply)"));
+}
+
+/// The x, y, z of every vertex of a PLY file; other elements and properties are not used.
+PointCloud parse_ply_cloud(std::string_view bytes) {
+  const PlyReader ply(bytes);
+  const auto v = ply.find("vertex");
+  if (!v) throw FormatError("the PLY file has no vertex element");
+  const PlyElement& vertex = ply.elements()[*v];
+  std::size_t xyz[3];
+  for (int a = 0; a < 3; ++a) {
+    const std::string_view name = std::string_view("xyz").substr(static_cast<std::size_t>(a), 1);
+    const auto k = vertex.find(name);
+    if (!k) throw FormatError(cat("the PLY vertex element has no scalar property '", name, "'"));
+    xyz[a] = *k;
+  }
+  if (vertex.count == 0) throw FormatError("the cloud is empty");
+  PointCloud cloud;
+  cloud.reserve(vertex.count);  // the reader checked that the data can hold them
+  ply.read(*v, [&](std::size_t e, std::uint64_t, const PlyRecord& r) {
+    if (e == *v) cloud.emplace_back(r.scalar(xyz[0]), r.scalar(xyz[1]), r.scalar(xyz[2]));
+  });
+  return cloud;
+}
+
+void check_finite(const PointCloud& cloud) {
+  for (std::size_t i = 0; i < cloud.size(); ++i) {
+    const Eigen::Vector3d& p = cloud[i];
+    if (!p.allFinite()) {
+      throw FormatError(
+          cat("point ", i, " has a non-finite coordinate (", p.x(), ", ", p.y(), ", ", p.z(), ")"));
+    }
+  }
+}
+
+}  // namespace
+
+PointCloud read_point_cloud(const fs::path& path, const CloudReadOptions& options) {
+  const Format format = format_of(path);
+  try {
+    const std::string bytes = read_file_bytes(path);
+    PointCloud cloud = format == Format::kPcd ? detail::parse_pcd(bytes) : parse_ply_cloud(bytes);
+    if (options.skip_non_finite) {
+      std::erase_if(cloud, [](const Eigen::Vector3d& p) { return !p.allFinite(); });
+      if (cloud.empty()) throw FormatError("no point has finite coordinates");
+    }
+    check_finite(cloud);
+    return cloud;
+  } catch (const FormatError& e) {
+    throw std::runtime_error(cat(path.string(), ": ", e.what()));
+  }
+}
+
+void write_point_cloud(const fs::path& path, const PointCloud& points) {
+  const Format format = format_of(path);
+  if (points.empty()) {
+    throw std::invalid_argument(cat(path.string(), ": refusing to write an empty point cloud"));
+  }
+  std::vector<float> packed(3 * points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    for (int a = 0; a < 3; ++a) {
+      const auto value = static_cast<float>(points[i][a]);
+      if (!std::isfinite(value)) {
+        throw std::invalid_argument(cat(path.string(), ": point ", i, " is not finite as float (",
+                                        points[i].x(), ", ", points[i].y(), ", ", points[i].z(),
+                                        ")"));
+      }
+      packed[3 * i + static_cast<std::size_t>(a)] = value;
+    }
+  }
+  const std::string header =
+      format == Format::kPcd ? detail::pcd_header(points.size())
+                             : ply_header(PlyFormat::kBinaryLittleEndian, {"written by vantage"},
+                                          {{"vertex", points.size(), {{"x"}, {"y"}, {"z"}}}});
+  write_atomically(path, [&](std::ostream& out) {
+    out << header;
+    out.write(reinterpret_cast<const char*>(packed.data()),
+              static_cast<std::streamsize>(packed.size() * sizeof(float)));
+  });
+}
+
+}  // namespace vantage

@@ -1,0 +1,468 @@
+// The scene file: YAML (docs/scenes.md), read by io's one strict YAML reader into a Scene.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "vantage/io/yaml_reader.hpp"
+#include "vantage/sim/furniture.hpp"
+#include "vantage/sim/mesh_io.hpp"
+#include "vantage/sim/scene.hpp"
+#include "vantage/util/text.hpp"
+
+namespace vantage::sim {
+namespace {
+
+double number_or(const YamlField& map, std::string_view key, double fallback) {
+  const auto f = map.get(key);
+  return f ? f->number() : fallback;
+}
+double positive_or(const YamlField& map, std::string_view key, double fallback) {
+  const auto f = map.get(key);
+  return f ? f->positive() : fallback;
+}
+double non_negative_or(const YamlField& map, std::string_view key, double fallback) {
+  const auto f = map.get(key);
+  return f ? f->non_negative() : fallback;
+}
+
+/// [x, y, z] or [x, y, z, roll, pitch, yaw] with angles in degrees.
+Eigen::Isometry3d parse_pose(const YamlField& f) {
+  const std::vector<double> v = f.numbers(3, 6);
+  if (v.size() != 3 && v.size() != 6) {
+    f.fail("must be [x, y, z] or [x, y, z, roll_deg, pitch_deg, yaw_deg]");
+  }
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  if (v.size() == 6) rpy = {deg2rad(v[3]), deg2rad(v[4]), deg2rad(v[5])};
+  return pose_from_xyz_rpy({v[0], v[1], v[2]}, rpy);
+}
+
+constexpr int kCylinderSegments = 48;
+
+struct Parser {
+  const std::string& source;
+  std::filesystem::path base_dir;
+  Scene scene;
+
+  void parse(const YamlField& root) {
+    root.allow_keys({"name", "kind", "description", "units", "grid", "floor", "table", "walls",
+                     "rooms", "doors", "objects", "sensor", "mount", "candidates", "start_poses",
+                     "pose_noise", "robot"});
+    scene.name = root.at("name").text();
+    const YamlField kind = root.at("kind");
+    if (kind.text() == "tabletop") {
+      scene.kind = SceneKind::kTableTop;
+    } else if (kind.text() == "office") {
+      scene.kind = SceneKind::kOffice;
+    } else {
+      kind.fail(cat("must be tabletop or office, got '", kind.text(), "'"));
+    }
+    if (auto units = root.get("units")) parse_units(*units);
+    parse_grid(root.at("grid"));
+    if (auto f = root.get("floor")) parse_floor(*f);
+    if (auto f = root.get("table")) parse_table(*f);
+    parse_walls(root);
+    if (auto f = root.get("objects")) {
+      const auto items = f->items();
+      for (std::size_t i = 0; i < items.size(); ++i) parse_object(items[i], i);
+    }
+    parse_sensor(root.at("sensor"));
+    parse_mount(root.at("mount"));
+    if (auto f = root.get("robot")) parse_robot(*f);
+    parse_candidates(root.at("candidates"));
+    parse_starts(root.at("start_poses"));
+    if (auto f = root.get("pose_noise")) parse_pose_noise(*f);
+  }
+
+  void parse_units(const YamlField& f) {
+    f.allow_keys({"length", "angle"});
+    if (auto l = f.get("length"); l && l->text() != "m") l->fail("only metres ('m') are supported");
+    if (auto a = f.get("angle"); a && a->text() != "deg") {
+      a->fail("only degrees ('deg') are supported in scene files");
+    }
+  }
+
+  void parse_grid(const YamlField& f) {
+    f.allow_keys({"origin", "resolution", "dims"});
+    scene.grid.origin = f.at("origin").vec3();
+    scene.grid.resolution = f.at("resolution").positive();
+    const YamlField dims = f.at("dims");
+    dims.numbers(3, 3);
+    for (std::size_t i = 0; i < 3; ++i) {
+      scene.grid.dims[static_cast<int>(i)] = dims[i].integer(1, 1 << 20);
+    }
+    try {
+      scene.grid.validate();
+    } catch (const std::invalid_argument& e) {
+      f.fail(e.what());
+    }
+  }
+
+  void parse_floor(const YamlField& f) {
+    f.allow_keys({"size", "center", "thickness"});
+    const Eigen::Vector2d size = f.at("size").positive_vec2();
+    const Eigen::Vector2d center =
+        f.has("center") ? f.at("center").vec2() : Eigen::Vector2d::Zero();
+    const double thickness = positive_or(f, "thickness", 0.05);
+    const Eigen::Isometry3d T(Eigen::Translation3d(center.x(), center.y(), -thickness));
+    scene.shapes.push_back(
+        mesh_shape("floor", "floor", transformed(make_box({size.x(), size.y(), thickness}), T)));
+    scene.floor_area = Eigen::AlignedBox2d(center - size / 2, center + size / 2);
+  }
+
+  void parse_table(const YamlField& f) {
+    f.allow_keys({"size", "height", "center", "top_thickness", "leg_width"});
+    const Eigen::Vector2d size = f.at("size").positive_vec2();
+    const double height = f.at("height").positive();
+    const Eigen::Vector2d center =
+        f.has("center") ? f.at("center").vec2() : Eigen::Vector2d::Zero();
+    const double top = positive_or(f, "top_thickness", 0.03);
+    const double leg = positive_or(f, "leg_width", 0.05);
+    if (top >= height) f.at("top_thickness").fail("must be less than the table's height");
+    if (2 * leg >= size.minCoeff()) f.at("leg_width").fail("must be less than half the table");
+    const Eigen::Isometry3d T(Eigen::Translation3d(center.x(), center.y(), 0.0));
+    scene.shapes.push_back(
+        mesh_shape("table", "table", transformed(make_table(size, height, top, leg), T)));
+  }
+
+  void parse_walls(const YamlField& root) {
+    std::vector<WallSegment> segments;
+    double height = 0.0, thickness = 0.0;
+    const auto walls = root.get("walls");
+    const auto rooms = root.get("rooms");
+    const auto doors_field = root.get("doors");
+    if (!walls && !rooms) {
+      if (doors_field) doors_field->fail("doors need walls or rooms");
+      return;
+    }
+    if (!walls) root.fail("rooms need a 'walls' map with height and thickness");
+    walls->allow_keys({"height", "thickness", "segments"});
+    height = walls->at("height").positive();
+    thickness = walls->at("thickness").positive();
+    if (auto segs = walls->get("segments")) {
+      const auto items = segs->items();
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        const std::vector<double> v = items[i].numbers(4, 4);
+        WallSegment w{{v[0], v[1]}, {v[2], v[3]}, cat("walls.segments[", i, "]")};
+        if ((w.b - w.a).norm() < 1e-6) items[i].fail("has zero length");
+        segments.push_back(w);
+      }
+    }
+    if (rooms) {
+      const auto items = rooms->items();
+      for (std::size_t i = 0; i < items.size(); ++i) {
+        const YamlField& r = items[i];
+        r.allow_keys({"name", "min", "max"});
+        Room room;
+        room.name = r.has("name") ? r.at("name").text() : cat("room ", i);
+        const Eigen::Vector2d lo = r.at("min").vec2(), hi = r.at("max").vec2();
+        if (!(hi.x() > lo.x() && hi.y() > lo.y())) r.at("max").fail("must exceed min in x and y");
+        room.area = Eigen::AlignedBox2d(lo, hi);
+        const std::string name = cat("rooms[", i, "] (", room.name, ")");
+        const Eigen::Vector2d c1(hi.x(), lo.y()), c3(lo.x(), hi.y());
+        segments.push_back({lo, c1, name});
+        segments.push_back({c1, hi, name});
+        segments.push_back({hi, c3, name});
+        segments.push_back({c3, lo, name});
+        scene.rooms.push_back(room);
+      }
+    }
+    std::vector<YamlField> door_fields;
+    std::vector<Door> doors;
+    if (doors_field) {
+      for (const YamlField& d : doors_field->items()) {
+        d.allow_keys({"at", "width"});
+        door_fields.push_back(d);
+        doors.push_back({d.at("at").vec2(), d.at("width").positive()});
+      }
+    }
+    const std::vector<bool> used = build_walls(segments, height, thickness, doors, scene.shapes);
+    for (std::size_t d = 0; d < doors.size(); ++d) {
+      if (!used[d]) door_fields[d].fail("cuts no wall (it must lie on a wall's centre line)");
+    }
+  }
+
+  void parse_object(const YamlField& f, std::size_t index) {
+    f.require_map();
+    const YamlField type_field = f.at("type");
+    const std::string type = type_field.text();
+    const std::string label = cat("objects[", index, "]");
+    std::vector<Shape> made;
+    if (type == "box" || type == "cabinet") {
+      f.allow_keys({"type", "size", "pose", "repeat"});
+      made.push_back(mesh_shape(label, type, make_box(f.at("size").positive_vec3())));
+    } else if (type == "desk" || type == "table") {
+      f.allow_keys({"type", "size", "pose", "repeat"});
+      made.push_back(mesh_shape(label, type, make_desk(f.at("size").positive_vec3())));
+    } else if (type == "chair") {
+      f.allow_keys({"type", "size", "pose", "repeat"});
+      made.push_back(mesh_shape(label, type, make_chair(f.at("size").positive_vec3())));
+    } else if (type == "shelf") {
+      f.allow_keys({"type", "size", "pose", "repeat"});
+      made.push_back(mesh_shape(label, type, make_shelf(f.at("size").positive_vec3())));
+    } else if (type == "cylinder") {
+      f.allow_keys({"type", "radius", "height", "segments", "pose", "repeat"});
+      const int segments =
+          f.has("segments") ? f.at("segments").integer(3, 4096) : kCylinderSegments;
+      made.push_back(mesh_shape(
+          label, type,
+          make_cylinder(f.at("radius").positive(), f.at("height").positive(), segments)));
+    } else if (type == "sphere") {
+      f.allow_keys({"type", "radius", "pose", "repeat"});
+      Shape s;
+      s.name = label;
+      s.kind = type;
+      s.sphere = Sphere{Eigen::Vector3d::Zero(), f.at("radius").positive()};
+      made.push_back(s);
+    } else if (type == "mesh") {
+      f.allow_keys({"type", "model", "file", "scale", "pose", "repeat"});
+      made.push_back(parse_mesh(f, label));
+    } else {
+      type_field.fail(cat("unknown object type '", type,
+                          "' (expected box, cylinder, sphere, mesh, desk, table, chair, shelf or "
+                          "cabinet)"));
+    }
+    const Eigen::Isometry3d pose = parse_pose(f.at("pose"));
+    std::vector<Eigen::Vector2d> offsets = {Eigen::Vector2d::Zero()};
+    if (auto r = f.get("repeat")) {
+      r->allow_keys({"count", "step"});
+      const YamlField count = r->at("count");
+      count.numbers(2, 2);
+      const int nx = count[0].integer(1, 1000), ny = count[1].integer(1, 1000);
+      const Eigen::Vector2d step = r->at("step").vec2();
+      offsets.clear();
+      for (int j = 0; j < ny; ++j) {
+        for (int i = 0; i < nx; ++i) offsets.emplace_back(step.x() * i, step.y() * j);
+      }
+    }
+    for (std::size_t k = 0; k < offsets.size(); ++k) {
+      const Eigen::Isometry3d T = Eigen::Translation3d(offsets[k].x(), offsets[k].y(), 0.0) * pose;
+      Shape s = made.front();
+      if (offsets.size() > 1) s.name = cat(label, "#", k);
+      if (s.sphere) {
+        s.sphere->center = T.translation();
+      } else {
+        s.mesh_world = transformed(s.mesh_world, T);
+      }
+      scene.shapes.push_back(std::move(s));
+    }
+  }
+
+  Shape parse_mesh(const YamlField& f, const std::string& label) {
+    const auto model = f.get("model");
+    const auto file = f.get("file");
+    if (model.has_value() == file.has_value())
+      f.fail("a mesh needs exactly one of 'model' or 'file'");
+    Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+    if (auto s = f.get("scale")) {
+      scale = s->is_sequence() ? s->positive_vec3() : Eigen::Vector3d::Constant(s->positive());
+    } else if (model) {
+      f.fail("missing key 'scale' (a built-in model's largest size, in metres)");
+    }
+    TriangleMesh mesh;
+    std::string name;
+    if (model) {
+      name = model->text();
+      try {
+        mesh = load_builtin_model(name);
+      } catch (const std::exception& e) {
+        model->fail(e.what());
+      }
+    } else {
+      std::filesystem::path path = file->text();
+      if (path.is_relative()) path = base_dir / path;
+      name = path.filename().string();
+      try {
+        mesh = load_mesh(path);
+      } catch (const std::exception& e) {
+        file->fail(e.what());
+      }
+    }
+    Shape s = mesh_shape(cat(label, " (", name, ")"), "mesh",
+                         transformed(mesh, Eigen::Isometry3d::Identity(), scale));
+    return s;
+  }
+
+  void parse_sensor(const YamlField& f) {
+    if (f.is_scalar()) {
+      try {
+        scene.sensor = builtin_sensor(f.text());
+      } catch (const std::invalid_argument& e) {
+        f.fail(e.what());
+      }
+      return;
+    }
+    f.allow_keys({"preset", "name", "type", "h_fov_deg", "v_fov_deg", "min_range", "max_range",
+                  "width", "height", "angular_resolution_deg", "tilt_resolution_deg", "noise",
+                  "sweep_steps"});
+    SensorConfig& s = scene.sensor;
+    if (auto p = f.get("preset")) {
+      try {
+        s = builtin_sensor(p->text());
+      } catch (const std::invalid_argument& e) {
+        p->fail(e.what());
+      }
+    } else {
+      const YamlField type = f.at("type");
+      try {
+        s.type = parse_sensor_type(type.text());
+      } catch (const std::invalid_argument& e) {
+        type.fail(e.what());
+      }
+      s.name = to_string(s.type);
+    }
+    if (auto v = f.get("name")) s.name = v->text();
+    if (auto v = f.get("type")) {
+      try {
+        s.type = parse_sensor_type(v->text());
+      } catch (const std::invalid_argument& e) {
+        v->fail(e.what());
+      }
+    }
+    if (auto v = f.get("h_fov_deg")) s.fov.h_fov = deg2rad(v->positive());
+    if (auto v = f.get("v_fov_deg")) s.fov.v_fov = deg2rad(v->positive());
+    if (auto v = f.get("min_range")) s.fov.min_range = v->non_negative();
+    if (auto v = f.get("max_range")) s.fov.max_range = v->positive();
+    if (auto v = f.get("width")) s.width = v->integer(1, 16384);
+    if (auto v = f.get("height")) s.height = v->integer(1, 16384);
+    if (auto v = f.get("angular_resolution_deg")) s.angular_resolution = deg2rad(v->positive());
+    if (auto v = f.get("tilt_resolution_deg")) s.tilt_resolution = deg2rad(v->positive());
+    if (auto v = f.get("sweep_steps")) s.sweep_steps = v->integer(1, 3600);
+    if (auto n = f.get("noise")) {
+      n->allow_keys({"sigma", "sigma_quadratic", "reference_range"});
+      s.noise.sigma = non_negative_or(*n, "sigma", 0.0);
+      s.noise.sigma_quadratic = non_negative_or(*n, "sigma_quadratic", 0.0);
+      s.noise.reference_range = non_negative_or(*n, "reference_range", 0.0);
+    }
+    try {
+      s.validate();
+    } catch (const std::invalid_argument& e) {
+      f.fail(e.what());
+    }
+  }
+
+  void parse_mount(const YamlField& f) {
+    f.allow_keys({"height", "target", "pitch_deg"});
+    scene.mount.height = f.at("height").positive();
+    const auto target = f.get("target");
+    const auto pitch = f.get("pitch_deg");
+    if (target.has_value() == pitch.has_value())
+      f.fail("needs exactly one of 'target' or 'pitch_deg'");
+    if (target) {
+      scene.mount.aims_at_target = true;
+      scene.mount.target = target->vec3();
+    } else {
+      const double p = pitch->number();
+      if (!(p > -90.0 && p < 90.0)) pitch->fail(cat("must lie in (-90, 90) degrees, got ", p));
+      scene.mount.pitch = deg2rad(p);
+    }
+  }
+
+  void parse_robot(const YamlField& f) {
+    f.allow_keys({"footprint", "height", "stop_spacing"});
+    scene.robot.footprint = positive_or(f, "footprint", scene.robot.footprint);
+    scene.robot.height = positive_or(f, "height", scene.robot.height);
+    scene.robot.stop_spacing = positive_or(f, "stop_spacing", scene.robot.stop_spacing);
+    if (scene.robot.stop_spacing > scene.robot.footprint) {
+      f.at("stop_spacing").fail("must not exceed the footprint (stops could straddle a wall)");
+    }
+  }
+
+  void parse_candidates(const YamlField& f) {
+    f.require_map();
+    const YamlField generator = f.at("generator");
+    const std::string g = generator.text();
+    if (scene.kind == SceneKind::kTableTop) {
+      if (g != "ring")
+        generator.fail(cat("a tabletop scene's generator must be ring, got '", g, "'"));
+      if (!scene.mount.aims_at_target) {
+        f.fail("the ring needs a mount with a 'target' (the point every view looks at)");
+      }
+      f.allow_keys({"generator", "radius", "positions", "start_angle_deg", "yaw_offsets_deg"});
+      RingConfig& ring = scene.ring;
+      ring.center = scene.mount.target;
+      ring.height = scene.mount.height;
+      ring.radius = f.at("radius").positive();
+      ring.positions = f.at("positions").integer(1, 10000);
+      ring.start_angle = deg2rad(number_or(f, "start_angle_deg", 0.0));
+      if (auto y = f.get("yaw_offsets_deg")) {
+        ring.yaw_offsets.clear();
+        for (const double d : y->numbers(1, 1000)) ring.yaw_offsets.push_back(deg2rad(d));
+      }
+      try {
+        ring.validate();
+      } catch (const std::invalid_argument& e) {
+        f.fail(e.what());
+      }
+    } else {
+      if (g != "frontier") {
+        generator.fail(cat("an office scene's generator must be frontier, got '", g, "'"));
+      }
+      f.allow_keys({"generator"});
+    }
+  }
+
+  void parse_starts(const YamlField& f) {
+    if (f.is_scalar()) {
+      if (f.text() != "ring") f.fail("must be 'ring' or a list of [x, y] or [x, y, yaw_deg] stops");
+      if (scene.kind != SceneKind::kTableTop) f.fail("'ring' starts need a tabletop scene");
+      const RingConfig& ring = scene.ring;
+      for (int k = 0; k < ring.positions; ++k) {
+        const double bearing = ring.start_angle + 2.0 * std::numbers::pi * k / ring.positions;
+        scene.start_poses.push_back(
+            scene.mount.sensor_pose(ring.center.x() + ring.radius * std::cos(bearing),
+                                    ring.center.y() + ring.radius * std::sin(bearing)));
+      }
+      return;
+    }
+    const auto items = f.items();
+    if (items.empty()) f.fail("needs at least one start");
+    for (const YamlField& item : items) {
+      const std::vector<double> v = item.numbers(2, 3);
+      if (scene.mount.aims_at_target && v.size() != 2) {
+        item.fail("must be [x, y]: the mount aims at its target, so there is no yaw");
+      }
+      if (!scene.mount.aims_at_target && v.size() != 3) item.fail("must be [x, y, yaw_deg]");
+      const Eigen::Vector2d xy(v[0], v[1]);
+      if (!scene.floor_area.isEmpty() && !scene.floor_area.contains(xy)) {
+        item.fail("lies outside the floor");
+      }
+      scene.start_poses.push_back(
+          scene.mount.sensor_pose(v[0], v[1], v.size() == 3 ? deg2rad(v[2]) : 0.0));
+    }
+  }
+
+  void parse_pose_noise(const YamlField& f) {
+    f.allow_keys({"x", "y", "yaw_deg"});
+    scene.pose_noise.x = non_negative_or(f, "x", 0.0);
+    scene.pose_noise.y = non_negative_or(f, "y", 0.0);
+    scene.pose_noise.yaw = deg2rad(non_negative_or(f, "yaw_deg", 0.0));
+  }
+};
+
+}  // namespace
+
+Scene parse_scene(const std::string& yaml_text, const std::string& source,
+                  const std::filesystem::path& base_dir) {
+  Parser parser{source, base_dir, {}};
+  parser.scene.source = source;
+  try {
+    parser.parse(parse_yaml(yaml_text, source));
+  } catch (const YamlError& e) {
+    // NOTE: a bad scene stays a bad argument (std::invalid_argument, Python's ValueError), as
+    // scene.hpp promises; the reader's YamlError is a std::runtime_error like other file errors.
+    throw std::invalid_argument(e.what());
+  }
+  Scene& scene = parser.scene;
+  if (scene.floor_area.isEmpty()) {
+    scene.floor_area =
+        Eigen::AlignedBox2d(scene.grid.origin.head<2>(), scene.grid.max_corner().head<2>());
+  }
+  return std::move(parser.scene);
+}
+
+}  // namespace vantage::sim
