@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "vantage/io/atomic_file.hpp"
-#include "vantage/io/octomap_io.hpp"
+#include "vantage/io/map_files.hpp"
 #include "vantage/perception/cloud_io.hpp"
 #include "vantage/planner/navigation.hpp"
 
@@ -196,7 +196,7 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
   run["scene"]["kind"] = sim::to_string(scene.kind);
   write_atomically(dir / "run.json", run.dump(2) + "\n");
 
-  write_octomap(dir / "map.bt", grid);
+  write_map_files(dir, grid);  // map.ot (lossless), map.bt, map_top.csv
   if (!mapper.object_cloud().empty()) write_point_cloud(dir / "cloud.pcd", mapper.object_cloud());
 
   std::string cells = "x,y,z\n";
