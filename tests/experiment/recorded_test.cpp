@@ -6,12 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <numeric>
 #include <string>
 
 #include "test_scene.hpp"
 #include "vantage/experiment/exploration.hpp"
+#include "vantage/io/octomap_io.hpp"
 #include "vantage/perception/cloud_io.hpp"
 #include "vantage/sim/world.hpp"
 
@@ -75,6 +77,67 @@ TEST(Recorded, PlanningFromFilesRanksAsInProcess) {
   EXPECT_EQ(ranking(a), ranking(b));
   for (std::size_t i = 0; i < candidates.size(); ++i) {
     EXPECT_DOUBLE_EQ(a.gains[i].gain, b.gains[i].gain) << "candidate " << i;
+  }
+}
+
+// The robot's loop: scan, plan, save the map, move, scan, plan from the saved map. Continuing from
+// map.ot must be exactly mapping every scan in one go: the same log-odds in every cell, the same
+// gains to the last bit, the same ranking. map.bt, which keeps classes only, must not be (else
+// this test could not tell the two apart).
+TEST(Recorded, ContinuingFromMapOtIsMappingEveryScanAtOnce) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  const sim::World world(scene);
+  MapperConfig config;
+  config.register_scans = false;  // a saved map carries no points for ICP to register against
+  config.segment_table = true;
+  std::vector<sim::SimulatedScan> scans;
+  for (const std::size_t start : {0u, 3u, 6u}) {
+    scans.push_back(world.scan(scene.start_poses[start], 21 + start));
+  }
+
+  Mapper at_once(scene.grid, config);
+  for (const sim::SimulatedScan& scan : scans) {
+    at_once.add_scan(scan.points_sensor, scan.T_world_sensor_true, scan.fov);
+  }
+
+  const std::filesystem::path dir = testing::fresh_dir("recorded_loop");
+  auto continued = [&](const std::string& extension) {
+    Mapper mapper(scene.grid, config);
+    for (std::size_t k = 0; k < scans.size(); ++k) {
+      if (k > 0) {
+        const std::filesystem::path saved = dir / ("step" + std::to_string(k) + extension);
+        write_octomap(saved, mapper.grid());
+        OctomapImportConfig import;
+        import.grid = scene.grid;
+        mapper = Mapper(read_octomap(saved, import).grid, config);
+      }
+      mapper.add_scan(scans[k].points_sensor, scans[k].T_world_sensor_true, scans[k].fov);
+    }
+    return mapper;
+  };
+  const Mapper from_ot = continued(".ot");
+  const Mapper from_bt = continued(".bt");
+
+  const std::span<const float> expected = at_once.grid().log_odds();
+  const std::span<const float> got = from_ot.grid().log_odds();
+  ASSERT_EQ(got.size(), expected.size());
+  EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size_bytes()), 0)
+      << "the map continued from map.ot differs from the map of every scan";
+  EXPECT_NE(std::memcmp(from_bt.grid().log_odds().data(), expected.data(), got.size_bytes()), 0);
+
+  std::vector<Candidate> candidates;
+  for (const Eigen::Isometry3d& pose : scene.candidate_poses()) {
+    candidates.push_back({Frustum(pose, scene.fov())});
+  }
+  PlannerConfig planner;
+  planner.greedy_reference = true;
+  const Plan a = plan_next_view(at_once.grid(), candidates, planner);
+  const Plan b = plan_next_view(from_ot.grid(), candidates, planner);
+  EXPECT_EQ(a.best, b.best);
+  EXPECT_EQ(ranking(a), ranking(b));
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    EXPECT_EQ(a.gains[i].gain, b.gains[i].gain) << "candidate " << i;
+    EXPECT_EQ(a.greedy_gains[i], b.greedy_gains[i]) << "candidate " << i;
   }
 }
 
