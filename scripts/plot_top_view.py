@@ -44,7 +44,8 @@ def draw_top_view(ax, path, fig, occupied_by_height=True):
             top[j, i] = float(r["top"])
     extent = (ox, ox + nx * res, oy, oy + ny * res)
     shade = ax.imshow(np.ma.masked_equal(unobserved, 0), origin="lower", extent=extent,
-                      interpolation="nearest", cmap=UNOBSERVED_CMAP, vmin=0, vmax=nz)
+                      interpolation="nearest", cmap=UNOBSERVED_CMAP, vmin=0,
+                      vmax=max(1, unobserved.max()))
     fig.colorbar(shade, ax=ax, shrink=0.6, pad=0.02,
                  label=f"unobserved cells in the column (of {nz})")
     handles = [plt.Rectangle((0, 0), 1, 1, color=plt.get_cmap(UNOBSERVED_CMAP)(0.5),
