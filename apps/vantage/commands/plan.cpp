@@ -151,12 +151,7 @@ std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen
     return sphere_poses(sphere);
   }
   if (o.candidates == "frontier") return frontier_poses(grid);
-  if (!fs::exists(o.candidates)) {
-    throw std::invalid_argument(
-        fmt::format("--candidates '{}' is neither ring, sphere, frontier nor an existing pose file",
-                    o.candidates));
-  }
-  return read_candidate_poses(o.candidates, frame);
+  return read_candidate_poses(o.candidates, frame);  // run() checked that the file exists
 }
 
 void run(const PlanOptions& o) {
@@ -181,6 +176,15 @@ void run(const PlanOptions& o) {
         fmt::format("--method {} weighs travel and needs the robot's pose: give --pose "
                     "x,y,z,roll,pitch,yaw or a manifest (its last cloud's pose is used)",
                     to_string(planner.method)));
+  }
+
+  if (o.input.empty()) fov_from_options(o);  // throws for a bad --fov-deg or --range
+  const bool named_candidates =
+      o.candidates == "ring" || o.candidates == "sphere" || o.candidates == "frontier";
+  if (!named_candidates && !fs::exists(o.candidates)) {
+    throw std::invalid_argument(
+        fmt::format("--candidates '{}' is neither ring, sphere, frontier nor an existing pose file",
+                    o.candidates));
   }
 
   const auto start = std::chrono::steady_clock::now();
