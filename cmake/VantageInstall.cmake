@@ -1,5 +1,6 @@
 # Install and export: `cmake --install <build> [--prefix P]` installs the headers (vantage/**.hpp,
-# layout preserved), the libraries and a CMake package, so that a user project writes
+# layout preserved), the libraries, a CMake package, the `vantage` binary and its plot scripts
+# (share/vantage/scripts, where the installed binary looks for them), so that a user project writes
 #   find_package(vantage REQUIRED)
 #   target_link_libraries(app PRIVATE vantage::vantage)
 # vantage::vantage links the core and every installed edge module; vantage::core, vantage::io, ...
@@ -75,6 +76,26 @@ foreach(edge sim perception io experiment)
   endif()
 endforeach()
 
+# NOTE: perception links vantage_pcl, an IMPORTED target of its own (PCL's headers and the few PCL
+# libraries it calls, without the VTK and Qt that PCL's component targets drag in). An imported
+# target is not exported: the exported link interface names it, and vantageConfig.cmake recreates
+# it from the consumer's find_dependency(PCL COMPONENTS ...), the components read off its
+# libraries (libpcl_<component>.so).
+set(_vantage_recreated "")
+function(_vantage_pcl_components_of target out)
+  get_target_property(libraries ${target} INTERFACE_LINK_LIBRARIES)
+  set(components "")
+  foreach(library IN LISTS libraries)
+    get_filename_component(name "${library}" NAME)
+    if(name MATCHES "^(lib)?pcl_([a-z_0-9]+)(\\.|$)")
+      list(APPEND components ${CMAKE_MATCH_2})
+    else()
+      message(FATAL_ERROR "VantageInstall: ${target} links '${library}', not a PCL library")
+    endif()
+  endforeach()
+  set(${out} "${components}" PARENT_SCOPE)
+endfunction()
+
 set(_vantage_installed "")
 set(_vantage_packages "")
 set(_vantage_pcl_components "")
@@ -83,6 +104,13 @@ foreach(module IN LISTS _vantage_modules)
   set(ok TRUE)
   set(packages "")
   foreach(item IN LISTS items)
+    if(item STREQUAL "vantage_pcl")
+      _vantage_pcl_components_of(vantage_pcl components)
+      list(APPEND packages PCL)
+      list(APPEND _vantage_pcl_components ${components})
+      list(APPEND _vantage_recreated vantage_pcl)
+      continue()
+    endif()
     if(item MATCHES "^vantage(::|_)(.+)$")
       list(APPEND _vantage_needs_${module} ${CMAKE_MATCH_2})
       continue()
@@ -170,6 +198,22 @@ foreach(package IN LISTS _vantage_packages)
 endforeach()
 set(VANTAGE_INSTALLED_MODULES "${_vantage_installed}")
 
+# The recreated vantage_pcl: the same PCL libraries, as the consumer's find_package(PCL) found them.
+set(VANTAGE_RECREATE_TARGETS "")
+if("vantage_pcl" IN_LIST _vantage_recreated)
+  set(libraries "")
+  foreach(component IN LISTS _vantage_pcl_components)
+    string(TOUPPER ${component} upper)
+    list(APPEND libraries "\${PCL_${upper}_LIBRARY}")
+  endforeach()
+  list(JOIN libraries ";" libraries)
+  string(APPEND VANTAGE_RECREATE_TARGETS
+         "if(NOT TARGET vantage_pcl)\n"
+         "  add_library(vantage_pcl INTERFACE IMPORTED)\n"
+         "  set_target_properties(vantage_pcl PROPERTIES INTERFACE_LINK_LIBRARIES \"${libraries}\")\n"
+         "endif()\n")
+endif()
+
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/vantageConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/vantageConfig.cmake
                               INSTALL_DESTINATION ${VANTAGE_INSTALL_CMAKEDIR})
@@ -179,4 +223,12 @@ write_basic_package_version_file(${PROJECT_BINARY_DIR}/vantageConfigVersion.cmak
 install(FILES ${PROJECT_BINARY_DIR}/vantageConfig.cmake
               ${PROJECT_BINARY_DIR}/vantageConfigVersion.cmake
         DESTINATION ${VANTAGE_INSTALL_CMAKEDIR})
+# The command-line tool and the plot scripts it runs. The binary finds them at
+# VANTAGE_INSTALLED_SCRIPTS_DIR, relative to its own folder (see apps/vantage/shell.cpp).
+if(TARGET vantage)
+  install(TARGETS vantage RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()
+file(GLOB _vantage_scripts ${PROJECT_SOURCE_DIR}/scripts/plot_*.py)
+install(PROGRAMS ${_vantage_scripts} DESTINATION ${CMAKE_INSTALL_DATADIR}/vantage/scripts)
+
 message(STATUS "Vantage install: modules ${_vantage_installed}; packages ${_vantage_packages}")

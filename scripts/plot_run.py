@@ -1,12 +1,16 @@
 #!/usr/bin/python3
-"""Draws one exploration run (the folder `vantage explore` writes).
+"""Draws one exploration run (the folder `vantage explore` writes) or one plan (`vantage plan`).
 
 Usage: plot_run.py RUN_DIR
-Writes RUN_DIR/unobserved.png (unobserved cells and coverage by scan; for an office also
-unobserved cells by distance travelled) and RUN_DIR/map.png: on a table top, a top view of the
-final map's occupied cells with the candidate views and the views taken; in an office, a top view
-of the explored floor (seen free space, obstacles, rooms) with the path driven and the stops, and
-the goals the robot could not reach (fallbacks, paper section 5.3.1).
+For an exploration, writes RUN_DIR/unobserved.png (unobserved cells and coverage by scan; for an
+office also unobserved cells by distance travelled) and RUN_DIR/map.png: on a table top, a top
+view of the final map (occupied and unobserved cells) with the candidate views and the views
+taken; in an office, a top view of the explored floor (seen free space, obstacles, rooms) with the
+path driven and the stops, and the goals the robot could not reach (fallbacks, paper section
+5.3.1).
+For a plan (RUN_DIR holds plan.json), writes RUN_DIR/map.png: a top view of the map (occupied and
+unobserved cells), the candidate views coloured by their predicted gain, the chosen view and the
+robot.
 """
 import csv
 import json
@@ -18,6 +22,9 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.colors import Normalize  # noqa: E402
+
+from plot_top_view import draw_top_view  # noqa: E402
 
 
 def read_csv(path):
@@ -120,6 +127,8 @@ def plot_office_map(run_dir, run):
                           label="unreachable goal (fallback)"),
                plt.Line2D([], [], marker="+", ls="", color="#7b1fa2",
                           label="frontier stops left"),
+               plt.Rectangle((0, 0), 1, 1, color="#eeeeee", ec="#bdbdbd",
+                             label="not seen at sensor height (unobserved)"),
                plt.Rectangle((0, 0), 1, 1, color="#bbdefb", label="seen free at sensor height"),
                plt.Rectangle((0, 0), 1, 1, color="#37474f", label="obstacle (robot's band)")]
     ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
@@ -138,20 +147,11 @@ def plot_office_map(run_dir, run):
 
 
 def plot_map(run_dir, run):
-    cells = read_csv(os.path.join(run_dir, "map_cells.csv"))
-    fig, ax = plt.subplots(figsize=(6.4, 6.4))
-    if cells:
-        xs = [float(c["x"]) for c in cells]
-        ys = [float(c["y"]) for c in cells]
-        zs = [float(c["z"]) for c in cells]
-        order = sorted(range(len(zs)), key=lambda i: zs[i])  # the highest cells drawn on top
-        sc = ax.scatter([xs[i] for i in order], [ys[i] for i in order],
-                        c=[zs[i] for i in order], s=2, cmap="viridis", marker="s")
-        fig.colorbar(sc, ax=ax, shrink=0.7, label="height of occupied cells [m]")
+    fig, ax = plt.subplots(figsize=(9.0, 6.4))
+    handles = draw_top_view(ax, os.path.join(run_dir, "map_top.csv"), fig)
     g = run["scene"]["grid"]
     ox, oy = g["origin"][0], g["origin"][1]
     w, h = g["dims"][0] * g["resolution"], g["dims"][1] * g["resolution"]
-    ax.add_patch(plt.Rectangle((ox, oy), w, h, fill=False, ls=":", color="grey"))
     for c in run["candidates"]:
         px, py = c["position"][0], c["position"][1]
         yaw = yaw_of(c["quaternion_xyzw"])
@@ -184,6 +184,12 @@ def plot_map(run_dir, run):
         ax.annotate(",".join(scans), (px, py), textcoords="offset points",
                     xytext=(14 * ux / norm, 14 * uy / norm), ha="center", va="center",
                     fontsize=9, color="#e65100", weight="bold")
+    handles += [plt.Line2D([], [], marker=r"$\rightarrow$", ls="", ms=10, color="#bdbdbd",
+                           label="candidate views"),
+                plt.Line2D([], [], marker=r"$\rightarrow$", ls="", ms=12, color="#e65100",
+                           label="views taken (number: scan)"),
+                plt.Line2D([], [], color="#e65100", lw=1.5, alpha=0.7, label="walk")]
+    ax.legend(handles=handles, fontsize=7, loc="upper left")
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
@@ -194,10 +200,62 @@ def plot_map(run_dir, run):
     plt.close(fig)
 
 
+def plot_plan(run_dir, plan):
+    fig, ax = plt.subplots(figsize=(9.0, 7.4))
+    handles = draw_top_view(ax, os.path.join(run_dir, "map_top.csv"), fig, occupied_by_height=False)
+    unit = plan["units"]["predicted_gain"]
+    candidates = sorted(plan["candidates"], key=lambda c: c["predicted_gain"])  # best on top
+    gains = [c["predicted_gain"] for c in candidates]
+    norm = Normalize(vmin=min(gains), vmax=max(max(gains), min(gains) + 1e-9))
+    cmap = plt.get_cmap("viridis")
+    for c in candidates:
+        px, py = c["sensor"]["position"][:2]
+        yaw = math.radians(c["yaw"])
+        ax.arrow(px, py, 0.15 * math.cos(yaw), 0.15 * math.sin(yaw),
+                 color=cmap(norm(c["predicted_gain"])), width=0.006, head_width=0.04,
+                 length_includes_head=True)
+    fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, shrink=0.6, pad=0.02,
+                 label=f"candidate's predicted gain [{unit}]")
+    best = plan["next_best_view"]
+    bx, by = best["sensor"]["position"][:2]
+    yaw = math.radians(best["yaw"])
+    ax.arrow(bx, by, 0.3 * math.cos(yaw), 0.3 * math.sin(yaw), color="#d50000", width=0.012,
+             head_width=0.07, length_includes_head=True, zorder=5)
+    handles += [plt.Line2D([], [], marker=r"$\rightarrow$", ls="", ms=10, color=cmap(0.5),
+                           label="candidate views (colour: gain)"),
+                plt.Line2D([], [], marker=r"$\rightarrow$", ls="", ms=14, color="#d50000",
+                           label=f"next best view: candidate {best['index']}")]
+    if plan.get("robot"):
+        rx, ry = plan["robot"]["sensor"]["position"][:2]
+        ax.plot(rx, ry, "s", color="black", ms=8, zorder=6)
+        handles.append(plt.Line2D([], [], marker="s", ls="", color="black",
+                                  label=f"robot ({plan['robot']['from']})"))
+    ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2)
+    ax.set_aspect("equal")
+    ax.autoscale()
+    ax.margins(0.08)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    method = plan["method"] + (f", a = {plan['alpha']}" if plan["method"] == "probabilistic" else "")
+    ax.set_title(f"next best view ({method}): candidate {best['index']}, "
+                 f"{best['predicted_gain']:.1f} {unit}", fontsize=10)
+    ax.grid(alpha=0.2)
+    fig.tight_layout()
+    fig.savefig(os.path.join(run_dir, "map.png"), dpi=120)
+    plt.close(fig)
+
+
 def main(argv):
     if len(argv) != 2:
         sys.exit("usage: plot_run.py RUN_DIR")
     run_dir = argv[1]
+    if os.path.exists(os.path.join(run_dir, "plan.json")):
+        with open(os.path.join(run_dir, "plan.json")) as f:
+            plot_plan(run_dir, json.load(f))
+        return
+    if not os.path.exists(os.path.join(run_dir, "run.json")):
+        sys.exit(f"plot_run.py: {run_dir} holds neither run.json (vantage explore) nor plan.json "
+                 "(vantage plan)")
     with open(os.path.join(run_dir, "run.json")) as f:
         run = json.load(f)
     scans = read_csv(os.path.join(run_dir, "scans.csv"))

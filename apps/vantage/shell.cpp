@@ -2,9 +2,15 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
+#include <numbers>
 #include <stdexcept>
+
+#include "vantage/sim/scene.hpp"
+#include "vantage/views/frustum.hpp"
 
 namespace vantage::cli {
 namespace {
@@ -36,10 +42,46 @@ std::vector<double> parse_numbers(std::string_view text, std::string_view what) 
   return numbers;
 }
 
+Eigen::Isometry3d parse_pose(std::string_view text, std::string_view what) {
+  const std::vector<double> v = parse_numbers(text, what);
+  if (v.size() != 6) {
+    throw std::invalid_argument(
+        fmt::format("{} needs 6 numbers x,y,z,roll,pitch,yaw (m, deg), got {}", what, v.size()));
+  }
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) {
+      throw std::invalid_argument(fmt::format("{}: item {} is {}", what, i, v[i]));
+    }
+  }
+  return sim::pose_from_xyz_rpy({v[0], v[1], v[2]}, {deg2rad(v[3]), deg2rad(v[4]), deg2rad(v[5])});
+}
+
+Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& R) {
+  return {std::atan2(R(2, 1), R(2, 2)), -std::asin(std::clamp(R(2, 0), -1.0, 1.0)),
+          std::atan2(R(1, 0), R(0, 0))};
+}
+
+std::string describe_pose(const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d t = T.translation();
+  const Eigen::Vector3d rpy = roll_pitch_yaw(T.linear()) * (180.0 / std::numbers::pi);
+  return fmt::format("x {:.4f} y {:.4f} z {:.4f} m, roll {:.3f} pitch {:.3f} yaw {:.3f} deg", t.x(),
+                     t.y(), t.z(), rpy.x(), rpy.y(), rpy.z());
+}
+
+std::filesystem::path scripts_dir() {
+  namespace fs = std::filesystem;
+  if (const char* env = std::getenv("VANTAGE_SCRIPTS_DIR"); env != nullptr) return env;
+  std::error_code error;
+  const fs::path self = fs::read_symlink("/proc/self/exe", error);
+  if (!error) {
+    const fs::path installed = self.parent_path() / VANTAGE_INSTALLED_SCRIPTS_DIR;
+    if (fs::is_directory(installed, error)) return installed.lexically_normal();
+  }
+  return VANTAGE_SCRIPTS_DIR;
+}
+
 void run_plot_script(std::string_view script, const std::vector<std::string>& args) {
-  const char* env = std::getenv("VANTAGE_SCRIPTS_DIR");
-  const std::filesystem::path dir = env != nullptr ? env : VANTAGE_SCRIPTS_DIR;
-  const std::filesystem::path path = dir / script;
+  const std::filesystem::path path = scripts_dir() / script;
   if (!std::filesystem::exists(path)) {
     throw std::runtime_error(
         fmt::format("plot script {} not found (set VANTAGE_SCRIPTS_DIR)", path.string()));

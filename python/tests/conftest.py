@@ -3,7 +3,6 @@
 import json
 import os
 import pathlib
-import shutil
 import subprocess
 
 import pytest
@@ -44,9 +43,7 @@ def own_scans(tmp_path_factory, vantage_bin, source_dir):
     run on it: (folder, the CLI's plan.json as a dict, the CLI's results folder)."""
     folder = tmp_path_factory.mktemp("own-scans")
     example = source_dir / "examples" / "own-scans"
-    for name in ("make-data.sh", "manifest.yaml"):
-        shutil.copy2(example / name, folder / name)
-    subprocess.run([str(folder / "make-data.sh"), str(vantage_bin)], check=True,
+    subprocess.run([str(example / "make-data.sh"), str(folder), str(vantage_bin)], check=True,
                    capture_output=True)
     out = folder / "cli-results"
     run = subprocess.run([str(vantage_bin), "plan", str(folder), "--json", "--out", str(out)],

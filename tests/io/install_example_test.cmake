@@ -1,5 +1,7 @@
 # cmake -P script: stage an install of BUILD_DIR, then configure, build and run EXAMPLE_DIR
-# against it. Fails with the step's output when a step fails.
+# against it: the core example, then the pipeline one (Mapper over PCDs the installed `vantage
+# scan` wrote), then the installed `vantage plan`, which must draw its picture with the installed
+# plot scripts. Fails with the step's output when a step fails.
 foreach(var BUILD_DIR EXAMPLE_DIR WORK_DIR CXX_COMPILER GENERATOR)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "install_example_test: ${var} is not set")
@@ -7,7 +9,8 @@ foreach(var BUILD_DIR EXAMPLE_DIR WORK_DIR CXX_COMPILER GENERATOR)
 endforeach()
 
 function(step name)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  execute_process(COMMAND ${ARGN} WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "install_example_test: ${name} failed (${rc})\n${out}\n${err}")
   endif()
@@ -16,6 +19,7 @@ endfunction()
 
 set(prefix ${WORK_DIR}/prefix)
 file(REMOVE_RECURSE ${WORK_DIR})
+file(MAKE_DIRECTORY ${WORK_DIR})
 step("cmake --install" ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 
 # No third-party header may leak into an installed Vantage header.
@@ -61,3 +65,31 @@ message(STATUS "${out}")
 if(NOT rc EQUAL 0 OR NOT out MATCHES "best view [0-9]+ of 30 at" OR NOT EXISTS ${WORK_DIR}/map.bt)
   message(FATAL_ERROR "install_example_test: the example failed (${rc}):\n${out}\n${err}")
 endif()
+
+# The pipeline: the installed binary and scripts, two clouds, Mapper, and plan's picture.
+set(vantage ${prefix}/bin/vantage)
+foreach(file ${vantage} ${prefix}/share/vantage/scripts/plot_run.py
+             ${prefix}/share/vantage/scripts/plot_top_view.py)
+  if(NOT EXISTS ${file})
+    message(FATAL_ERROR "install_example_test: ${file} is not installed")
+  endif()
+endforeach()
+# NOTE: the built binary falls back to the source tree's scripts, which exist here too; a marker
+# that only the installed copy writes shows which one drew the picture.
+file(APPEND ${prefix}/share/vantage/scripts/plot_run.py
+     "\nopen(os.path.join(sys.argv[1], 'drawn-by-installed-scripts'), 'w').close()\n")
+step("make-data.sh" ${EXAMPLE_DIR}/own-scans/make-data.sh ${WORK_DIR}/data ${vantage})
+step("map_scans" ${WORK_DIR}/build/map_scans ${WORK_DIR}/data)
+message(STATUS "${step_output}")
+if(NOT step_output MATCHES "cloud 2: [0-9]+ points" OR
+   NOT step_output MATCHES "next best view [0-9]+ of 30 at" OR NOT EXISTS ${WORK_DIR}/map.ot)
+  message(FATAL_ERROR "install_example_test: map_scans did not map and plan:\n${step_output}")
+endif()
+step("vantage plan" ${CMAKE_COMMAND} -E env --unset=VANTAGE_SCRIPTS_DIR
+     ${vantage} plan ${WORK_DIR}/data --out ${WORK_DIR}/plan --threads 2)
+message(STATUS "${step_output}")
+foreach(file plan.json map.ot map.bt map.ply map.png drawn-by-installed-scripts)
+  if(NOT EXISTS ${WORK_DIR}/plan/${file})
+    message(FATAL_ERROR "install_example_test: the installed vantage plan wrote no ${file}")
+  endif()
+endforeach()

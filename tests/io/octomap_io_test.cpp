@@ -4,11 +4,17 @@
 #include <octomap/ColorOcTree.h>
 #include <octomap/OcTree.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <map>
 #include <random>
+#include <sstream>
 #include <string>
+#include <utility>
 
 #include "temp_dir.hpp"
+#include "vantage/io/map_files.hpp"
 
 namespace vantage {
 namespace {
@@ -114,7 +120,9 @@ TEST_P(OctomapRoundTrip, FullKeepsEveryLogOddsBitForBit) {
   EXPECT_EQ(read.format, OctomapFormat::kFull);
   EXPECT_EQ(read.tree_type, "OcTree");
   for (std::size_t i = 0; i < grid.size(); ++i) {
-    ASSERT_EQ(read.grid.log_odds(i), grid.log_odds(i)) << "cell " << i;
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(read.grid.log_odds(i)),
+              std::bit_cast<std::uint32_t>(grid.log_odds(i)))
+        << "cell " << i;
     ASSERT_EQ(read.grid.state(i), grid.state(i)) << "cell " << i;
   }
 }
@@ -390,6 +398,87 @@ TEST(OctomapExport, EmptyGridRoundTrips) {
     EXPECT_EQ(read.grid.counts().unobserved, grid.size());
     EXPECT_THROW(read_octomap(dir / name), std::runtime_error);  // nothing to derive a grid from
   }
+}
+
+// The results folder's map files: map.ot continues bit for bit, map.bt keeps the classes, and the
+// top view counts each column's cells as a brute-force count over the grid does.
+TEST(MapFiles, WritesTheLosslessMapTheViewerMapAndTheTopView) {
+  TempDir dir;
+  const GridSpec spec = centered_spec();
+  const OccupancyGrid grid = mixed_grid(spec, 5);
+  write_map_files(dir.path(), grid);
+
+  OctomapImportConfig import;
+  import.grid = spec;
+  const OctomapImport ot = read_octomap(dir / "map.ot", import);
+  const OctomapImport bt = read_octomap(dir / "map.bt", import);
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(ot.grid.log_odds(i)),
+              std::bit_cast<std::uint32_t>(grid.log_odds(i)))
+        << "cell " << i;
+    if (grid.state(i) != CellState::kUnobserved) {
+      ASSERT_EQ(bt.grid.state(i), grid.state(i)) << "cell " << i;
+    }
+  }
+
+  // Brute force: per column (x, y), the cells of each class and the highest occupied z.
+  struct Column {
+    int occupied = 0, unobserved = 0, top = -1;
+  };
+  std::map<std::pair<int, int>, Column> expected;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const Index3 c = spec.unravel(i);
+    if (grid.state(i) == CellState::kFree) continue;
+    Column& column = expected[{c.x(), c.y()}];
+    if (grid.state(i) == CellState::kOccupied) {
+      ++column.occupied;
+      column.top = std::max(column.top, c.z());
+    } else {
+      ++column.unobserved;
+    }
+  }
+  std::istringstream csv(test::read_file(dir / "map_top.csv"));
+  std::string line;
+  std::getline(csv, line);
+  {  // The grid, every number read back exactly.
+    std::istringstream header(line);
+    std::string hash, grid_word, origin_word, resolution_word, dims_word;
+    Eigen::Vector3d origin;
+    double resolution;
+    Index3 dims;
+    ASSERT_TRUE(header >> hash >> grid_word >> origin_word >> origin.x() >> origin.y() >>
+                origin.z() >> resolution_word >> resolution >> dims_word >> dims.x() >> dims.y() >>
+                dims.z())
+        << line;
+    EXPECT_EQ(origin, spec.origin);
+    EXPECT_EQ(resolution, spec.resolution);
+    EXPECT_EQ(dims, spec.dims);
+  }
+  std::getline(csv, line);
+  EXPECT_EQ(line, "x,y,occupied,unobserved,top");
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    double x, y;
+    int occupied, unobserved;
+    char comma;
+    std::istringstream row(line);
+    ASSERT_TRUE(row >> x >> comma >> y >> comma >> occupied >> comma >> unobserved >> comma)
+        << line;
+    const Index3 cell = spec.index_of({x, y, spec.origin.z()});
+    const auto it = expected.find({cell.x(), cell.y()});
+    ASSERT_NE(it, expected.end()) << "a column without occupied or unobserved cells: " << line;
+    EXPECT_EQ(occupied, it->second.occupied) << line;
+    EXPECT_EQ(unobserved, it->second.unobserved) << line;
+    double top = -1.0;
+    if (it->second.top >= 0) {
+      ASSERT_TRUE(row >> top) << line;
+      EXPECT_DOUBLE_EQ(top, spec.center({cell.x(), cell.y(), it->second.top}).z()) << line;
+    } else {
+      EXPECT_FALSE(row >> top) << "a top height without occupied cells: " << line;
+    }
+  }
+  EXPECT_EQ(rows, expected.size());
 }
 
 }  // namespace

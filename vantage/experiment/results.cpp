@@ -8,7 +8,7 @@
 
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/cloud_io.hpp"
-#include "vantage/io/octomap_io.hpp"
+#include "vantage/io/map_files.hpp"
 #include "vantage/planner/navigation.hpp"
 
 namespace vantage {
@@ -215,7 +215,7 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
       {"greedy_predicted_gain", "cells"}};
   write_atomically(dir / "run.json", run.dump(2) + "\n");
 
-  write_octomap(dir / "map.bt", grid);
+  write_map_files(dir, grid);  // map.ot (lossless), map.bt, map_top.csv
   if (!mapper.object_cloud().empty()) write_point_cloud(dir / "cloud.pcd", mapper.object_cloud());
 
   std::string cells = "x,y,z\n";

@@ -123,7 +123,8 @@ void add_explore_command(CLI::App& app) {
   cmd->add_option("--scans,-n", o->scans, "number of scans to take (office: stops, a sweep each)")
       ->capture_default_str();
   cmd->add_option("--min-gain", o->min_gain,
-                  "stop early when the best predicted gain falls below this [cells]")
+                  "stop early when the best predicted gain falls below this [bits for "
+                  "probabilistic, cells for the others]")
       ->capture_default_str();
   cmd->add_flag(
       "--revisit", o->revisit,

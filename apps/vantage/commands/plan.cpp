@@ -1,6 +1,7 @@
 /// `vantage plan`: real scans in, next view out. Maps a robot's clouds (a manifest, see
 /// docs/manifest.md) and/or an existing OctoMap, scores candidate views, and answers with the
-/// next best view as a ranked table, plan.json and the updated map.
+/// next best view as a ranked table, plan.json, the updated map (map.ot, lossless: the next
+/// `plan --map` continues from it exactly) and a picture.
 
 #include <fmt/chrono.h>
 #include <fmt/core.h>
@@ -20,7 +21,9 @@
 #include "shell.hpp"
 #include "vantage/experiment/recorded.hpp"
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/map_files.hpp"
 #include "vantage/io/octomap_io.hpp"
+#include "vantage/io/ply_export.hpp"
 #include "vantage/views/frontier.hpp"
 #include "vantage/views/ring.hpp"
 #include "vantage/views/sphere.hpp"
@@ -41,10 +44,56 @@ struct PlanOptions {
   std::string fov_deg = "57,43";
   std::string range = "0.5,3.5";
   PlanningOptions planning;
+  std::string pose;  // x,y,z,roll,pitch,yaw of the robot's sensor now
   std::string out;
   bool json_only = false;
+  bool plots = true;
   int top = 10;
 };
+
+/// plan.json's format: 2 added version, units, the robot's pose, travel and yaw.
+constexpr int kPlanJsonVersion = 2;
+
+/// What a plan's numbers count (MODEL.md: bits are not cells). The probabilistic method predicts
+/// information (eq. 4, bits); greedy, random and latombe count cells (latombe discounted by
+/// travel); yamauchi maximises minus the travel distance.
+struct PlanUnits {
+  std::string_view predicted_gain;
+  std::string_view score;
+};
+
+PlanUnits units_of(PlannerMethod method) {
+  switch (method) {
+    case PlannerMethod::kProbabilistic:
+      return {"bits", "bits"};
+    case PlannerMethod::kYamauchi:
+      return {"cells", "-m"};
+    default:
+      return {"cells", "cells"};
+  }
+}
+
+bool needs_pose(PlannerMethod method) {
+  return method == PlannerMethod::kLatombe || method == PlannerMethod::kYamauchi;
+}
+
+fs::path out_dir(const PlanOptions& o) {
+  if (!o.out.empty()) return o.out;
+  const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  return fs::path("results") / fmt::format("plan-{:%Y%m%d-%H%M%S}", fmt::localtime(now));
+}
+
+double yaw_deg(const Eigen::Isometry3d& T) {
+  return roll_pitch_yaw(T.linear()).z() * 180.0 / std::numbers::pi;
+}
+
+/// The pose as `--pose` takes it: x,y,z,roll,pitch,yaw (m, deg).
+std::string pose_argument(const Eigen::Isometry3d& T) {
+  const Eigen::Vector3d t = T.translation();
+  const Eigen::Vector3d rpy = roll_pitch_yaw(T.linear()) * (180.0 / std::numbers::pi);
+  return fmt::format("{:.4f},{:.4f},{:.4f},{:.3f},{:.3f},{:.3f}", t.x(), t.y(), t.z(), rpy.x(),
+                     rpy.y(), rpy.z());
+}
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -102,26 +151,48 @@ std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen
     return sphere_poses(sphere);
   }
   if (o.candidates == "frontier") return frontier_poses(grid);
-  if (!fs::exists(o.candidates)) {
-    throw std::invalid_argument(
-        fmt::format("--candidates '{}' is neither ring, sphere, frontier nor an existing pose file",
-                    o.candidates));
-  }
-  return read_candidate_poses(o.candidates, frame);
+  return read_candidate_poses(o.candidates, frame);  // run() checked that the file exists
 }
 
 void run(const PlanOptions& o) {
   if (o.input.empty() && o.map.empty()) {
     throw std::invalid_argument("give a manifest or data folder, or --map FILE.bt|.ot, or both");
   }
+  // NOTE: everything the command line alone can refuse is refused before any mapping.
+  PlannerConfig planner = o.planning.planner_config();
+  planner.greedy_reference = true;
+  const PlanUnits units = units_of(planner.method);
+  const fs::path dir = out_dir(o);
+  if (fs::exists(dir) && !fs::is_empty(dir)) {
+    throw std::invalid_argument(fmt::format("--out {} exists and is not empty", dir.string()));
+  }
+  std::optional<Eigen::Isometry3d> robot;
+  std::string robot_source;
+  if (!o.pose.empty()) {
+    robot = parse_pose(o.pose, "--pose");
+    robot_source = "--pose";
+  } else if (needs_pose(planner.method) && o.input.empty()) {
+    throw std::invalid_argument(
+        fmt::format("--method {} weighs travel and needs the robot's pose: give --pose "
+                    "x,y,z,roll,pitch,yaw or a manifest (its last cloud's pose is used)",
+                    to_string(planner.method)));
+  }
+
+  if (o.input.empty()) fov_from_options(o);  // throws for a bad --fov-deg or --range
+  const bool named_candidates =
+      o.candidates == "ring" || o.candidates == "sphere" || o.candidates == "frontier";
+  if (!named_candidates && !fs::exists(o.candidates)) {
+    throw std::invalid_argument(
+        fmt::format("--candidates '{}' is neither ring, sphere, frontier nor an existing pose file",
+                    o.candidates));
+  }
+
   const auto start = std::chrono::steady_clock::now();
   std::optional<Manifest> manifest;
   if (!o.input.empty()) manifest = read_manifest(o.input);
   const SensorFov fov = manifest ? manifest->fov : fov_from_options(o);
   const CloudFrame frame = manifest ? manifest->frame : CloudFrame::kOptical;
 
-  PlannerConfig planner = o.planning.planner_config();
-  planner.greedy_reference = true;
   MapperConfig mapper_config = manifest ? mapper_config_for(*manifest) : MapperConfig{};
   mapper_config.integration.num_threads = o.planning.threads;
 
@@ -134,8 +205,19 @@ void run(const PlanOptions& o) {
   } else {
     mapper.emplace(manifest->grid, mapper_config);
   }
+  if (!o.map.empty() && manifest && mapper_config.register_scans && !o.json_only) {
+    fmt::print(
+        "note: {} holds no points, so ICP registers the manifest's clouds to each other "
+        "only\n",
+        o.map);
+  }
   if (manifest) {
     map_recorded(*manifest, *mapper, [&](std::size_t i, const MapperUpdate& u) {
+      // NOTE: the pose the cloud was integrated at (ICP-corrected), wherever it came from.
+      if (o.pose.empty()) {
+        robot = u.T_world_sensor;
+        robot_source = "the last cloud's pose";
+      }
       if (!o.json_only) {
         fmt::print("cloud {}/{}  {}  {} points  {} cells seen{}\n", i + 1, manifest->clouds.size(),
                    manifest->clouds[i].file.filename().string(), u.points,
@@ -152,16 +234,28 @@ void run(const PlanOptions& o) {
   const Eigen::AlignedBox3d roi =
       manifest ? manifest->roi : Eigen::AlignedBox3d(spec.origin, spec.max_corner());
 
+  if (needs_pose(planner.method) && !robot) {
+    throw std::invalid_argument(
+        fmt::format("--method {} needs the robot's pose: the manifest has no clouds; give --pose",
+                    to_string(planner.method)));
+  }
+
   const std::vector<Eigen::Isometry3d> poses = candidate_poses(o, roi, frame, grid);
   std::vector<Candidate> candidates;
-  for (const Eigen::Isometry3d& pose : poses) candidates.push_back({Frustum(pose, fov)});
+  for (const Eigen::Isometry3d& pose : poses) {
+    // NOTE: plan knows no obstacles between here and there: travel is the straight line.
+    const double travel = robot ? (pose.translation() - robot->translation()).norm() : 0.0;
+    candidates.push_back({Frustum(pose, fov), travel});
+  }
   const Plan plan = plan_next_view(grid, candidates, planner, /*seed=*/1);
 
+  // Best first (for random, the drawn one), then by score; ties keep the candidates' order.
   std::vector<std::size_t> ranking(candidates.size());
   std::iota(ranking.begin(), ranking.end(), std::size_t{0});
   std::stable_sort(ranking.begin(), ranking.end(),
                    [&](std::size_t a, std::size_t b) { return plan.scores[a] > plan.scores[b]; });
-  std::swap(*std::find(ranking.begin(), ranking.end(), plan.best), ranking.front());
+  const auto best = std::find(ranking.begin(), ranking.end(), plan.best);
+  std::rotate(ranking.begin(), best, best + 1);
 
   const CellCounts counts = grid.counts();
   const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(frame).transpose();
@@ -170,13 +264,26 @@ void run(const PlanOptions& o) {
     T_world_cloud.linear() = poses[i].linear() * R_sensor_cloud;
     json j = {{"index", i},
               {"sensor", pose_json(poses[i])},
+              {"yaw", yaw_deg(poses[i])},
               {"cloud_frame", pose_json(T_world_cloud)},
               {"predicted_gain", plan.gains[i].gain},
               {"greedy_gain", plan.greedy_gains[i]},
               {"score", plan.scores[i]}};
+    if (robot) j["travel"] = candidates[i].travel;
     return j;
   };
   json out = {
+      {"version", kPlanJsonVersion},
+      {"vantage_version", VANTAGE_VERSION},
+      {"units",
+       {{"position", "m"},
+        {"yaw", "deg"},
+        {"predicted_gain", units.predicted_gain},
+        {"greedy_gain", "cells"},
+        {"score", units.score},
+        {"travel", "m"},
+        {"seconds", "s"}}},
+      {"robot", robot ? json{{"sensor", pose_json(*robot)}, {"from", robot_source}} : json()},
       {"next_best_view", nbv(plan.best)},
       {"method", to_string(planner.method)},
       {"alpha", planner.gain.alpha},
@@ -195,40 +302,45 @@ void run(const PlanOptions& o) {
       {"seconds", {{"map", map_seconds}, {"plan", plan.seconds}}}};
   for (const std::size_t i : ranking) out["candidates"].push_back(nbv(i));
 
-  const fs::path dir =
-      !o.out.empty()
-          ? fs::path(o.out)
-          : fs::path("results") / fmt::format("plan-{:%Y%m%d-%H%M%S}",
-                                              fmt::localtime(std::chrono::system_clock::to_time_t(
-                                                  std::chrono::system_clock::now())));
-  if (fs::exists(dir) && !fs::is_empty(dir)) {
-    throw std::invalid_argument(fmt::format("--out {} exists and is not empty", dir.string()));
-  }
   write_folder_atomically(dir, [&](const fs::path& partial) {
     write_atomically(partial / "plan.json", out.dump(2) + "\n");
-    write_octomap(partial / "map.bt", grid);
+    write_map_files(partial, grid);
+    write_cells_ply(partial / "map.ply", grid);
+    if (o.plots) run_plot_script("plot_run.py", {partial.string()});
   });
 
   if (o.json_only) {
     fmt::print("{}\n", out.dump(2));
     return;
   }
-  fmt::print("\n{:>4} {:>5} {:>30} {:>14} {:>12}\n", "rank", "view", "position [m]",
-             "predicted gain", "greedy gain");
+  const bool show_score =
+      planner.method == PlannerMethod::kLatombe || planner.method == PlannerMethod::kYamauchi;
+  const std::string gain_header = fmt::format("predicted gain [{}]", units.predicted_gain);
+  const std::string score_header = fmt::format("score [{}]", units.score);
+  fmt::print("\n{:>4} {:>5} {:>26} {:>9} {:>{}} {:>19}{}{}\n", "rank", "view", "position [m]",
+             "yaw [deg]", gain_header, gain_header.size(), "greedy gain [cells]",
+             robot ? fmt::format(" {:>10}", "travel [m]") : "",
+             show_score ? fmt::format(" {:>{}}", score_header, score_header.size()) : "");
   for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top); ++r) {
     const std::size_t i = ranking[r];
     const Eigen::Vector3d p = poses[i].translation();
-    fmt::print("{:>4} {:>5} {:>30} {:>14.1f} {:>12.1f}\n", r + 1, i,
-               fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z()), plan.gains[i].gain,
-               plan.greedy_gains[i]);
+    fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {:>{}.1f} {:>19.1f}{}{}\n", r + 1, i,
+               fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z()), yaw_deg(poses[i]),
+               plan.gains[i].gain, gain_header.size(), plan.greedy_gains[i],
+               robot ? fmt::format(" {:>10.3f}", candidates[i].travel) : "",
+               show_score ? fmt::format(" {:>{}.3f}", plan.scores[i], score_header.size()) : "");
   }
   fmt::print(
       "\nnext best view: candidate {} ({} method{}), decided in {:.3f} s\n"
-      "map: {} unobserved, {} free, {} occupied cells\nresults: {}/plan.json, map.bt\n",
+      "  at {}\n  as --pose: {}\n",
       plan.best, to_string(planner.method),
       planner.method == PlannerMethod::kProbabilistic ? fmt::format(", a = {}", planner.gain.alpha)
                                                       : "",
-      plan.seconds, counts.unobserved, counts.free, counts.occupied, dir.string());
+      plan.seconds, describe_pose(poses[plan.best]), pose_argument(poses[plan.best]));
+  if (robot) fmt::print("robot at {} ({})\n", describe_pose(*robot), robot_source);
+  fmt::print("map: {} unobserved, {} free, {} occupied cells\nresults: {}/plan.json, map.ot{}\n",
+             counts.unobserved, counts.free, counts.occupied, dir.string(),
+             o.plots ? ", map.png" : "");
 }
 
 }  // namespace
@@ -251,9 +363,20 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("--range", o->range, "min,max range without a manifest [m]")
       ->capture_default_str();
   o->planning.add_to(*cmd);
+  cmd->add_option("--pose", o->pose,
+                  "the robot's sensor pose now, x,y,z,roll,pitch,yaw [m, deg], for the travel of "
+                  "latombe and yamauchi (default: the manifest's last cloud's pose)");
   cmd->add_option("--out,-o", o->out, "results folder (default: a fresh folder under results/)");
   cmd->add_flag("--json", o->json_only, "print only plan.json, for other programs");
+  cmd->add_flag("!--no-plots", o->plots, "skip the picture (map.png)");
   cmd->add_option("--top", o->top, "rows of the ranked table")->capture_default_str();
+  cmd->footer(
+      "Units: the probabilistic method's predicted gain is information in bits (eq. 4: an "
+      "unobserved cell holds 1 bit, a view turning it known is credited less); greedy, random "
+      "and latombe count cells (latombe's score: greedy gain x exp(-lambda x travel)); yamauchi "
+      "scores minus the travel [m]. Travel is the straight line from --pose [m]. Writes "
+      "plan.json, map.ot (lossless, for --map), map.bt (viewers), map.ply (occupied red, "
+      "unobserved yellow) and map.png.");
   cmd->callback([o] { run(*o); });
 }
 

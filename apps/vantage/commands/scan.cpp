@@ -31,27 +31,8 @@ struct ScanOptions {
   int repeat = 0;
 };
 
-std::string describe(const Eigen::Isometry3d& T) {
-  const Eigen::Vector3d t = T.translation();
-  const Eigen::Matrix3d R = T.linear();
-  const double yaw = std::atan2(R(1, 0), R(0, 0));
-  const double pitch = -std::asin(std::clamp(R(2, 0), -1.0, 1.0));
-  const double roll = std::atan2(R(2, 1), R(2, 2));
-  constexpr double kDeg = 180.0 / std::numbers::pi;
-  return fmt::format("x {:.4f} y {:.4f} z {:.4f} m, roll {:.3f} pitch {:.3f} yaw {:.3f} deg", t.x(),
-                     t.y(), t.z(), roll * kDeg, pitch * kDeg, yaw * kDeg);
-}
-
 Eigen::Isometry3d chosen_pose(const ScanOptions& o, const sim::Scene& scene) {
-  if (!o.pose.empty()) {
-    const std::vector<double> v = parse_numbers(o.pose, "--pose");
-    if (v.size() != 6) {
-      throw std::invalid_argument(
-          fmt::format("--pose needs 6 numbers x,y,z,roll,pitch,yaw (m, deg), got {}", v.size()));
-    }
-    return sim::pose_from_xyz_rpy({v[0], v[1], v[2]},
-                                  {deg2rad(v[3]), deg2rad(v[4]), deg2rad(v[5])});
-  }
+  if (!o.pose.empty()) return parse_pose(o.pose, "--pose");
   if (o.start >= 0) {
     if (static_cast<std::size_t>(o.start) >= scene.start_poses.size()) {
       throw std::invalid_argument(fmt::format("--start {} is out of range: {} has {} starts",
@@ -93,8 +74,8 @@ void run(const ScanOptions& o) {
   const sim::SensorConfig& sensor = world.scene().sensor;
   fmt::print("{}: {} {} from {}: {} points of {} rays\n", world.scene().name, sensor.name,
              o.sweep ? fmt::format("sweep of {} steps", sensor.sweep_steps) : "scan",
-             describe(T_true), points.size(), rays);
-  fmt::print("believed pose: {}\n", describe(T_noisy));
+             describe_pose(T_true), points.size(), rays);
+  fmt::print("believed pose: {}\n", describe_pose(T_noisy));
 
   if (o.repeat > 0) {
     // Timing of the casting alone, the scene already built; the first scan above warmed up.
