@@ -72,6 +72,35 @@ TEST_F(CloudIo, PcdAndPlyRoundTripExactly) {
   }
 }
 
+TEST_F(CloudIo, APcdRecordsItsViewpoint) {
+  const PointCloud cloud = float_exact_cloud(10);
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = (Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitZ()) *
+                   Eigen::AngleAxisd(-0.2, Eigen::Vector3d::UnitY()))
+                      .toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(-1.25, 0.5, 1.1);
+  write_point_cloud(dir_ / "posed.pcd", cloud, pose);
+  EXPECT_EQ(read_point_cloud(dir_ / "posed.pcd"), cloud);
+  const std::optional<Eigen::Isometry3d> read = read_cloud_viewpoint(dir_ / "posed.pcd");
+  ASSERT_TRUE(read.has_value());
+  EXPECT_TRUE(read->isApprox(pose, 1e-14)) << read->matrix();
+  // The identity is what writers put there when nobody set a pose: no pose. PLY has no field.
+  write_point_cloud(dir_ / "plain.pcd", cloud);
+  EXPECT_FALSE(read_cloud_viewpoint(dir_ / "plain.pcd").has_value());
+  write_point_cloud(dir_ / "posed.ply", cloud, pose);
+  EXPECT_FALSE(read_cloud_viewpoint(dir_ / "posed.ply").has_value());
+  // A malformed VIEWPOINT names the file and the line.
+  const fs::path bad =
+      write("bad.pcd", std::string(kPcdHeader)
+                               .replace(std::string(kPcdHeader).find("VIEWPOINT 0 0 0 1 0 0 0"), 23,
+                                        "VIEWPOINT 0 0 0 1 0 0") +
+                           "DATA ascii\n1 2 3\n4 5 6\n7 8 9\n");
+  const std::string message =
+      error_of<std::runtime_error>([&] { (void)read_cloud_viewpoint(bad); });
+  EXPECT_NE(message.find("bad.pcd: line 9: VIEWPOINT takes 7 numbers"), std::string::npos)
+      << message;
+}
+
 TEST_F(CloudIo, DoublesRoundTripToFloatPrecision) {
   const PointCloud cloud = {{0.1, 0.2, 0.3}, {1.0 / 3.0, -2.0 / 7.0, 1e-9}};
   write_point_cloud(dir_ / "d.pcd", cloud);

@@ -33,11 +33,19 @@ const std::string kClouds = R"(clouds:
     stamp: 12.5
 )";
 
-// A folder with the clouds the manifests name (their content does not matter here).
+/// A PCD file of one point whose VIEWPOINT is `viewpoint` (the identity: no pose recorded).
+std::string pcd_with_viewpoint(const std::string& viewpoint = "0 0 0 1 0 0 0") {
+  return "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 1\nHEIGHT 1\n"
+         "VIEWPOINT " +
+         viewpoint + "\nPOINTS 1\nDATA ascii\n1 2 3\n";
+}
+
+// A folder with the clouds the manifests name (only a PCD's header is read here, for its
+// VIEWPOINT, when the manifest gives the cloud no pose).
 class ManifestTest : public ::testing::Test {
  protected:
   ManifestTest() {
-    test::write_file(dir_ / "scans/a.pcd", "not read");
+    test::write_file(dir_ / "scans/a.pcd", pcd_with_viewpoint());
     test::write_file(dir_ / "scans/b.PLY", "not read");
   }
 
@@ -249,6 +257,35 @@ TEST_F(ManifestTest, MissingPoseForACloud) {
           replace(kClouds, "    pose: [0, -1, 0, 0,  1, 0, 0, 1,  0, 0, 1, 0.5,  0, 0, 0, 1]\n",
                   ""),
       "clouds[1].pose", "b.PLY has no pose");
+}
+
+TEST_F(ManifestTest, APcdViewpointIsTheCloudsPoseWhenTheManifestGivesNone) {
+  // A quarter turn about z and a translation, as strands-style recordings carry their poses.
+  test::write_file(dir_ / "scans/a.pcd",
+                   pcd_with_viewpoint("1 2 0.5 0.70710678118654757 0 0 0.70710678118654746"));
+  const std::string clouds = "clouds:\n  - file: scans/a.pcd\n";
+  const Manifest m = read_manifest(write(kSensor + kRegion + clouds));
+  ASSERT_EQ(m.clouds.size(), 1u);
+  EXPECT_TRUE(m.clouds[0].pose_from_viewpoint);
+  Eigen::Isometry3d expected = Eigen::Isometry3d::Identity();
+  expected.linear() = Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+  expected.translation() = Eigen::Vector3d(1, 2, 0.5);
+  EXPECT_TRUE(m.clouds[0].T_world_cloud.isApprox(expected, 1e-12))
+      << m.clouds[0].T_world_cloud.matrix();
+  // A pose in the manifest wins over the file's.
+  const Manifest given = read_manifest(write(kSensor + kRegion + kClouds));
+  EXPECT_FALSE(given.clouds[0].pose_from_viewpoint);
+  EXPECT_TRUE(given.clouds[0].T_world_cloud.translation().isApprox(Eigen::Vector3d(1, 0, 0.5)));
+  // A VIEWPOINT that is no rotation is an error naming the file.
+  test::write_file(dir_ / "scans/a.pcd", pcd_with_viewpoint("0 0 0 2 0 0 0"));
+  try {
+    read_manifest(write(kSensor + kRegion + clouds));
+    ADD_FAILURE() << "a VIEWPOINT quaternion of norm 2 was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("a.pcd: line 8: the VIEWPOINT quaternion"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(ManifestTest, FolderWithoutPoses) {

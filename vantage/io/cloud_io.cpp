@@ -27,6 +27,9 @@ namespace fs = std::filesystem;
 
 enum class Format { kPcd, kPly };
 
+/// A PCD header is read from at most this many bytes at the file's start.
+constexpr std::size_t kHeaderBytes = std::size_t{1} << 16;
+
 Format format_of(const fs::path& path) {
   std::string extension = path.extension().string();
   std::transform(extension.begin(), extension.end(), extension.begin(),
@@ -87,7 +90,20 @@ PointCloud read_point_cloud(const fs::path& path, const CloudReadOptions& option
   }
 }
 
-void write_point_cloud(const fs::path& path, const PointCloud& points) {
+std::optional<Eigen::Isometry3d> read_cloud_viewpoint(const fs::path& path) {
+  if (format_of(path) != Format::kPcd) return std::nullopt;
+  try {
+    const std::optional<Eigen::Isometry3d> pose =
+        detail::parse_pcd_viewpoint(read_file_bytes(path, kHeaderBytes));
+    if (pose && pose->isApprox(Eigen::Isometry3d::Identity(), 1e-12)) return std::nullopt;
+    return pose;
+  } catch (const FormatError& e) {
+    throw std::runtime_error(cat(path.string(), ": ", e.what()));
+  }
+}
+
+void write_point_cloud(const fs::path& path, const PointCloud& points,
+                       const std::optional<Eigen::Isometry3d>& viewpoint) {
   const Format format = format_of(path);
   if (points.empty()) {
     throw std::invalid_argument(cat(path.string(), ": refusing to write an empty point cloud"));
@@ -105,7 +121,7 @@ void write_point_cloud(const fs::path& path, const PointCloud& points) {
     }
   }
   const std::string header =
-      format == Format::kPcd ? detail::pcd_header(points.size())
+      format == Format::kPcd ? detail::pcd_header(points.size(), viewpoint)
                              : ply_header(PlyFormat::kBinaryLittleEndian, {"written by vantage"},
                                           {{"vertex", points.size(), {{"x"}, {"y"}, {"z"}}}});
   write_atomically(path, [&](std::ostream& out) {

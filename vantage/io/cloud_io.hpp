@@ -2,7 +2,9 @@
 /// @file
 /// Point clouds on disk: PCD (v0.7) and PLY, chosen by the file's extension.
 
+#include <Eigen/Geometry>
 #include <filesystem>
+#include <optional>
 
 #include "vantage/map/point_cloud.hpp"
 
@@ -26,13 +28,27 @@ struct CloudReadOptions {
 PointCloud read_point_cloud(const std::filesystem::path& path,
                             const CloudReadOptions& options = {});
 
+/// The acquisition pose a `.pcd` file's VIEWPOINT field records (tx ty tz qw qx qy qz), the way
+/// PCL's `sensor_origin_` and `sensor_orientation_` and strands' nbv_planning use it: the sensor's
+/// pose in the frame of the cloud's poses, T_world_cloud, while the points are in the sensor's
+/// frame. Nothing for a `.ply` file, a header without VIEWPOINT, and the identity, which PCD
+/// writers put there by default (a pose nobody set is no pose). Reads the header only.
+///
+/// Throws std::invalid_argument for another extension, and std::runtime_error naming the file
+/// when it cannot be read or its header is malformed (a VIEWPOINT that is not 7 numbers, or
+/// whose quaternion is not of unit length).
+std::optional<Eigen::Isometry3d> read_cloud_viewpoint(const std::filesystem::path& path);
+
 /// Writes `points` as binary PCD (`.pcd`) or binary little-endian PLY (`.ply`) with float32
 /// x, y, z, the layout PCL's `pcl::PointXYZ` readers and viewers expect. Coordinates are
-/// rounded to float (about 0.1 µm at 1 m). The file is written atomically: whole or not at all.
+/// rounded to float (about 0.1 µm at 1 m). A PCD file records `viewpoint`, when given, as its
+/// VIEWPOINT (to the last digit); PLY has no such field. The file is written atomically: whole or
+/// not at all.
 ///
 /// Throws std::invalid_argument naming the file for another extension, an empty cloud, or a
 /// point that is not finite in float (naming the point's index), before anything is written;
 /// std::runtime_error naming the file when writing fails.
-void write_point_cloud(const std::filesystem::path& path, const PointCloud& points);
+void write_point_cloud(const std::filesystem::path& path, const PointCloud& points,
+                       const std::optional<Eigen::Isometry3d>& viewpoint = std::nullopt);
 
 }  // namespace vantage

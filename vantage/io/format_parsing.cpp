@@ -13,7 +13,7 @@
 namespace vantage {
 namespace fs = std::filesystem;
 
-std::string read_file_bytes(const fs::path& path) {
+std::string read_file_bytes(const fs::path& path, std::size_t max_bytes) {
   std::error_code error;
   if (!fs::is_regular_file(path, error)) {
     throw FormatError(fs::exists(path, error) ? "not a regular file" : "no such file");
@@ -22,7 +22,10 @@ std::string read_file_bytes(const fs::path& path) {
   if (!in) throw FormatError("cannot open for reading");
   std::string bytes;
   char buffer[1 << 16];
-  while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) bytes.append(buffer, in.gcount());
+  while (bytes.size() < max_bytes && (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)) {
+    bytes.append(buffer, static_cast<std::size_t>(in.gcount()));
+  }
+  if (bytes.size() > max_bytes) bytes.resize(max_bytes);
   if (in.bad()) throw FormatError("read failed");
   return bytes;
 }

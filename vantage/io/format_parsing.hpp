@@ -20,9 +20,10 @@ struct FormatError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The bytes of a regular file. Throws FormatError ("no such file", "not a regular file",
-/// "cannot open for reading", "read failed").
-std::string read_file_bytes(const std::filesystem::path& path);
+/// The bytes of a regular file, or its first `max_bytes` (a header). Throws FormatError ("no such
+/// file", "not a regular file", "cannot open for reading", "read failed").
+std::string read_file_bytes(const std::filesystem::path& path,
+                            std::size_t max_bytes = std::string::npos);
 
 /// Lines of a text, counted from 1, with their '\n' and a trailing '\r' removed.
 class Lines {

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/cloud_io.hpp"
 #include "vantage/io/trajectory.hpp"
 #include "vantage/io/yaml_reader.hpp"
 #include "vantage/util/text.hpp"
@@ -366,11 +367,20 @@ Manifest read_manifest(const fs::path& path) {
   } else {
     for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
       const std::string key = cat("clouds[", i, "].pose");
-      if (!entries[i] || !entries[i]->has("pose")) {
-        at_entry(i).fail_as(key, cat("missing: cloud ", manifest.clouds[i].file.filename().string(),
-                                     " has no pose (give a pose per cloud, or a trajectory)"));
+      if (entries[i] && entries[i]->has("pose")) {
+        manifest.clouds[i].T_world_cloud = rigid(entries[i]->at("pose"));
+        continue;
       }
-      manifest.clouds[i].T_world_cloud = rigid(entries[i]->at("pose"));
+      // A PCD file may carry its own pose (VIEWPOINT), as PCL and strands' nbv_planning record it.
+      const std::optional<Eigen::Isometry3d> viewpoint =
+          read_cloud_viewpoint(manifest.clouds[i].file);
+      if (!viewpoint) {
+        at_entry(i).fail_as(key, cat("missing: cloud ", manifest.clouds[i].file.filename().string(),
+                                     " has no pose (give a pose per cloud, a trajectory, or a "
+                                     "VIEWPOINT other than the identity in the PCD file)"));
+      }
+      manifest.clouds[i].T_world_cloud = *viewpoint;
+      manifest.clouds[i].pose_from_viewpoint = true;
     }
   }
 

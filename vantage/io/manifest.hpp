@@ -63,7 +63,8 @@ struct ManifestCloud {
   Eigen::Isometry3d T_world_cloud = Eigen::Isometry3d::Identity();
   /// The same pose with Vantage's sensor axes, for Frustum: T_world_cloud * R_cloud_sensor.
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
-  std::optional<double> stamp;  ///< [s], when given or used for matching
+  std::optional<double> stamp;       ///< [s], when given or used for matching
+  bool pose_from_viewpoint = false;  ///< the pose came from the PCD file's VIEWPOINT
 };
 
 /// Processing switches the manifest sets.

@@ -1,10 +1,12 @@
 #include "vantage/io/detail/pcd.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -64,16 +66,55 @@ struct PcdField {
   std::size_t offset = 0;  // within a point [bytes]
 };
 
-}  // namespace
-
-PointCloud parse_pcd(std::string_view bytes) {
-  Lines lines(bytes);
+/// The header's keys, as read up to and including its DATA line.
+struct PcdHeader {
   std::vector<std::string> names;
   std::vector<int> sizes, counts;
   std::vector<char> kinds;
   std::optional<std::uint64_t> width, height, declared_points;
+  std::optional<Eigen::Isometry3d> viewpoint;
   std::string data;
-  while (data.empty()) {
+};
+
+/// A VIEWPOINT line's tx ty tz qw qx qy qz as a pose.
+Eigen::Isometry3d viewpoint_pose(const std::vector<std::string_view>& values, int n) {
+  if (values.size() != 7) {
+    throw FormatError(
+        cat("line ", n, ": VIEWPOINT takes 7 numbers (tx ty tz qw qx qy qz), got ", values.size()));
+  }
+  double v[7];
+  for (std::size_t i = 0; i < 7; ++i) {
+    const auto value = parse_number(values[i]);
+    if (!value || !std::isfinite(*value)) {
+      throw FormatError(cat("line ", n, ": VIEWPOINT value ", i + 1, " is not a finite number"));
+    }
+    v[i] = *value;
+  }
+  const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+  // NOTE: writers print the quaternion with a few digits; a norm far from 1 is not a rotation.
+  if (std::abs(q.norm() - 1.0) > 1e-3) {
+    throw FormatError(cat("line ", n, ": the VIEWPOINT quaternion (", v[3], ", ", v[4], ", ", v[5],
+                          ", ", v[6], ") has norm ", q.norm(), ", not 1"));
+  }
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = q.normalized().toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+  return pose;
+}
+
+/// A VIEWPOINT line for a pose, to the last digit.
+std::string fmt_viewpoint(const Eigen::Vector3d& t, const Eigen::Quaterniond& q) {
+  std::ostringstream out;
+  out.precision(17);
+  out << "VIEWPOINT " << t.x() << ' ' << t.y() << ' ' << t.z() << ' ' << q.w() << ' ' << q.x()
+      << ' ' << q.y() << ' ' << q.z() << '\n';
+  return out.str();
+}
+
+/// Reads the header's lines up to and including DATA.
+PcdHeader parse_header(Lines& lines) {
+  PcdHeader h;
+  while (h.data.empty()) {
     const auto line = lines.next();
     if (!line) throw FormatError("not a PCD file: the header has no DATA line");
     const std::vector<std::string_view> tokens = split(*line);
@@ -97,38 +138,60 @@ PointCloud parse_pcd(std::string_view bytes) {
       }
       return out;
     };
-    if (key == "VERSION" || key == "VIEWPOINT") {
+    if (key == "VERSION") {
       continue;
+    } else if (key == "VIEWPOINT") {
+      h.viewpoint = viewpoint_pose(values, n);
     } else if (key == "FIELDS" || key == "COLUMNS") {
-      names.assign(values.begin(), values.end());
+      h.names.assign(values.begin(), values.end());
     } else if (key == "SIZE") {
-      sizes = ints();
+      h.sizes = ints();
     } else if (key == "COUNT") {
-      counts = ints();
+      h.counts = ints();
     } else if (key == "TYPE") {
-      kinds.clear();
+      h.kinds.clear();
       for (const std::string_view v : values) {
         if (v != "F" && v != "I" && v != "U") {
           throw FormatError(cat("line ", n, ": TYPE '", v, "' is not F, I or U"));
         }
-        kinds.push_back(v.front());
+        h.kinds.push_back(v.front());
       }
     } else if (key == "WIDTH") {
-      width = count_at(one(), n, "WIDTH");
+      h.width = count_at(one(), n, "WIDTH");
     } else if (key == "HEIGHT") {
-      height = count_at(one(), n, "HEIGHT");
+      h.height = count_at(one(), n, "HEIGHT");
     } else if (key == "POINTS") {
-      declared_points = count_at(one(), n, "POINTS");
+      h.declared_points = count_at(one(), n, "POINTS");
     } else if (key == "DATA") {
-      data = one();
-      if (data != "ascii" && data != "binary" && data != "binary_compressed") {
+      h.data = one();
+      if (h.data != "ascii" && h.data != "binary" && h.data != "binary_compressed") {
         throw FormatError(
-            cat("line ", n, ": DATA '", data, "' is not ascii, binary or binary_compressed"));
+            cat("line ", n, ": DATA '", h.data, "' is not ascii, binary or binary_compressed"));
       }
     } else {
       throw FormatError(cat("line ", n, ": unknown PCD header key '", key, "'"));
     }
   }
+  return h;
+}
+
+}  // namespace
+
+std::optional<Eigen::Isometry3d> parse_pcd_viewpoint(std::string_view bytes) {
+  Lines lines(bytes);
+  return parse_header(lines).viewpoint;
+}
+
+PointCloud parse_pcd(std::string_view bytes) {
+  Lines lines(bytes);
+  PcdHeader header = parse_header(lines);
+  std::vector<std::string>& names = header.names;
+  std::vector<int>& sizes = header.sizes;
+  std::vector<int>& counts = header.counts;
+  std::vector<char>& kinds = header.kinds;
+  const std::optional<std::uint64_t> width = header.width, height = header.height,
+                                     declared_points = header.declared_points;
+  const std::string& data = header.data;
 
   if (names.empty()) throw FormatError("the PCD header has no FIELDS");
   if (counts.empty()) counts.assign(names.size(), 1);
@@ -250,10 +313,13 @@ PointCloud parse_pcd(std::string_view bytes) {
   return cloud;
 }
 
-std::string pcd_header(std::size_t n) {
+std::string pcd_header(std::size_t n, const std::optional<Eigen::Isometry3d>& viewpoint) {
+  const Eigen::Isometry3d pose = viewpoint.value_or(Eigen::Isometry3d::Identity());
+  const Eigen::Vector3d t = pose.translation();
+  const Eigen::Quaterniond q(pose.linear());
   return cat("# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS x y z\n",
-             "SIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH ", n, "\nHEIGHT 1\n",
-             "VIEWPOINT 0 0 0 1 0 0 0\nPOINTS ", n, "\nDATA binary\n");
+             "SIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH ", n, "\nHEIGHT 1\n", fmt_viewpoint(t, q),
+             "POINTS ", n, "\nDATA binary\n");
 }
 
 }  // namespace vantage::detail

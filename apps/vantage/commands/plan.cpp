@@ -219,9 +219,10 @@ void run(const PlanOptions& o) {
         robot_source = "the last cloud's pose";
       }
       if (!o.json_only) {
-        fmt::print("cloud {}/{}  {}  {} points  {} cells seen{}\n", i + 1, manifest->clouds.size(),
-                   manifest->clouds[i].file.filename().string(), u.points,
+        fmt::print("cloud {}/{}  {}  {} points  {} cells seen{}{}\n", i + 1,
+                   manifest->clouds.size(), manifest->clouds[i].file.filename().string(), u.points,
                    u.integration.left_unobserved.size(),
+                   manifest->clouds[i].pose_from_viewpoint ? "  (pose from its VIEWPOINT)" : "",
                    mapper_config.register_scans
                        ? (u.registered ? "  (ICP corrected)" : "  (ICP kept the pose)")
                        : "");

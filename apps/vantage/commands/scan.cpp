@@ -95,7 +95,13 @@ void run(const ScanOptions& o) {
     throw std::runtime_error(
         fmt::format("the scan hit nothing within range; {} not written", o.out));
   }
-  write_point_cloud(o.out, o.frame == "world" ? transform(T_true, points) : points);
+  // NOTE: points in the sensor frame carry the believed pose as their PCD VIEWPOINT, as a robot's
+  // recording would (a manifest without poses plans from it); points in the world need none.
+  if (o.frame == "world") {
+    write_point_cloud(o.out, transform(T_true, points));
+  } else {
+    write_point_cloud(o.out, points, T_noisy);
+  }
   fmt::print("wrote {} ({} frame)\n", o.out, o.frame);
 }
 
@@ -115,7 +121,9 @@ void add_scan_command(CLI::App& app) {
   start->excludes(view);
   cmd->add_option("--sensor", o->sensor, "replace the scene's sensor: hokuyo or kinect");
   cmd->add_option("--out,-o", o->out, "write the points to this .pcd or .ply file");
-  cmd->add_option("--frame", o->frame, "frame of the written points: sensor or world (true pose)")
+  cmd->add_option("--frame", o->frame,
+                  "frame of the written points: sensor (a PCD records the believed pose as its "
+                  "VIEWPOINT) or world (true pose)")
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of the range and pose noise")->capture_default_str();
   cmd->add_flag("--sweep", o->sweep, "a 360-degree sweep at the pose instead of one scan");
