@@ -54,11 +54,13 @@ struct Footprint {
 };
 
 /// Credits the walk's cell, an unobserved cell the ray owns, to every member that holds it; the
-/// replay runs once, for the first.
+/// replay runs once, for the first. Inlined, like settle_and_jump, so that the ray's state stays in
+/// registers in cast_ray's loop.
 template <typename CodeT, typename Model>
-void credit(const CastContext<Model>& cx, const CodeT* codes, const RayGroup& rays,
-            const Kept* history, int ray_m0, const GridWalk& walk, const Eigen::Vector3d& c,
-            RaySum& sum) {
+[[gnu::always_inline]] inline void credit(const CastContext<Model>& cx, const CodeT* codes,
+                                          const RayGroup& rays, const Kept* history, int ray_m0,
+                                          const GridWalk& walk, const Eigen::Vector3d& c,
+                                          RaySum& sum) {
   double g = 0.0;
   bool replayed = false;
   for (std::size_t k = 0; k < rays.views.size(); ++k) {

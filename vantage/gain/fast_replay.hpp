@@ -148,8 +148,9 @@ inline bool jump_uniform(const GridSpec& spec, const BlockSummary& blocks, const
 /// jumps to the region's last cell along the ray, with the state the table holds there, and
 /// refills the history from the table. True when it jumped.
 template <typename Model>
-bool settle_and_jump(const CastContext<Model>& cx, const RayPath& ray, std::size_t code, int ray_m0,
-                     RayOdds& odds, Kept* history, GridWalk& walk) {
+[[gnu::always_inline]] inline bool settle_and_jump(const CastContext<Model>& cx, const RayPath& ray,
+                                                   std::size_t code, int ray_m0, RayOdds& odds,
+                                                   Kept* history, GridWalk& walk) {
   const GainMap::Value& value = cx.values[code];
   const auto& steady = cx.steady[code];
   // |v - v_f| and |q - q_f| below the tolerance; f sums to 1 in both pairs.
