@@ -4,7 +4,8 @@
 
 #include "bench/fixtures.hpp"
 #include "bench/octomap_gain.hpp"
-#include "vantage/gain/fast_gain.hpp"
+#include "vantage/gain/exact.hpp"
+#include "vantage/gain/fast.hpp"
 
 namespace vantage::bench {
 namespace {

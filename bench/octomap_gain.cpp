@@ -7,9 +7,10 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "vantage/gain/fast_gain.hpp"
+#include "vantage/gain/fast_layout.hpp"
+#include "vantage/gain/model.hpp"
 #include "vantage/gain/ray_model.hpp"
-#include "vantage/map/line_of_sight.hpp"
+#include "vantage/map/traversal.hpp"
 #include "vantage/util/parallel.hpp"
 
 namespace vantage::bench {
@@ -58,38 +59,13 @@ OctoMapGains octomap_view_gains(const octomap::OcTree& tree, const GridSpec& spe
       const Frustum& view = views[vi];
       const Eigen::Matrix3d R = view.T_world_sensor().linear();
       const Eigen::Vector3d o = view.origin();
-      const int max_cells = max_ray_cells(spec, o);
-      const UniformPrefix outside(RayModel(config.alpha), params.p_min, max_cells + 1);
-      std::vector<double> t(static_cast<std::size_t>(max_cells) + 2, 1.0);
-      for (std::size_t m = 1; m < t.size(); ++m) t[m] = t[m - 1] * config.alpha;
+      const RayTables<PaperModel> tables(config.alpha, params.p_min, max_ray_cells(spec, o) + 1);
 
       // The pixel grid: the field of view cut to the grid's image, the fast mode's pitch.
       const double th = std::tan(view.fov().h_fov / 2), tv = std::tan(view.fov().v_fov / 2);
-      double u_lo = -th, u_hi = th, v_lo = -tv, v_hi = tv, depth = 0.0;
-      double cu_lo = 1e300, cu_hi = -1e300, cv_lo = 1e300, cv_hi = -1e300;
-      bool in_front = true;
-      for (int k = 0; k < 8; ++k) {
-        const Eigen::Vector3d c((k & 1) ? spec.max_corner().x() : spec.origin.x(),
-                                (k & 2) ? spec.max_corner().y() : spec.origin.y(),
-                                (k & 4) ? spec.max_corner().z() : spec.origin.z());
-        const Eigen::Vector3d p = R.transpose() * (c - o);
-        depth = std::max(depth, p.x());
-        if (p.x() <= 1e-9) {
-          in_front = false;
-          continue;
-        }
-        cu_lo = std::min(cu_lo, p.y() / p.x());
-        cu_hi = std::max(cu_hi, p.y() / p.x());
-        cv_lo = std::min(cv_lo, p.z() / p.x());
-        cv_hi = std::max(cv_hi, p.z() / p.x());
-      }
-      if (in_front) {
-        u_lo = std::max(u_lo, cu_lo);
-        u_hi = std::min(u_hi, cu_hi);
-        v_lo = std::max(v_lo, cv_lo);
-        v_hi = std::min(v_hi, cv_hi);
-      }
-      depth = std::min(depth, view.fov().max_range);
+      double u_lo = -th, u_hi = th, v_lo = -tv, v_hi = tv;
+      const double depth =
+          detail::cut_to_grid(spec, R.transpose(), o, view.fov().max_range, u_lo, u_hi, v_lo, v_hi);
       if (depth <= 0.0 || u_hi <= u_lo || v_hi <= v_lo) return;
       const double du = config.ray_spacing * spec.resolution / depth;
       const int cols = static_cast<int>(std::ceil((u_hi - u_lo) / du));
@@ -118,19 +94,7 @@ OctoMapGains octomap_view_gains(const octomap::OcTree& tree, const GridSpec& spe
               R * Eigen::Vector3d(1.0, u_lo + (col + 0.5) * du, v_lo + (row + 0.5) * du);
           // Clip to the grid: the cells before it are free (MODEL.md), a table lookup.
           double s_in = 0.0, s_out = reach / dir.norm();
-          bool hits = true;
-          for (int a = 0; a < 3 && hits; ++a) {
-            if (dir[a] == 0.0) {
-              hits = o[a] >= spec.origin[a] && o[a] < spec.max_corner()[a];
-              continue;
-            }
-            double t0 = (spec.origin[a] - o[a]) / dir[a],
-                   t1 = (spec.max_corner()[a] - o[a]) / dir[a];
-            if (t0 > t1) std::swap(t0, t1);
-            s_in = std::max(s_in, t0);
-            s_out = std::min(s_out, t1);
-          }
-          if (!hits || s_in >= s_out) continue;
+          if (!clip_to_grid(spec, o, dir, s_in, s_out) || s_in >= s_out) continue;
           const double nudge = 1e-6 * spec.resolution / dir.norm();
           const octomap::point3d from = to_point(o + (s_in + nudge) * dir);
           const octomap::point3d to = to_point(o + (s_out - nudge) * dir);
@@ -140,7 +104,7 @@ OctoMapGains octomap_view_gains(const octomap::OcTree& tree, const GridSpec& spe
           int m = std::abs(int(first[0]) - int(k_origin[0])) +
                   std::abs(int(first[1]) - int(k_origin[1])) +
                   std::abs(int(first[2]) - int(k_origin[2]));
-          detail::Odds odds;
+          RayOdds odds;
           double p_prev = params.p_min;
           bool start = true;
           for (const octomap::OcTreeKey& key : ray) {
@@ -150,16 +114,10 @@ OctoMapGains octomap_view_gains(const octomap::OcTree& tree, const GridSpec& spe
             const float l = node ? node->getLogOdds() : (inside ? 0.0f : free_max - 1.0f);
             const double p = node ? node->getOccupancy() : (inside ? 0.5 : params.p_min);
             if (start) {
-              if (m == 0) {
-                odds = detail::Odds(1.0, p);
-              } else {
-                odds = detail::Odds(outside.at(m));
-                odds.step(t[static_cast<std::size_t>(m)], params.p_min, p);
-              }
+              odds = tables.enter(m, p);
               start = false;
             } else {
-              odds.step(t[static_cast<std::size_t>(m)], p_prev, p);
-              if ((m & 7) == 0) odds.renormalize();
+              tables.step(odds, m, p_prev, p);
             }
             p_prev = p;
             const bool unobserved = l > free_max && l < occupied_min;

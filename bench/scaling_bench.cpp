@@ -3,7 +3,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/fixtures.hpp"
-#include "vantage/gain/fast_gain.hpp"
+#include "vantage/gain/fast.hpp"
 
 namespace vantage::bench {
 namespace {

@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "vantage/gain/fast_gain.hpp"
+#include "vantage/gain/exact.hpp"
+#include "vantage/gain/fast.hpp"
+#include "vantage/gain/view_gain.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/sim/world.hpp"

@@ -1,8 +1,6 @@
-// The fast gain evaluation against the exact one: the model in odds form against RayModel, the
-// snapshot against the grid, coverage (every unobserved cell in view credited once), thread-count
-// independence, and the oracle on synthetic table-top map states after 1, 3 and 6 scans.
-
-#include "vantage/gain/fast_gain.hpp"
+// The fast gain evaluation against the exact one: the snapshot against the grid, coverage (every
+// unobserved cell in view credited once), thread-count independence, and the oracle on synthetic
+// table-top map states after 1, 3 and 6 scans.
 
 #include <gtest/gtest.h>
 
@@ -11,55 +9,14 @@
 #include <random>
 
 #include "bench/synthetic_tabletop.hpp"
+#include "vantage/gain/exact.hpp"
+#include "vantage/gain/fast.hpp"
 #include "vantage/gain/ray_model.hpp"
+#include "vantage/gain/view_gain.hpp"
 #include "vantage/planner/choose.hpp"
 
 namespace vantage {
 namespace {
-
-// ---------------------------------------------------------------------------------------------
-// The model in odds form
-
-TEST(OddsModel, MatchesRayModelAlongRandomRays) {
-  std::mt19937_64 rng(7);
-  std::uniform_real_distribution<double> any(0.01, 0.99);
-  const OccupancyParams params;
-  const double levels[] = {params.p_min, 0.4, 0.5, 0.7, params.p_max};
-  std::uniform_int_distribution<int> level(0, 5);
-  // NOTE: not alpha = 1, where v stays 1 and q becomes a bare product of likelihood ratios: the
-  // direct form keeps q near 1 as a double and loses 1 - q, which the odds form keeps.
-  for (const double alpha : {0.997, 0.9999, 0.99999, 0.9}) {
-    for (int trial = 0; trial < 20; ++trial) {
-      std::vector<double> p(300);
-      for (double& x : p) {
-        const int k = level(rng);
-        x = k < 5 ? levels[k] : any(rng);
-      }
-      const RayModel model(alpha);
-      const std::vector<RayState> states = model.trace(p);
-      detail::Odds odds(1.0, p[0]);
-      double t = 1.0;
-      for (std::size_t m = 1; m < p.size(); ++m) {
-        t *= alpha;
-        odds.step(t, p[m - 1], p[m]);
-        if (m % 8 == 0) odds.renormalize();
-        ASSERT_NEAR(odds.visibility(), states[m].visibility, 1e-12) << "alpha " << alpha;
-        ASSERT_NEAR(odds.posterior(), states[m].posterior, 1e-12) << "alpha " << alpha;
-      }
-    }
-  }
-}
-
-TEST(OddsModel, StopTestsMatchTheirDefinitions) {
-  const detail::Odds hidden(0.0004, 0.5);
-  EXPECT_TRUE(hidden.hidden(1e-3));
-  EXPECT_FALSE(hidden.hidden(1e-4));
-  const detail::Odds pinned(0.5, 0.5005);
-  EXPECT_TRUE(pinned.pinned(1e-3));
-  EXPECT_FALSE(pinned.pinned(1e-4));
-  EXPECT_FALSE(pinned.hidden(0.0));
-  EXPECT_FALSE(detail::Odds(0.5, 0.5).pinned(0.0));  // epsilon 0 never stops
-}
 
 // ---------------------------------------------------------------------------------------------
 // The snapshot

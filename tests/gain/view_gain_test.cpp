@@ -6,6 +6,7 @@
 
 #include <random>
 
+#include "vantage/gain/exact.hpp"
 #include "vantage/gain/ray_model.hpp"
 
 namespace vantage {

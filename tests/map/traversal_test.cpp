@@ -230,5 +230,92 @@ TEST(Traversal, LeavingTheGridEndsTheWalk) {
   EXPECT_FALSE(r.reached_end);
 }
 
+// ---------------------------------------------------------------------------------------------
+// GridWalk, the one walker: traverse() runs on it (so the oracle tests above cover a walk started
+// in the origin's cell); these check the ways the fast gain starts it mid-ray and moves it ahead.
+
+/// The cells of a GridWalk along o + s * dir from `first` to `last`, with their m.
+std::vector<Visit> grid_walk(const GridSpec& spec, const Eigen::Vector3d& o,
+                             const Eigen::Vector3d& dir, const Index3& first, const Index3& last) {
+  GridWalk walk;
+  walk.start(spec, o, dir, first, last, spec.lattice_index(o));
+  std::vector<Visit> visits;
+  do {
+    visits.push_back({walk.cell, static_cast<std::size_t>(walk.linear), walk.m});
+  } while (walk.advance());
+  return visits;
+}
+
+TEST(GridWalk, StartedMidRayContinuesTheSameWalk) {
+  const GridSpec spec = test_grid();
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  auto inside = [&] {
+    return Eigen::Vector3d(spec.origin +
+                           spec.size().cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng))));
+  };
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d a = inside(), b = inside();
+    const auto whole = walk(spec, a, b);  // traverse(), checked against the oracle above
+    const auto mine = grid_walk(spec, a, b - a, spec.lattice_index(a), spec.lattice_index(b));
+    ASSERT_EQ(mine.size(), whole.size()) << "segment " << i;
+    for (std::size_t k = 0; k < whole.size(); ++k) {
+      ASSERT_EQ(mine[k].cell, whole[k].cell) << "segment " << i << ", cell " << k;
+      ASSERT_EQ(mine[k].linear, whole[k].linear);
+      ASSERT_EQ(mine[k].m, whole[k].m);
+    }
+    // Started in any cell of the walk, it visits the rest of it with the same m.
+    const std::size_t from = whole.size() / 2;
+    const auto rest = grid_walk(spec, a, b - a, whole[from].cell, spec.lattice_index(b));
+    ASSERT_EQ(rest.size(), whole.size() - from) << "segment " << i;
+    for (std::size_t k = 0; k < rest.size(); ++k) {
+      ASSERT_EQ(rest[k].cell, whole[from + k].cell) << "segment " << i << ", cell " << k;
+      ASSERT_EQ(rest[k].m, whole[from + k].m);
+    }
+  }
+}
+
+TEST(GridWalk, SkipMovesAlongTheWalk) {
+  const GridSpec spec = test_grid();
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int i = 0; i < 2000; ++i) {
+    const Eigen::Vector3d a =
+        spec.origin + spec.size().cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const Eigen::Vector3d b =
+        spec.origin + spec.size().cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const auto whole = grid_walk(spec, a, b - a, spec.lattice_index(a), spec.lattice_index(b));
+    // Skipping the steps to any visited cell lands on it, and the walk goes on as before.
+    const std::size_t to = whole.size() / 3;
+    GridWalk walk;
+    walk.start(spec, a, b - a, spec.lattice_index(a), spec.lattice_index(b), spec.lattice_index(a));
+    walk.skip((whole[to].cell - whole[0].cell).cwiseAbs());
+    walk.relink(spec);
+    for (std::size_t k = to; k < whole.size(); ++k) {
+      ASSERT_EQ(walk.cell, whole[k].cell) << "segment " << i << ", cell " << k;
+      ASSERT_EQ(static_cast<std::size_t>(walk.linear), whole[k].linear);
+      ASSERT_EQ(walk.m, whole[k].m);
+      ASSERT_EQ(walk.advance(), k + 1 < whole.size());
+    }
+  }
+}
+
+TEST(GridWalk, ClipToGridFindsTheBoxOrRejectsAParallelMiss) {
+  const GridSpec spec = test_grid();
+  const Eigen::Vector3d o = spec.origin - Eigen::Vector3d(1.0, -0.1, -0.1);
+  double s_in = 0.0, s_out = 10.0;
+  ASSERT_TRUE(clip_to_grid(spec, o, Eigen::Vector3d::UnitX(), s_in, s_out));
+  EXPECT_NEAR(s_in, 1.0, 1e-12);
+  EXPECT_NEAR(s_out, 1.0 + spec.size().x(), 1e-12);
+  // Parallel to x but below the box: no crossing at all.
+  const Eigen::Vector3d below = spec.origin - Eigen::Vector3d(1.0, 0.0, 0.5);
+  s_in = 0.0, s_out = 10.0;
+  EXPECT_FALSE(clip_to_grid(spec, below, Eigen::Vector3d::UnitX(), s_in, s_out));
+  // Aimed away: the interval is empty.
+  s_in = 0.0, s_out = 10.0;
+  ASSERT_TRUE(clip_to_grid(spec, o, -Eigen::Vector3d::UnitX(), s_in, s_out));
+  EXPECT_GT(s_in, s_out);
+}
+
 }  // namespace
 }  // namespace vantage

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/occupancy_grid.hpp"
 #include "vantage/util/text.hpp"
 
@@ -80,10 +81,9 @@ UniformPrefix::UniformPrefix(const RayModel& model, double p, int max_cells) {
 }
 
 bool greedy_visible(std::span<const double> occupancy) {
-  for (std::size_t i = 0; i + 1 < occupancy.size(); ++i) {
-    if (classify(occupancy[i]) == CellState::kOccupied) return false;
-  }
-  return true;
+  if (occupancy.empty()) return true;
+  return std::none_of(occupancy.begin(), occupancy.end() - 1,
+                      [](double p) { return occludes(classify(p)); });
 }
 
 }  // namespace vantage

@@ -30,7 +30,9 @@ struct RayState {
   double gain() const { return entropy_bits(occupancy) - entropy_bits(posterior); }
 };
 
-/// The visibility-aware ray model with observability parameter `a` (alpha).
+/// The visibility-aware ray model with observability parameter `a` (alpha), in the direct form of
+/// MODEL.md: the readable reference that `vantage ray` prints. The evaluations run the same
+/// model in odds form, `PaperModel` (model.hpp); tests pin the two together to 1e-12.
 class RayModel {
  public:
   /// Throws std::invalid_argument unless 0 < alpha <= 1.
@@ -73,7 +75,7 @@ class UniformPrefix {
 };
 
 /// Whether a ray of occupancies reaches its last cell under the simple greedy model (infinite
-/// visibility): no cell before the last is occupied (p >= 0.6).
+/// visibility): no cell before the last occludes (`occludes`, map/line_of_sight.hpp).
 bool greedy_visible(std::span<const double> occupancy);
 
 }  // namespace vantage

@@ -1,6 +1,9 @@
 #pragma once
 /// @file
-/// Expected information gain of candidate views (eqs. 1, 3, 4; MODEL.md "One view").
+/// Expected information gain of candidate views (eqs. 1, 3, 4; MODEL.md "One view"): the settings,
+/// the result, and the façade `evaluate_views`, which takes the evaluation
+/// `GainConfig::evaluation` names: the exact one (exact.hpp), the fast one (fast.hpp), or for
+/// `kAuto` the cheaper of the two. The ray model both run is `PaperModel` (model.hpp).
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -31,7 +34,7 @@ enum class GainEvaluation {
   /// definition and the reference.
   kExact,
   /// Rays cast outward through the frustum, each carrying the model's state along itself and
-  /// crediting the cells it owns (vantage/gain/fast_gain.hpp, docs/fast-gain.md).
+  /// crediting the cells it owns (vantage/gain/fast.hpp, docs/fast-gain.md).
   kFast,
   /// Whichever of the two costs less on this map state and these views, by counts taken before
   /// any ray is cast (docs/fast-gain.md, "Choosing per map state"). Deterministic.
@@ -64,30 +67,18 @@ struct GainConfig {
 
 /// The predicted gain of one view.
 struct ViewGain {
-  double gain = 0.0;  ///< expected number of unobserved cells the view turns known [bits]
+  double gain = 0.0;  ///< expected information gain of the view, eq. (1) [bits]
   /// Exact mode: the unobserved cells inside the frustum. Fast mode: those it credited; the same
   /// cells with epsilon = 0, without those behind a ray's early stop and those deep in uniform
   /// unobserved space with a pinned posterior otherwise.
   std::size_t targets = 0;
 };
 
-/// Gains of all views, by the evaluation `config.evaluation` names. The grid is only read.
+/// Gains of all views, by the evaluation `config.evaluation` names; for kAuto the cheaper of the
+/// fast and the exact one on this map state (docs/fast-gain.md "Choosing per map state"), bit for
+/// bit the one chosen. The choice comes from counts taken before any ray is cast, so it does not
+/// depend on time or threads. The grid is only read.
 std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const Frustum> views,
                                      const GainConfig& config);
-
-/// Exact evaluation: every unobserved cell inside the frustum on its own ray from the sensor
-/// origin to the cell's centre, summed. The reference for every faster evaluation; with
-/// `config.epsilon` = 0 it is the literal model. Ignores `config.evaluation`.
-std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
-                                       const GainConfig& config);
-
-/// Exact gain of one view.
-ViewGain exact_view_gain(const OccupancyGrid& grid, const Frustum& view, const GainConfig& config);
-
-/// Predicted gain of one target cell seen from `origin`, whatever its state (known cells are
-/// evaluated too; the view sums skip them). Follows the literal model whatever `config.epsilon`
-/// says.
-double exact_cell_gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
-                       const Index3& target, const GainConfig& config);
 
 }  // namespace vantage

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// The occlusion test shared by unknown-space estimation (§4.3.1) and the simple greedy gain.
+/// The greedy occlusion rule, written once: the simple greedy gain (MODEL.md "Baselines"),
+/// unknown-space estimation (§4.3.1) and the reference `greedy_visible` all ask it.
 
 #include <Eigen/Core>
 #include <cstddef>
@@ -10,29 +11,33 @@
 
 namespace vantage {
 
+/// Whether a cell of this class hides what lies behind it on a ray: it is occupied (p >= 0.6).
+inline bool occludes(CellState state) { return state == CellState::kOccupied; }
+
 /// Whether no cell on the ray from `origin` to the centre of `target`, before the target itself,
-/// is occupied. Cells outside the grid are free (MODEL.md).
-inline bool line_of_sight(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
-                          const Index3& target) {
-  const std::size_t target_linear = grid.spec().linear(target);
+/// occludes. Cells outside the grid are free (MODEL.md). `state_of(linear)` gives a cell's class,
+/// so any view of the grid (the grid, a gain snapshot) can be asked.
+template <typename StateOf>
+bool line_of_sight(const GridSpec& spec, const Eigen::Vector3d& origin, const Index3& target,
+                   StateOf&& state_of) {
+  const std::size_t target_linear = spec.linear(target);
   bool clear = true;
-  traverse(grid.spec(), origin, grid.spec().center(target),
-           [&](const Index3&, std::size_t linear, int) {
-             if (linear == target_linear) return false;
-             if (grid.state(linear) == CellState::kOccupied) {
-               clear = false;
-               return false;
-             }
-             return true;
-           });
+  traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int) {
+    if (linear == target_linear) return false;
+    if (occludes(state_of(linear))) {
+      clear = false;
+      return false;
+    }
+    return true;
+  });
   return clear;
 }
 
-/// Upper bound on the lattice steps from `origin` to any cell of the grid, plus one.
-inline int max_ray_cells(const GridSpec& spec, const Eigen::Vector3d& origin) {
-  const Eigen::Vector3d lo = (spec.origin - origin).cwiseAbs();
-  const Eigen::Vector3d hi = (spec.max_corner() - origin).cwiseAbs();
-  return static_cast<int>(lo.cwiseMax(hi).sum() / spec.resolution) + 4;
+/// line_of_sight on the grid itself.
+inline bool line_of_sight(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
+                          const Index3& target) {
+  return line_of_sight(grid.spec(), origin, target,
+                       [&](std::size_t linear) { return grid.state(linear); });
 }
 
 }  // namespace vantage

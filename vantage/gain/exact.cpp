@@ -1,0 +1,177 @@
+#include "vantage/gain/exact.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "vantage/gain/ray_model.hpp"
+#include "vantage/map/line_of_sight.hpp"
+#include "vantage/map/traversal.hpp"
+#include "vantage/util/parallel.hpp"
+#include "vantage/util/text.hpp"
+
+namespace vantage {
+namespace {
+
+/// Cell values read straight from the grid, for one-off rays where a snapshot would cost more
+/// than it saves.
+struct GridCells {
+  const OccupancyGrid& grid;
+  const GridSpec& spec() const { return grid.spec(); }
+  GainMap::Value value(std::size_t i) const {
+    GainMap::Value v;
+    v.p = grid.probability(i);
+    v.entropy = entropy_bits(v.p);
+    v.state = grid.state(i);
+    return v;
+  }
+};
+
+/// Gain of the target cell on its ray from `origin` under `Model`; 0 when the ray stops early
+/// (visibility below `epsilon`) before it. `Cells` is GainMap or GridCells.
+template <typename Model, typename Cells>
+double ray_gain(const Cells& map, const RayTables<Model>& tables, const Eigen::Vector3d& origin,
+                const Index3& target, double epsilon) {
+  const GridSpec& spec = map.spec();
+  const std::size_t target_linear = spec.linear(target);
+  RayOdds state;
+  double p_prev = 0.0;
+  double gain = 0.0;
+  bool first = true;
+  traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int m) {
+    const auto cell = map.value(linear);
+    if (first) {
+      state = tables.enter(m, cell.p);
+      first = false;
+    } else {
+      tables.step(state, m, p_prev, cell.p);
+    }
+    p_prev = cell.p;
+    if (linear == target_linear) {
+      gain = cell.entropy - entropy_bits(state.posterior());  // eq. (4)
+      return false;
+    }
+    // The fast mode's early stop: a ray stops once it is hidden.
+    return !state.hidden(epsilon);
+  });
+  return gain;
+}
+
+/// Whether nothing occludes the target (the simple greedy gain): 1 or 0.
+template <typename Cells>
+double greedy_gain(const Cells& map, const Eigen::Vector3d& origin, const Index3& target) {
+  return line_of_sight(map.spec(), origin, target,
+                       [&](std::size_t linear) { return map.value(linear).state; })
+             ? 1.0
+             : 0.0;
+}
+
+/// Sums a per-target gain over the unobserved cells inside the frustum. The frustum and the
+/// cell's class are tested before any traversal. Rows (fixed y, z) run in parallel; the row sums
+/// are added in row order, so the result does not depend on threads.
+template <typename CellGain>
+ViewGain sum_over_targets(const GainMap& map, const Frustum& view, CellGain&& cell_gain) {
+  const GridSpec& spec = map.spec();
+  const CellBox box = cells_under(spec, view);
+  if (box.empty()) return {};
+  const int ny = box.hi.y() - box.lo.y() + 1;
+  const int nz = box.hi.z() - box.lo.z() + 1;
+  const auto rows = static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
+  std::vector<ViewGain> row_sums(rows);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows), [&](const auto& range) {
+    for (std::size_t row = range.begin(); row != range.end(); ++row) {
+      ViewGain sum;
+      Index3 cell(0, box.lo.y() + static_cast<int>(row % static_cast<std::size_t>(ny)),
+                  box.lo.z() + static_cast<int>(row / static_cast<std::size_t>(ny)));
+      for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
+        const std::size_t linear = spec.linear(cell);
+        if (map.value(linear).state != CellState::kUnobserved ||
+            !view.contains(spec.center(cell))) {
+          continue;
+        }
+        sum.gain += cell_gain(cell);
+        ++sum.targets;
+      }
+      row_sums[row] = sum;
+    }
+  });
+  ViewGain total;
+  for (const ViewGain& row : row_sums) {
+    total.gain += row.gain;
+    total.targets += row.targets;
+  }
+  return total;
+}
+
+/// The tables for rays from every view's origin.
+template <typename Model>
+RayTables<Model> tables_for(const GridSpec& spec, std::span<const Frustum> views,
+                            const OccupancyParams& params, double alpha) {
+  int cells = 1;
+  for (const Frustum& view : views) cells = std::max(cells, max_ray_cells(spec, view.origin()));
+  return RayTables<Model>(alpha, params.p_min, cells);
+}
+
+}  // namespace
+
+template <typename Model>
+std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
+                                       const GainConfig& config) {
+  config.validate();
+  std::vector<ViewGain> gains(views.size());
+  if (config.method == GainMethod::kGreedy) {
+    run_with_threads(config.num_threads, [&] {
+      tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t i) {
+        const Eigen::Vector3d origin = views[i].origin();
+        gains[i] = sum_over_targets(
+            map, views[i], [&](const Index3& target) { return greedy_gain(map, origin, target); });
+      });
+    });
+    return gains;
+  }
+  const RayTables<Model> tables = tables_for<Model>(map.spec(), views, map.params(), config.alpha);
+  run_with_threads(config.num_threads, [&] {
+    tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t i) {
+      const Eigen::Vector3d origin = views[i].origin();
+      gains[i] = sum_over_targets(map, views[i], [&](const Index3& target) {
+        return ray_gain(map, tables, origin, target, config.epsilon);
+      });
+    });
+  });
+  return gains;
+}
+
+template std::vector<ViewGain> exact_view_gains<PaperModel>(const GainMap&,
+                                                            std::span<const Frustum>,
+                                                            const GainConfig&);
+template std::vector<ViewGain> exact_view_gains<BlindModel>(const GainMap&,
+                                                            std::span<const Frustum>,
+                                                            const GainConfig&);
+
+std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
+                                       const GainConfig& config) {
+  config.validate();
+  return exact_view_gains(GainMap(grid, config.num_threads), views, config);
+}
+
+ViewGain exact_view_gain(const OccupancyGrid& grid, const Frustum& view, const GainConfig& config) {
+  return exact_view_gains(grid, std::span<const Frustum>(&view, 1), config).front();
+}
+
+double exact_cell_gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
+                       const Index3& target, const GainConfig& config) {
+  config.validate();
+  if (!grid.spec().contains(target)) {
+    throw std::out_of_range(cat("target cell (", target.x(), ", ", target.y(), ", ", target.z(),
+                                ") is outside the grid"));
+  }
+  const GridCells cells{grid};
+  if (config.method == GainMethod::kGreedy) return greedy_gain(cells, origin, target);
+  const RayTables<PaperModel> tables(config.alpha, grid.params().p_min,
+                                     max_ray_cells(grid.spec(), origin));
+  return ray_gain(cells, tables, origin, target, 0.0);
+}
+
+}  // namespace vantage

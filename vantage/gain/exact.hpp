@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// The exact gain evaluation (MODEL.md "One view"): every unobserved cell inside the frustum on
+/// its own ray from the sensor origin to the cell's centre, summed. The paper's definition and
+/// the reference for every faster evaluation.
+
+#include <Eigen/Core>
+#include <span>
+#include <vector>
+
+#include "vantage/gain/model.hpp"
+#include "vantage/gain/snapshot.hpp"
+#include "vantage/gain/view_gain.hpp"
+
+namespace vantage {
+
+/// Exact evaluation of every view on a snapshot, whatever `config.evaluation` says, with the ray
+/// model `Model` (model.hpp; instantiated for PaperModel and BlindModel). With `config.epsilon` =
+/// 0 it is the literal model.
+template <typename Model = PaperModel>
+std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
+                                       const GainConfig& config);
+
+/// The same on the grid, which is only read.
+std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
+                                       const GainConfig& config);
+
+/// Exact gain of one view.
+ViewGain exact_view_gain(const OccupancyGrid& grid, const Frustum& view, const GainConfig& config);
+
+/// Predicted gain of one target cell seen from `origin`, whatever its state (known cells are
+/// evaluated too; the view sums skip them). Follows the literal model whatever `config.epsilon`
+/// says.
+double exact_cell_gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
+                       const Index3& target, const GainConfig& config);
+
+}  // namespace vantage

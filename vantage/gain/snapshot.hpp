@@ -1,0 +1,111 @@
+#pragma once
+/// @file
+/// The snapshot both gain evaluations read (docs/fast-gain.md "Determinism and data"): `GainMap`,
+/// one small code per cell into a table of the grid's distinct values, and `BlockSummary`, which
+/// says where whole blocks of cells share one code.
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "vantage/map/occupancy_grid.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage {
+
+/// A read-only snapshot of an occupancy grid, laid out for gain evaluation: per cell a small code
+/// into a table of the distinct log-odds values the grid holds, each with its probability,
+/// entropy and class. A grid updated by hits and misses holds few distinct values, so the codes
+/// are usually one byte (a 129 x 129 x 65 grid fits in 1 MiB of cache).
+///
+/// Probabilities and classes are computed from the stored log-odds exactly as OccupancyGrid does,
+/// so a model run on the snapshot gives the same numbers as one run on the grid.
+class GainMap {
+ public:
+  /// What the evaluation needs to know about a cell.
+  struct Value {
+    double p = 0.5;        ///< occupancy probability
+    double entropy = 1.0;  ///< H(p) [bits]
+    CellState state = CellState::kUnobserved;
+  };
+
+  /// Takes the snapshot; `num_threads` as everywhere (0 = all cores).
+  explicit GainMap(const OccupancyGrid& grid, int num_threads = 0);
+
+  const GridSpec& spec() const { return spec_; }
+  const OccupancyParams& params() const { return params_; }
+  std::size_t size() const { return spec_.num_cells(); }
+
+  /// Bytes per cell code: 1, 2 or 4.
+  int code_width() const { return code_width_; }
+  /// The table of distinct values, ascending in log-odds.
+  std::span<const Value> values() const { return values_; }
+  /// Codes of width `Code` (which must match code_width()), one per cell in linear order.
+  template <typename Code>
+  const Code* codes() const {
+    if constexpr (sizeof(Code) == 1) {
+      return codes8_.data();
+    } else if constexpr (sizeof(Code) == 2) {
+      return codes16_.data();
+    } else {
+      return codes32_.data();
+    }
+  }
+  /// The value of cell `i`, whatever the code width.
+  const Value& value(std::size_t i) const;
+
+ private:
+  GridSpec spec_;
+  OccupancyParams params_;
+  int code_width_ = 1;
+  std::vector<Value> values_;
+  // The codes, in the one vector of width code_width_.
+  std::vector<std::uint8_t> codes8_;
+  std::vector<std::uint16_t> codes16_;
+  std::vector<std::uint32_t> codes32_;
+};
+
+/// Inclusive index box of the grid cells that may lie inside a frustum (its bounding box, cut to
+/// the grid); empty when the frustum misses the grid.
+struct CellBox {
+  Index3 lo, hi;
+  bool empty() const { return (hi.array() < lo.array()).any(); }
+};
+
+inline CellBox cells_under(const GridSpec& spec, const Frustum& view) {
+  const Eigen::AlignedBox3d box = view.bounds();
+  return {spec.lattice_index(box.min()).cwiseMax(Index3::Zero()),
+          spec.lattice_index(box.max()).cwiseMin(spec.dims - Index3::Ones())};
+}
+
+/// Blocks of kBlock^3 cells: per block its cells' common code when they share one, and how far
+/// around it every block does too (docs/fast-gain.md "Jumps across uniform space").
+struct BlockSummary {
+  static constexpr int kShift = 1;
+  static constexpr int kBlock = 1 << kShift;  ///< block edge [cells]
+  static constexpr std::uint16_t kMixed = 0xffff;
+
+  Index3 dims = Index3::Zero();          ///< blocks along each axis
+  std::vector<std::uint16_t> code;       ///< the code all cells share, or kMixed
+  std::vector<std::uint8_t> radius;      ///< the cube of blocks within this distance shares `code`
+  std::vector<std::uint8_t> unobserved;  ///< the block holds an unobserved cell
+
+  /// Index of the block that holds `cell`.
+  std::size_t index(const Index3& cell) const {
+    return static_cast<std::size_t>(cell.x() >> kShift) +
+           static_cast<std::size_t>(dims.x()) *
+               (static_cast<std::size_t>(cell.y() >> kShift) +
+                static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(cell.z() >> kShift));
+  }
+  /// Index of block (x, y, z).
+  std::size_t at(int x, int y, int z) const {
+    return static_cast<std::size_t>(x) +
+           dims.x() * (static_cast<std::size_t>(y) + dims.y() * static_cast<std::size_t>(z));
+  }
+};
+
+/// Summarizes the snapshot's blocks (in parallel; the result does not depend on the threads).
+BlockSummary summarize_blocks(const GainMap& map);
+
+}  // namespace vantage
