@@ -39,7 +39,6 @@ OfficeRun office_run(PlannerMethod method, int threads, int stops = 2,
   config.planner.gain.num_threads = threads;
   config.mapper = default_mapper_config(scene);
   config.mapper.integration.num_threads = threads;
-  apply_registration_switch(scene, config);
   Mapper mapper(scene.grid, config.mapper);
   OfficeRun run;
   run.result = explore(scene, config, mapper);
@@ -132,14 +131,6 @@ TEST(Office, EveryMethodDrivesToAFrontierStop) {
     EXPECT_GT(run.result.scans[1].travel, 0.0) << to_string(method);
     EXPECT_GT(*run.result.scans[1].greedy_predicted_gain, 0.0) << to_string(method);
   }
-}
-
-TEST(Office, AMapperThatRegistersSingleScansIsRefused) {
-  const sim::Scene scene = sim::load_scene(office_path());
-  ExplorationConfig config;
-  config.scans = 1;
-  Mapper mapper(scene.grid, MapperConfig{});  // registers every scan
-  EXPECT_THROW(explore(scene, config, mapper), std::invalid_argument);
 }
 
 TEST(Office, SweepFrustaTileTheSweepWithoutOverlap) {

@@ -58,6 +58,38 @@ TEST(Planner, LatombeTradesGainForTravelAndYamauchiTakesTheNearest) {
   EXPECT_EQ(plan_next_view(s.grid, s.candidates, config).best, 3u);
 }
 
+// A candidate of several views (an office stop's sweep) scores and predicts the sum of its
+// views' values, so it beats each of them alone; Yamauchi still scores its travel once.
+TEST(Planner, ACandidateOfSeveralViewsSumsThem) {
+  HalfKnownBlock s;
+  for (const PlannerMethod method :
+       {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy, PlannerMethod::kLatombe}) {
+    PlannerConfig config;
+    config.method = method;
+    config.greedy_reference = true;
+    const Plan single = plan_next_view(s.grid, s.candidates, config);
+    std::vector<Candidate> grouped = {s.candidates[0], s.candidates[1], s.candidates[2]};
+    grouped[2].more_views = {s.candidates[0].view, s.candidates[1].view};
+    const Plan plan = plan_next_view(s.grid, grouped, config);
+    ASSERT_EQ(plan.gains.size(), 3u);
+    EXPECT_EQ(plan.best, 2u) << to_string(method);
+    EXPECT_DOUBLE_EQ(plan.gains[2].gain,
+                     single.gains[2].gain + single.gains[0].gain + single.gains[1].gain);
+    EXPECT_EQ(plan.gains[2].targets,
+              single.gains[2].targets + single.gains[0].targets + single.gains[1].targets);
+    EXPECT_DOUBLE_EQ(plan.greedy_gains[2],
+                     single.greedy_gains[2] + single.greedy_gains[0] + single.greedy_gains[1]);
+    EXPECT_DOUBLE_EQ(plan.gains[0].gain, single.gains[0].gain);
+  }
+  PlannerConfig config;
+  config.method = PlannerMethod::kYamauchi;
+  std::vector<Candidate> grouped = s.candidates;
+  grouped[3].more_views = {s.candidates[0].view};
+  const Plan plan = plan_next_view(s.grid, grouped, config);
+  EXPECT_EQ(plan.best, 3u);
+  EXPECT_EQ(plan.scores[3], -s.candidates[3].travel);
+}
+
 TEST(Planner, RandomIsSeeded) {
   HalfKnownBlock s;
   PlannerConfig config;

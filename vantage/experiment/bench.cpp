@@ -110,7 +110,6 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
     exploration.mapper.register_scans = given.register_scans;
     exploration.mapper.segment_table = exploration.mapper.segment_table && given.segment_table;
   }
-  apply_registration_switch(scene, exploration);  // offices register whole sweeps
   Mapper mapper(scene.grid, exploration.mapper);
   const ExplorationResult result = explore(scene, exploration, mapper);
   return scans_csv_rows({spec.scene, spec.method, spec.alpha, spec.trial}, result.scans);

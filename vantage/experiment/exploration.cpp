@@ -49,70 +49,6 @@ double ring_walk(const RingConfig& ring, const Eigen::Vector3d& from, const Eige
   return ring.radius * turn + std::abs(b.norm() - a.norm());
 }
 
-/// One point per map cell (the centroid of the cell's points), in the sensor frame. Paper-mode
-/// integration gives a cell one hit however many points it holds, so the map is the same; ICP
-/// and the clouds kept get far smaller.
-PointCloud thin_to_cells(const PointCloud& points_sensor, const Eigen::Isometry3d& T_world_sensor,
-                         const GridSpec& grid) {
-  // NOTE: shifted so that the filter's voxels are the grid's cells.
-  Eigen::Isometry3d T_grid_sensor = T_world_sensor;
-  T_grid_sensor.translation() -= grid.origin;
-  const PointCloud thinned =
-      perception::voxel_downsample(transform(T_grid_sensor, points_sensor), grid.resolution);
-  return transform(T_grid_sensor.inverse(), thinned);
-}
-
-/// The points of `cloud` within a square of half-side `reach` around (x, y) of `centre`.
-PointCloud crop(const PointCloud& cloud, const Eigen::Vector3d& centre, double reach) {
-  PointCloud out;
-  for (const Eigen::Vector3d& p : cloud) {
-    if (std::abs(p.x() - centre.x()) <= reach && std::abs(p.y() - centre.y()) <= reach) {
-      out.push_back(p);
-    }
-  }
-  return out;
-}
-
-/// The points (sensor frame) that land, under the pose guess, in cells the map already knows:
-/// where the sweep overlaps what earlier sweeps saw. ICP pairs every point with its nearest
-/// reference point, and a new sweep's points in unexplored space would pair with the edge of
-/// the explored part and drag the pose towards it.
-PointCloud known_part(const PointCloud& points_sensor, const Eigen::Isometry3d& T_world_sensor,
-                      const OccupancyGrid& grid) {
-  PointCloud out;
-  for (const Eigen::Vector3d& p : points_sensor) {
-    const std::optional<Index3> cell = grid.spec().find(T_world_sensor * p);
-    if (cell && !grid.is_unobserved(grid.spec().linear(*cell))) out.push_back(p);
-  }
-  return out;
-}
-
-/// Nets the cells that left and re-entered the unobserved set over several integrations (a
-/// sweep's steps), so that each cell counts once per stop.
-class NetChange {
- public:
-  explicit NetChange(std::size_t cells) : net_(cells, 0) {}
-  void add(const IntegrationResult& r) {
-    for (const std::uint32_t i : r.left_unobserved) step(i, -1);
-    for (const std::uint32_t i : r.entered_unobserved) step(i, +1);
-  }
-  std::size_t left() const { return count(-1); }
-  std::size_t entered() const { return count(+1); }
-
- private:
-  void step(std::uint32_t i, int delta) {
-    if (net_[i] == 0) touched_.push_back(i);
-    net_[i] = static_cast<std::int8_t>(net_[i] + delta);
-  }
-  std::size_t count(int value) const {
-    std::size_t n = 0;
-    for (const std::uint32_t i : touched_) n += net_[i] == value;
-    return n;
-  }
-  std::vector<std::int8_t> net_;
-  std::vector<std::uint32_t> touched_;
-};
-
 /// Where the next scan is taken, and what the decision recorded.
 struct Decision {
   bool stop = false;
@@ -142,12 +78,6 @@ class Explorer {
     planner_ = config.planner;
     planner_.greedy_reference = true;  // Fig. 11: both predictions on the same poses
     if (office_) {
-      if (mapper.config().register_scans) {
-        throw std::invalid_argument(
-            cat("office scene '", scene.name,
-                "': the mapper must not register single scans, explore() registers whole sweeps "
-                "(build it from default_mapper_config(), see ExplorationConfig::office)"));
-      }
       navigation_.footprint = scene.robot.footprint;
       navigation_.max_height = scene.robot.height;
       navigation_.min_height = config.office.min_obstacle_height;
@@ -239,14 +169,22 @@ class Explorer {
     return s;
   }
 
-  void record_pose_errors(const Eigen::Isometry3d& believed, const Eigen::Isometry3d& used,
-                          const Eigen::Isometry3d& truth, ScanRecord& record) const {
-    const perception::PoseError before = perception::pose_error(believed, truth);
-    const perception::PoseError after = perception::pose_error(used, truth);
+  /// What the mapper did with a scan taken from the true pose `truth`.
+  static void record_update(const MapperUpdate& update, const Eigen::Isometry3d& truth,
+                            ScanRecord& record) {
+    record.seconds.register_scan = update.seconds_register;
+    record.seconds.segment = update.seconds_segment;
+    record.seconds.integrate = update.seconds_integrate;
+    const perception::PoseError before = perception::pose_error(update.T_world_sensor_guess, truth);
+    const perception::PoseError after = perception::pose_error(update.T_world_sensor, truth);
     record.pose_error_before = before.translation;
     record.yaw_error_before = before.rotation;
     record.pose_error_after = after.translation;
     record.yaw_error_after = after.rotation;
+    record.points = update.points;
+    record.object_points = update.object_points;
+    record.actual_gain = update.integration.left_unobserved.size();
+    record.reentered = update.integration.entered_unobserved.size();
   }
 
   /// Table top: one scan from the view.
@@ -261,78 +199,32 @@ class Explorer {
         k == 1 ? pose : world_.noisy_pose(pose, stream_seed(config_.seed, u, 2));
     record.seconds.scan = seconds_since(start);
 
-    const MapperUpdate update = mapper_.add_scan(scan.points_sensor, believed, scan.fov);
-    record.seconds.register_scan = update.seconds_register;
-    record.seconds.segment = update.seconds_segment;
-    record.seconds.integrate = update.seconds_integrate;
-    record_pose_errors(believed, update.T_world_sensor, pose, record);
-    record.points = update.points;
-    record.object_points = update.object_points;
-    record.actual_gain = update.integration.left_unobserved.size();
-    record.reentered = update.integration.entered_unobserved.size();
+    record_update(mapper_.add_scan(scan.points_sensor, believed, scan.fov), pose, record);
   }
 
-  /// Office: a 360° sweep at the stop, registered as a whole, integrated step by step.
+  /// Office: a 360° sweep at the stop, one scan of many views for the mapper.
   void observe_sweep(int k, ScanRecord& record) {
     const Eigen::Isometry3d& pose = record.T_world_sensor;
-    const GridSpec& grid = scene_.grid;
-    auto start = Clock::now();
-    const sim::SimulatedSweep sweep =
+    const auto start = Clock::now();
+    sim::SimulatedSweep sweep =
         world_.sweep(pose, stream_seed(config_.seed, static_cast<std::uint64_t>(k), 1));
     record.seconds.scan = seconds_since(start);
 
-    start = Clock::now();
     // NOTE: the first stop defines the map frame (its pose is known, §4.1); every step of a
     // sweep shares the stop's pose error, and the pan between steps is known exactly.
     const Eigen::Isometry3d believed = k == 1 ? pose : sweep.T_world_sensor_noisy;
-    const PointCloud merged = thin_to_cells(sweep.points_sensor, believed, grid);
-    Eigen::Isometry3d corrected = believed;
-    const OfficeConfig& office = config_.office;
-    if (office.register_sweeps && !reference_.empty() && !merged.empty()) {
-      const double reach =
-          scene_.fov().max_range + 2.0 * office.icp.initial_correspondence_distance;
-      const PointCloud nearby = crop(reference_, believed.translation(), reach);
-      const PointCloud overlap = known_part(merged, believed, mapper_.grid());
-      if (!nearby.empty() && overlap.size() >= 3) {
-        const perception::IcpResult icp =
-            perception::register_scan(overlap, believed, nearby, office.icp);
-        const perception::PoseError step = perception::pose_error(icp.T_world_sensor, believed);
-        if (icp.converged && step.translation <= office.max_icp_translation &&
-            step.rotation <= office.max_icp_rotation) {
-          corrected = icp.T_world_sensor;
-        }
-      }
+    const Eigen::Isometry3d T_sensor0_world = sweep.T_world_sensor_true.inverse();
+    std::vector<ScanPart> parts;
+    for (sim::SimulatedScan& step : sweep.steps) {
+      parts.push_back(
+          {std::move(step.points_sensor), T_sensor0_world * step.T_world_sensor_true, step.fov});
     }
-    // The reference of later sweeps: every registered sweep, one point per cell.
-    const PointCloud merged_world = transform(corrected, merged);
-    reference_.insert(reference_.end(), merged_world.begin(), merged_world.end());
-    Eigen::Isometry3d to_grid = Eigen::Isometry3d::Identity();
-    to_grid.translation() = -grid.origin;
-    reference_ = transform(to_grid.inverse(), perception::voxel_downsample(
-                                                  transform(to_grid, reference_), grid.resolution));
-    record.seconds.register_scan = seconds_since(start);
-    record_pose_errors(believed, corrected, pose, record);
+    const MapperUpdate update = mapper_.add_scan(parts, believed);
+    record_update(update, pose, record);
+    const Eigen::Isometry3d& corrected = update.T_world_sensor;
     stops_.push_back(corrected.translation().head<2>());
     position_ = corrected.translation().head<2>();
     yaw_ = std::atan2(corrected.linear()(1, 0), corrected.linear()(0, 0));
-
-    NetChange change(grid.num_cells());
-    const Eigen::Isometry3d T_sensor0_world = sweep.T_world_sensor_true.inverse();
-    for (const sim::SimulatedScan& step : sweep.steps) {
-      const Eigen::Isometry3d T_world_step =
-          corrected * (T_sensor0_world * step.T_world_sensor_true);  // the known pan
-      start = Clock::now();
-      const PointCloud points = thin_to_cells(step.points_sensor, T_world_step, grid);
-      record.seconds.integrate += seconds_since(start);
-      const MapperUpdate update = mapper_.add_scan(points, T_world_step, step.fov);
-      record.seconds.segment += update.seconds_segment;
-      record.seconds.integrate += update.seconds_integrate;
-      record.points += step.points_sensor.size();
-      record.object_points += update.object_points;
-      change.add(update.integration);
-    }
-    record.actual_gain = change.left();
-    record.reentered = change.entered();
   }
 
   /// Table top: every ring view, scored by the method; the robot walks around the table.
@@ -414,34 +306,24 @@ class Explorer {
       return d;
     }
 
-    // Each stop plans as the frusta of its sweep, all through the one planner. Every method's
-    // score of a frustum is its gain times a factor of the stop (Latombe), or a value of the
-    // stop alone (Yamauchi: its travel), so a stop's score is the sum over its frusta; a random
-    // frustum is a uniformly random stop.
-    std::vector<Candidate> frusta;
+    // Each stop plans as the frusta of its sweep: its gains and score are their sums.
+    std::vector<Candidate> candidates;
     std::vector<Eigen::Isometry3d> poses;
-    std::size_t per_stop = 0;
     for (const Stop& s : stops) {
       const Eigen::Vector2d way = s.goal - position_;
       const double yaw = way.norm() > 1e-9 ? std::atan2(way.y(), way.x()) : yaw_;
       poses.push_back(scene_.mount.sensor_pose(s.goal.x(), s.goal.y(), yaw));
-      const std::vector<Frustum> views = sweep_frusta(scene_, poses.back());
-      per_stop = views.size();
-      for (const Frustum& f : views) frusta.push_back({f, s.travel, s.reachable});
+      std::vector<Frustum> views = sweep_frusta(scene_, poses.back());
+      const Frustum first = views.front();
+      views.erase(views.begin());
+      candidates.push_back({first, s.travel, s.reachable, std::move(views)});
     }
-    const Plan plan = plan_next_view(grid, frusta, planner_, seed);
+    const Plan plan = plan_next_view(grid, candidates, planner_, seed);
     d.reference_seconds = plan.reference_seconds;
-    std::vector<double> scores(stops.size(), 0.0), gains(stops.size(), 0.0),
-        greedy(stops.size(), 0.0);
-    for (std::size_t i = 0; i < frusta.size(); ++i) {
-      scores[i / per_stop] += plan.scores[i];
-      gains[i / per_stop] += plan.gains[i].gain;
-      greedy[i / per_stop] += plan.greedy_gains[i];
-    }
-    const std::size_t best =
-        planner_.method == PlannerMethod::kRandom ? plan.best / per_stop : choose_best(scores);
+    const std::size_t best = plan.best;
     result_.candidates = poses;
-    const double best_gain = *std::max_element(gains.begin(), gains.end());
+    double best_gain = 0.0;  // of any stop, whichever the method chose
+    for (const ViewGain& g : plan.gains) best_gain = std::max(best_gain, g.gain);
     if (best_gain < config_.min_gain) {
       d.stop = true;
       d.stop_reason = cat("best predicted gain ", best_gain, " fell below ", config_.min_gain,
@@ -449,10 +331,11 @@ class Explorer {
     }
     d.view = static_cast<int>(best);
     for (std::size_t i = 0; i < stops.size(); ++i) {
-      d.considered.push_back({static_cast<int>(i), poses[i], gains[i], greedy[i]});
+      d.considered.push_back(
+          {static_cast<int>(i), poses[i], plan.gains[i].gain, plan.greedy_gains[i]});
     }
-    d.predicted = gains[best];
-    d.greedy_predicted = greedy[best];
+    d.predicted = plan.gains[best].gain;
+    d.greedy_predicted = plan.greedy_gains[best];
     d.seconds = seconds_since(start);
 
     // The drive happens in the true world: to the goal when the map says it is reachable,
@@ -489,7 +372,6 @@ class Explorer {
   NavigationConfig navigation_;
   FrontierConfig frontier_;
   NavigationGrid true_navigation_{Eigen::Vector2d::Zero(), 1.0, {1, 1}, {0}, 1.0};
-  PointCloud reference_;                ///< registered sweeps, one point per cell (world)
   std::vector<Eigen::Vector2d> stops_;  ///< believed positions of the stops taken [m]
   Eigen::Vector2d position_ = Eigen::Vector2d::Zero();       ///< believed position [m]
   Eigen::Vector2d true_position_ = Eigen::Vector2d::Zero();  ///< [m]
@@ -517,13 +399,6 @@ void OfficeConfig::validate() const {
   if (!(min_move >= 0.0 && std::isfinite(min_move))) {
     throw std::invalid_argument(cat("office.min_move must be >= 0 m, got ", min_move));
   }
-  if (register_sweeps) icp.validate();
-  if (!(max_icp_translation >= 0.0) || !(max_icp_rotation >= 0.0)) {
-    throw std::invalid_argument(
-        cat("office.max_icp_translation and office.max_icp_rotation must "
-            "be >= 0, got ",
-            max_icp_translation, " m and ", max_icp_rotation, " rad"));
-  }
 }
 
 void ExplorationConfig::validate() const {
@@ -541,14 +416,20 @@ void ExplorationConfig::validate() const {
 MapperConfig default_mapper_config(const sim::Scene& scene) {
   MapperConfig config;
   config.segment_table = scene.kind == sim::SceneKind::kTableTop;
-  config.register_scans = scene.kind != sim::SceneKind::kOffice;
+  if (scene.kind == sim::SceneKind::kOffice) {
+    // A sweep is registered as a whole: thinned to one point per map cell, guesses up to ~6 cm
+    // and a few degrees off (points 3.5 m away move by up to 0.3 m), Kinect noise of up to 2 cm.
+    config.thin_to_cells = true;
+    config.register_overlap_only = true;
+    config.icp = {.max_correspondence_distance = 0.04,
+                  .initial_correspondence_distance = 0.32,
+                  .voxel_size = 0.04};
+    // NOTE: 3 sigma of the default pose noise; a larger correction is a slide along a corridor
+    // or towards the part already mapped.
+    config.max_correction_translation = 0.06;
+    config.max_correction_rotation = deg2rad(6.0);
+  }
   return config;
-}
-
-void apply_registration_switch(const sim::Scene& scene, ExplorationConfig& config) {
-  if (scene.kind != sim::SceneKind::kOffice) return;
-  config.office.register_sweeps = config.mapper.register_scans;
-  config.mapper.register_scans = false;
 }
 
 std::vector<Frustum> sweep_frusta(const sim::Scene& scene,

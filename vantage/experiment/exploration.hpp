@@ -39,20 +39,6 @@ struct OfficeConfig {
   /// already taken is dropped: the sweep there would see what that one saw. It also drops the
   /// frontier ring that the sensor's minimum range leaves around the robot [m].
   double min_move = 0.5;
-  /// Register each 360° sweep as a whole (all steps at once, well constrained) against the
-  /// sweeps so far; the mapper's own per-scan registration must then be off (a single 57° step
-  /// facing one wall slides along it). See default_mapper_config().
-  bool register_sweeps = true;
-  /// Sweep registration: scans thinned to one point per map cell, guesses up to ~6 cm and a few
-  /// degrees off (points 3.5 m away move by up to 0.3 m), Kinect noise of up to 2 cm.
-  perception::IcpConfig icp = {.max_correspondence_distance = 0.04,
-                               .initial_correspondence_distance = 0.32,
-                               .voxel_size = 0.04};
-  /// An ICP correction larger than this is taken for a slide (along a corridor, or towards the
-  /// part already mapped) and rejected: the believed pose is kept. 3 sigma of the default pose
-  /// noise [m], [rad].
-  double max_icp_translation = 0.06;
-  double max_icp_rotation = deg2rad(6.0);
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -145,18 +131,13 @@ struct ExplorationResult {
 using ScanCallback = std::function<void(const ScanRecord&, int total)>;
 
 /// Runs one exploration of a simulated scene and returns its records and the final mapper.
-/// Office scenes need a mapper that does not register single scans (explore() registers whole
-/// sweeps); throws std::invalid_argument otherwise.
 ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
                           const ScanCallback& on_scan = {});
 
-/// The mapper settings a scene calls for: table segmentation on for table tops; for offices,
-/// registration of single scans off (explore() registers whole sweeps).
+/// The mapper settings a scene calls for: table segmentation for table tops; for offices, each
+/// stop's sweep thinned to one point per cell and registered where it overlaps the map, with
+/// corrections beyond 3 sigma of the default pose noise rejected.
 MapperConfig default_mapper_config(const sim::Scene& scene);
-
-/// Moves a registration switch to where a scene needs it: for offices, `config.mapper`'s
-/// register_scans becomes `config.office.register_sweeps` and is switched off in the mapper.
-void apply_registration_switch(const sim::Scene& scene, ExplorationConfig& config);
 
 /// The frusta that plan a stop's 360° sweep: one per step of the scene's sweep, each as wide as
 /// the yaw step (2 pi / steps) when the sensor is at least that wide, so they tile the sweep

@@ -57,7 +57,11 @@ json config_json(const ExplorationConfig& config) {
         {"max_correspondence_distance", mapper.icp.max_correspondence_distance},
         {"initial_correspondence_distance", mapper.icp.initial_correspondence_distance},
         {"max_iterations", mapper.icp.max_iterations},
-        {"voxel_size", mapper.icp.voxel_size}}},
+        {"voxel_size", mapper.icp.voxel_size},
+        {"thin_to_cells", mapper.thin_to_cells},
+        {"overlap_only", mapper.register_overlap_only},
+        {"max_correction_translation", mapper.max_correction_translation},
+        {"max_correction_rotation", mapper.max_correction_rotation}}},
       {"table_segmentation", mapper.segment_table},
       {"office",
        {{"frontier_band", config.office.frontier_band},
@@ -65,10 +69,7 @@ json config_json(const ExplorationConfig& config) {
         {"max_frontier_radius", config.office.max_frontier_radius},
         {"min_obstacle_height", config.office.min_obstacle_height},
         {"unknown_blocks", config.office.unknown_blocks},
-        {"min_move", config.office.min_move},
-        {"register_sweeps", config.office.register_sweeps},
-        {"max_icp_translation", config.office.max_icp_translation},
-        {"max_icp_rotation", config.office.max_icp_rotation}}},
+        {"min_move", config.office.min_move}}},
   };
 }
 

@@ -1,11 +1,14 @@
 #pragma once
 /// @file
-/// From scans to the map, as the paper's §4.1 chains it: register each new scan to the cloud so
-/// far with ICP (§4.2), keep the objects above the table (§5.1), and integrate them into the
-/// occupancy grid (§4.3, §4.4). `vantage explore` and `vantage plan` both map through this.
+/// From scans to the map, as the paper's §4.1 chains it: register each new scan to the points
+/// so far with ICP (§4.2), keep the objects above the table (§5.1), and integrate them into the
+/// occupancy grid (§4.3, §4.4). `vantage explore` and `vantage plan` both map through this; a
+/// scan is one view (a table top) or several taken from one place (an office stop's 360° sweep).
 
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <limits>
+#include <span>
 
 #include "vantage/map/integrate.hpp"
 #include "vantage/map/occupancy_grid.hpp"
@@ -20,8 +23,23 @@ namespace vantage {
 struct MapperConfig {
   OccupancyParams occupancy;
   IntegrationConfig integration;
-  bool register_scans = true;  ///< ICP each scan after the first against the cloud so far
+  bool register_scans = true;  ///< ICP each scan after the first against the points so far
   perception::IcpConfig icp;
+  /// Thin every scan to one point per map cell (the centroid of the cell's points) before it is
+  /// registered and integrated, and keep the registration reference at one point per cell.
+  /// Paper-mode integration gives a cell one hit however many points it holds, so the map is
+  /// the same; ICP and the clouds kept get far smaller (an office sweep: 1.5M points).
+  bool thin_to_cells = false;
+  /// Register only where the scan overlaps the map: the scan's points that land, under the
+  /// guess, in cells the map has already observed, against the reference points within the
+  /// sensor's reach (max range + 2 × icp.initial_correspondence_distance). ICP pairs every point
+  /// with its nearest reference point, and a scan's points in unexplored space would pair with
+  /// the edge of the explored part and drag the pose towards it.
+  bool register_overlap_only = false;
+  /// A registration that moves the guess by more than this is taken for a slide (along a
+  /// corridor, or towards the part already mapped) and rejected: the guess is kept [m], [rad].
+  double max_correction_translation = std::numeric_limits<double>::infinity();
+  double max_correction_rotation = std::numeric_limits<double>::infinity();
   bool segment_table = false;  ///< integrate only the points above the table
   perception::TableConfig table;
 
@@ -29,14 +47,24 @@ struct MapperConfig {
   void validate() const;
 };
 
+/// One view of a scan: a table-top scan has one, an office stop's sweep one per step.
+struct ScanPart {
+  PointCloud points_sensor;  ///< in this view's sensor frame [m]
+  /// This view's sensor in the scan's frame (the first view's sensor): the known pan of a sweep.
+  Eigen::Isometry3d T_scan_sensor = Eigen::Isometry3d::Identity();
+  SensorFov fov;
+};
+
 /// What adding one scan did.
 struct MapperUpdate {
   Eigen::Isometry3d T_world_sensor_guess = Eigen::Isometry3d::Identity();  ///< as given
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();        ///< used for integration
-  bool registered = false;        ///< ICP ran (and converged) for this scan
+  bool registered = false;        ///< ICP ran, converged and its correction was kept
   double icp_fitness = 0.0;       ///< ICP's mean squared correspondence distance [m^2]
   std::size_t points = 0;         ///< points in the scan
-  std::size_t object_points = 0;  ///< points integrated (after table segmentation)
+  std::size_t object_points = 0;  ///< points integrated (after thinning and table segmentation)
+  /// Cells that left or re-entered the unobserved set; over the parts of a scan, each cell
+  /// counts once, by its net change.
   IntegrationResult integration;
   double seconds_register = 0.0;
   double seconds_segment = 0.0;
@@ -57,19 +85,30 @@ class Mapper {
   /// for a non-finite point or pose; the map is unchanged then.
   MapperUpdate add_scan(const PointCloud& points_sensor,
                         const Eigen::Isometry3d& T_world_sensor_guess, const SensorFov& fov);
+  /// The same for a scan of several views from one place (e.g. a 360° sweep), registered as a
+  /// whole (all views at once, well constrained) and integrated view by view.
+  /// `T_world_sensor_guess` is the believed pose of the scan's frame.
+  MapperUpdate add_scan(std::span<const ScanPart> parts,
+                        const Eigen::Isometry3d& T_world_sensor_guess);
 
   const OccupancyGrid& grid() const { return grid_; }
   const MapperConfig& config() const { return config_; }
-  /// All registered points so far (world frame), the reference of the next registration.
-  const PointCloud& registered_cloud() const { return registered_; }
+  /// The reference of the next registration: every registered scan (world frame), one point per
+  /// cell when `thin_to_cells`.
+  const PointCloud& registered_cloud() const { return reference_; }
   /// The registered points that went into the grid (world frame): the objects.
   const PointCloud& object_cloud() const { return objects_; }
   std::size_t scans() const { return scans_; }
 
  private:
+  /// Registers `scan` (the scan's points in its frame) against the reference; sets the update's
+  /// pose when the result is kept.
+  void register_to_map(const PointCloud& scan, std::span<const ScanPart> parts,
+                       MapperUpdate& update) const;
+
   MapperConfig config_;
   OccupancyGrid grid_;
-  PointCloud registered_;
+  PointCloud reference_;
   PointCloud objects_;
   std::size_t scans_ = 0;
 };

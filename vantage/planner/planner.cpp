@@ -1,5 +1,6 @@
 #include "vantage/planner/planner.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -10,20 +11,53 @@
 namespace vantage {
 namespace {
 
-std::vector<ViewGain> gains_of(const OccupancyGrid& grid, std::span<const Candidate> candidates,
-                               GainConfig config, GainMethod method) {
-  config.method = method;
-  std::vector<Frustum> views;
-  views.reserve(candidates.size());
-  for (const Candidate& c : candidates) views.push_back(c.view);
-  return evaluate_views(grid, views, config);
-}
+/// Every candidate's views in one list; candidate c's are [first[c], first[c + 1]).
+struct Views {
+  std::vector<Frustum> frusta;
+  std::vector<std::size_t> first;
 
-std::vector<double> values(const std::vector<ViewGain>& gains) {
-  std::vector<double> out;
-  out.reserve(gains.size());
-  for (const ViewGain& g : gains) out.push_back(g.gain);
-  return out;
+  explicit Views(std::span<const Candidate> candidates) {
+    for (const Candidate& c : candidates) {
+      first.push_back(frusta.size());
+      frusta.push_back(c.view);
+      frusta.insert(frusta.end(), c.more_views.begin(), c.more_views.end());
+    }
+    first.push_back(frusta.size());
+  }
+
+  /// The candidate whose views hold view `v`.
+  std::size_t candidate_of(std::size_t v) const {
+    return static_cast<std::size_t>(std::upper_bound(first.begin(), first.end(), v) -
+                                    first.begin()) -
+           1;
+  }
+
+  /// Per-view values summed per candidate.
+  std::vector<double> sums(const std::vector<double>& per_view) const {
+    std::vector<double> out(first.size() - 1, 0.0);
+    for (std::size_t c = 0; c + 1 < first.size(); ++c) {
+      for (std::size_t v = first[c]; v < first[c + 1]; ++v) out[c] += per_view[v];
+    }
+    return out;
+  }
+};
+
+std::vector<double> gains_of(const OccupancyGrid& grid, const Views& views, GainConfig config,
+                             GainMethod method, std::vector<ViewGain>* per_candidate = nullptr) {
+  config.method = method;
+  const std::vector<ViewGain> gains = evaluate_views(grid, views.frusta, config);
+  std::vector<double> values;
+  values.reserve(gains.size());
+  for (const ViewGain& g : gains) values.push_back(g.gain);
+  if (per_candidate != nullptr) {
+    per_candidate->assign(views.first.size() - 1, ViewGain{});
+    for (std::size_t v = 0; v < gains.size(); ++v) {
+      ViewGain& sum = (*per_candidate)[views.candidate_of(v)];
+      sum.gain += gains[v].gain;
+      sum.targets += gains[v].targets;
+    }
+  }
+  return values;
 }
 
 }  // namespace
@@ -68,35 +102,44 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   if (candidates.empty()) throw std::invalid_argument("no candidate views to choose from");
   const auto start = std::chrono::steady_clock::now();
   Plan plan;
+  const Views views(candidates);
   const bool probabilistic = config.method == PlannerMethod::kProbabilistic;
-  plan.gains = gains_of(grid, candidates, config.gain,
-                        probabilistic ? GainMethod::kProbabilistic : GainMethod::kGreedy);
+  std::vector<double> view_scores =
+      gains_of(grid, views, config.gain,
+               probabilistic ? GainMethod::kProbabilistic : GainMethod::kGreedy, &plan.gains);
   if (!probabilistic) {
-    plan.greedy_gains = values(plan.gains);
+    plan.greedy_gains = views.sums(view_scores);
   } else if (config.greedy_reference) {
     const auto reference_start = std::chrono::steady_clock::now();
-    plan.greedy_gains = values(gains_of(grid, candidates, config.gain, GainMethod::kGreedy));
+    plan.greedy_gains = views.sums(gains_of(grid, views, config.gain, GainMethod::kGreedy));
     plan.reference_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start).count();
   }
 
-  plan.scores = values(plan.gains);
+  // NOTE: a score is summed over the candidate's views (Latombe: each view's gain times the
+  // candidate's travel factor), in the order of its views.
   switch (config.method) {
     case PlannerMethod::kProbabilistic:
     case PlannerMethod::kGreedy:
+      plan.scores = views.sums(view_scores);
       plan.best = choose_best(plan.scores);
       break;
     case PlannerMethod::kRandom:
-      plan.best = choose_random(candidates.size(), seed);
+      plan.scores = views.sums(view_scores);
+      plan.best = views.candidate_of(choose_random(views.frusta.size(), seed));
       break;
     case PlannerMethod::kLatombe:
-      for (std::size_t i = 0; i < candidates.size(); ++i) {
-        plan.scores[i] *= std::exp(-config.lambda * candidates[i].travel);
+      for (std::size_t c = 0; c < candidates.size(); ++c) {
+        for (std::size_t v = views.first[c]; v < views.first[c + 1]; ++v) {
+          view_scores[v] *= std::exp(-config.lambda * candidates[c].travel);
+        }
       }
+      plan.scores = views.sums(view_scores);
       plan.best = choose_best(plan.scores);
       break;
     case PlannerMethod::kYamauchi:
-      for (std::size_t i = 0; i < candidates.size(); ++i) plan.scores[i] = -candidates[i].travel;
+      plan.scores.clear();
+      for (const Candidate& c : candidates) plan.scores.push_back(-c.travel);
       plan.best = choose_best(plan.scores);
       break;
   }

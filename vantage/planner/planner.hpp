@@ -48,6 +48,9 @@ struct Candidate {
   Frustum view;
   double travel = 0.0;    ///< travel distance from the robot [m]; 0 where motion is free
   bool reachable = true;  ///< false: the robot can only get close (the paper's fallback)
+  /// Further views from the same place (the other steps of an office stop's 360° sweep): the
+  /// candidate's gains and score are sums over `view` and these.
+  std::vector<Frustum> more_views = {};
 };
 
 /// The decision and everything behind it.
@@ -62,7 +65,8 @@ struct Plan {
   double reference_seconds = 0.0;
 };
 
-/// Scores the candidates and chooses one. Ties go to the lower index; kRandom uses `seed`.
+/// Scores the candidates and chooses one. Ties go to the lower index; kRandom uses `seed` and
+/// takes the candidate of a uniformly random view (uniform over candidates of as many views).
 /// Throws std::invalid_argument when there are no candidates.
 Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candidates,
                     const PlannerConfig& config, std::uint64_t seed = 0);

@@ -78,7 +78,6 @@ void run(const ExploreOptions& o) {
   config.revisit = o.revisit;
   config.start = o.start;
   config.seed = o.seed;
-  apply_registration_switch(scene, config);  // offices register whole sweeps
   config.validate();
 
   const fs::path out = o.out.empty() ? default_out(o) : fs::path(o.out);
