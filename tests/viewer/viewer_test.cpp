@@ -261,7 +261,6 @@ TEST_F(ViewerTest, ARunRecordsEveryDecisionsCandidatesForThePage) {
     config.scans = 2;
     config.seed = 3;
     config.mapper = default_mapper_config(scene);
-    apply_registration_switch(scene, config);
     Mapper mapper(scene.grid, config.mapper);
     const ExplorationResult result = explore(scene, config, mapper);
     ASSERT_EQ(result.scans.size(), 2u);
