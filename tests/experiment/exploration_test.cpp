@@ -37,8 +37,7 @@ ShortRun short_run(int threads, const std::filesystem::path* dir = nullptr) {
   ShortRun run;
   run.result = explore(scene, config, mapper);
   run.csv = std::string(kScansCsvHeader) + "\n" +
-            scans_csv_rows({scene.name, config.planner.method, config.planner.gain.alpha, 0},
-                           run.result.scans);
+            scans_csv_rows(run_label(scene.name, config), run.result.scans);
   if (dir != nullptr) write_run_files(*dir, scene, config, run.result, mapper);
   return run;
 }

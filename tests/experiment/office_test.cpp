@@ -43,7 +43,7 @@ OfficeRun office_run(PlannerMethod method, int threads, int stops = 2,
   OfficeRun run;
   run.result = explore(scene, config, mapper);
   run.csv = std::string(kScansCsvHeader) + "\n" +
-            scans_csv_rows({scene.name, method, config.planner.gain.alpha, 0}, run.result.scans);
+            scans_csv_rows(run_label(scene.name, config), run.result.scans);
   if (dir != nullptr) write_run_files(*dir, scene, config, run.result, mapper);
   return run;
 }
@@ -162,7 +162,7 @@ TEST(Office, BenchDefaultsAreThePapers) {
   EXPECT_EQ(config.scenes.size(), 4u);
   EXPECT_EQ(config.methods.size(), 5u);
   EXPECT_EQ(config.trials, 5);
-  EXPECT_EQ(config.alphas, (std::vector<double>{0.9999, 0.999}));
+  EXPECT_EQ(config.alphas, (std::vector<AlphaSetting>{{false, 0.9999}, {false, 0.999}}));
   EXPECT_EQ(bench_trials(config).size(), 4u * (2u + 4u) * 5u);
 }
 

@@ -55,7 +55,9 @@ nlohmann::json trial_settings(const BenchConfig& config) {
           {"hole_filling", m.integration.hole_filling.enabled},
           {"icp", m.register_scans},
           {"segmentation", m.segment_table},
-          {"mapper_from_scene", config.mapper_from_scene}};
+          {"mapper_from_scene", config.mapper_from_scene},
+          {"observability_alphas", e.observability.alphas},
+          {"observability_recency", e.observability.recency}};
 }
 
 /// The settings a folder's trials were run with, or null when it has none yet.
@@ -98,7 +100,10 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
   const sim::Scene scene = sim::load_scene(spec.source);
   ExplorationConfig exploration = config.exploration;
   exploration.planner.method = spec.method;
-  exploration.planner.gain.alpha = spec.alpha;
+  exploration.planner.gain.alpha = spec.alpha.value;
+  exploration.auto_alpha = spec.alpha.automatic;
+  exploration.observability.prior = spec.alpha.value;
+  exploration.planner.objective = spec.objective;
   exploration.start = spec.trial % static_cast<int>(scene.start_poses.size());
   // NOTE: the seed depends on scene and trial only, so every method of a trial meets the same
   // sensor and pose noise where it takes the same views.
@@ -112,14 +117,19 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
   }
   Mapper mapper(scene.grid, exploration.mapper);
   const ExplorationResult result = explore(scene, exploration, mapper);
-  return scans_csv_rows({spec.scene, spec.method, spec.alpha, spec.trial}, result.scans);
+  return scans_csv_rows({spec.scene, spec.method, spec.alpha, spec.objective, spec.trial},
+                        result.scans);
 }
 
 }  // namespace
 
 std::string TrialSpec::key() const {
+  // NOTE: the bits objective adds nothing to the key, so sweeps from before objectives resume.
   const std::string alpha_part =
-      method == PlannerMethod::kProbabilistic ? fmt::format("__a{}", alpha) : std::string();
+      method == PlannerMethod::kProbabilistic
+          ? fmt::format("__a{}{}", alpha.label(),
+                        objective == GainObjective::kCells ? "__cells" : "")
+          : std::string();
   return fmt::format("{}__{}{}__t{}", scene, to_string(method), alpha_part, trial);
 }
 
@@ -127,11 +137,12 @@ void BenchConfig::validate() const {
   if (scenes.empty()) throw std::invalid_argument("bench.scenes must not be empty");
   if (methods.empty()) throw std::invalid_argument("bench.methods must not be empty");
   if (alphas.empty()) throw std::invalid_argument("bench.alphas must not be empty");
-  for (const double a : alphas) {
-    if (!(a > 0.0 && a <= 1.0)) {
-      throw std::invalid_argument(fmt::format("bench.alphas: {} is not in (0, 1]", a));
+  for (const AlphaSetting& a : alphas) {
+    if (!(a.value > 0.0 && a.value <= 1.0)) {
+      throw std::invalid_argument(fmt::format("bench.alphas: {} is not in (0, 1]", a.value));
     }
   }
+  if (objectives.empty()) throw std::invalid_argument("bench.objectives must not be empty");
   if (trials < 1)
     throw std::invalid_argument(fmt::format("bench.trials must be >= 1, got {}", trials));
   if (jobs < 1) throw std::invalid_argument(fmt::format("bench.jobs must be >= 1, got {}", jobs));
@@ -148,7 +159,7 @@ BenchConfig office_bench_config() {
                    "office-large-cluttered"};
   config.methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy, PlannerMethod::kLatombe,
                     PlannerMethod::kYamauchi, PlannerMethod::kRandom};
-  config.alphas = {kOfficeAlpha, 0.999};
+  config.alphas = {{false, kOfficeAlpha}, {false, 0.999}};
   config.trials = 5;
   config.exploration.scans = 20;
   return config;
@@ -159,11 +170,17 @@ std::vector<TrialSpec> bench_trials(const BenchConfig& config) {
   for (const std::string& source : config.scenes) {
     const std::string scene = sim::load_scene(source).name;
     for (const PlannerMethod method : config.methods) {
-      const std::vector<double> alphas = method == PlannerMethod::kProbabilistic
-                                             ? config.alphas
-                                             : std::vector<double>{config.alphas.front()};
-      for (const double alpha : alphas) {
-        for (int t = 0; t < config.trials; ++t) specs.push_back({scene, source, method, alpha, t});
+      const bool probabilistic = method == PlannerMethod::kProbabilistic;
+      const std::vector<AlphaSetting> alphas =
+          probabilistic ? config.alphas : std::vector<AlphaSetting>{config.alphas.front()};
+      const std::vector<GainObjective> objectives =
+          probabilistic ? config.objectives : std::vector<GainObjective>{config.objectives.front()};
+      for (const AlphaSetting& alpha : alphas) {
+        for (const GainObjective objective : objectives) {
+          for (int t = 0; t < config.trials; ++t) {
+            specs.push_back({scene, source, method, alpha, objective, t});
+          }
+        }
       }
     }
   }

@@ -20,10 +20,11 @@ struct TrialSpec {
   std::string scene;   ///< the scene's name
   std::string source;  ///< what to load it from: a built-in name or a YAML path
   PlannerMethod method = PlannerMethod::kProbabilistic;
-  double alpha = kTableTopAlpha;
+  AlphaSetting alpha;                              ///< the probabilistic method's a
+  GainObjective objective = GainObjective::kBits;  ///< what the probabilistic method ranks by
   int trial = 0;  ///< starts from the scene's start pose `trial` (mod the number of starts)
 
-  /// File-name key, e.g. "tabletop-1__probabilistic__a0.997__t3".
+  /// File-name key, e.g. "tabletop-1__probabilistic__a0.997__t3", "..._aauto__cells__t3".
   std::string key() const;
 };
 
@@ -32,8 +33,10 @@ struct BenchConfig {
   std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
   std::vector<PlannerMethod> methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy,
                                         PlannerMethod::kRandom};
-  /// a values for the probabilistic method; one trial set each.
-  std::vector<double> alphas = {kTableTopAlpha};
+  /// a settings for the probabilistic method (a value, or auto); one trial set each.
+  std::vector<AlphaSetting> alphas = {AlphaSetting{false, kTableTopAlpha}};
+  /// What the probabilistic method ranks by; one trial set per alpha and objective.
+  std::vector<GainObjective> objectives = {GainObjective::kBits};
   int trials = 10;
   ExplorationConfig exploration;  ///< method, alpha, start and seed are set per trial
   bool mapper_from_scene = true;  ///< table segmentation where the scene has a table

@@ -9,6 +9,7 @@
 #include "vantage/perception/registration.hpp"
 #include "vantage/perception/voxel_filter.hpp"
 #include "vantage/planner/choose.hpp"
+#include "vantage/planner/observability.hpp"
 #include "vantage/sim/ground_truth.hpp"
 #include "vantage/sim/world.hpp"
 #include "vantage/util/text.hpp"
@@ -56,6 +57,8 @@ struct Decision {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< true pose of the next scan
   int view = -1;
   std::optional<double> predicted, greedy_predicted;
+  std::optional<double> predicted_cells;  ///< the method's prediction in cells seen
+  std::optional<double> alpha;            ///< the a the probabilistic method decided with
   double seconds = 0.0, candidate_seconds = 0.0, reference_seconds = 0.0;
   double travel = 0.0;
   bool fallback = false;
@@ -77,6 +80,10 @@ class Explorer {
         world_(noisy(scene, config), sim::WorldConfig{config.planner.gain.num_threads}) {
     planner_ = config.planner;
     planner_.greedy_reference = true;  // Fig. 11: both predictions on the same poses
+    if (config.auto_alpha && planner_.method == PlannerMethod::kProbabilistic) {
+      fit_.emplace(config.observability);
+      planner_.gain.alpha = fit_->alpha();
+    }
     if (office_) {
       navigation_.footprint = scene.robot.footprint;
       navigation_.max_height = scene.robot.height;
@@ -126,6 +133,8 @@ class Explorer {
       record.T_world_sensor = next.pose;
       record.predicted_gain = next.predicted;
       record.greedy_predicted_gain = next.greedy_predicted;
+      record.predicted_cells = next.predicted_cells;
+      record.alpha = next.alpha;
       record.seconds.plan = next.seconds;
       record.seconds.candidates = next.candidate_seconds;
       record.seconds.reference = next.reference_seconds;
@@ -136,10 +145,23 @@ class Explorer {
       record.candidates = next.candidates;
       record.considered = std::move(next.considered);
 
+      // --alpha auto: what the view about to be scanned would see under every candidate a, set
+      // against what it does see. The first scan calibrates too (on the empty map).
+      std::vector<double> calibration;
+      if (fit_) {
+        const auto start = Clock::now();
+        const std::vector<Frustum> views = views_at(record.T_world_sensor);
+        calibration = expected_cells_by_alpha(mapper_.grid(), views, planner_.gain, fit_->alphas());
+        record.seconds.calibrate = seconds_since(start);
+      }
       if (office_) {
         observe_sweep(k, record);
       } else {
         observe_view(k, record);
+      }
+      if (fit_) {
+        fit_->record(calibration, static_cast<double>(record.actual_gain));
+        planner_.gain.alpha = fit_->alpha();
       }
       record.unobserved = mapper_.grid().counts().unobserved;
       record.coverage = coverage(mapper_.grid(), truth_.observable);
@@ -227,6 +249,19 @@ class Explorer {
     yaw_ = std::atan2(corrected.linear()(1, 0), corrected.linear()(0, 0));
   }
 
+  /// The frusta a scan from `pose` covers: the sensor's, or an office stop's whole sweep.
+  std::vector<Frustum> views_at(const Eigen::Isometry3d& pose) const {
+    return office_ ? sweep_frusta(scene_, pose) : std::vector<Frustum>{Frustum(pose, scene_.fov())};
+  }
+
+  /// The chosen candidate's predictions: in the method's own units, in cells seen, greedy's.
+  void record_prediction(const Plan& plan, std::size_t best, Decision& d) const {
+    d.predicted = plan.gains[best].gain;
+    d.predicted_cells = plan.gains[best].cells;
+    d.greedy_predicted = plan.greedy_gains[best];
+    if (planner_.method == PlannerMethod::kProbabilistic) d.alpha = planner_.gain.alpha;
+  }
+
   /// Table top: every ring view, scored by the method; the robot walks around the table.
   Decision plan_view(const ScanRecord& current, std::uint64_t seed) {
     const Eigen::Vector3d here = current.T_world_sensor.translation();
@@ -259,12 +294,11 @@ class Explorer {
     taken_[view] = true;
     d.view = static_cast<int>(view);
     d.pose = result_.candidates[view];
-    d.predicted = plan.gains[plan.best].gain;
-    d.greedy_predicted = plan.greedy_gains[plan.best];
+    record_prediction(plan, plan.best, d);
     d.travel = open[plan.best].travel;
     for (std::size_t j = 0; j < open.size(); ++j) {
       d.considered.push_back({static_cast<int>(index[j]), result_.candidates[index[j]],
-                              plan.gains[j].gain, plan.greedy_gains[j]});
+                              plan.gains[j].gain, plan.greedy_gains[j], plan.gains[j].cells});
     }
     return d;
   }
@@ -331,11 +365,10 @@ class Explorer {
     }
     d.view = static_cast<int>(best);
     for (std::size_t i = 0; i < stops.size(); ++i) {
-      d.considered.push_back(
-          {static_cast<int>(i), poses[i], plan.gains[i].gain, plan.greedy_gains[i]});
+      d.considered.push_back({static_cast<int>(i), poses[i], plan.gains[i].gain,
+                              plan.greedy_gains[i], plan.gains[i].cells});
     }
-    d.predicted = plan.gains[best].gain;
-    d.greedy_predicted = plan.greedy_gains[best];
+    record_prediction(plan, best, d);
     d.seconds = seconds_since(start);
 
     // The drive happens in the true world: to the goal when the map says it is reachable,
@@ -362,6 +395,7 @@ class Explorer {
   const ExplorationConfig& config_;
   Mapper& mapper_;
   bool office_;
+  std::optional<ObservabilityFit> fit_;  ///< --alpha auto
   sim::World world_;
   sim::GroundTruth truth_;
   PlannerConfig planner_;

@@ -18,6 +18,7 @@
 
 #include "vantage/perception/mapper.hpp"
 #include "vantage/planner/navigation.hpp"
+#include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"
 
@@ -61,6 +62,12 @@ struct ExplorationConfig {
   /// scan's pose defines the map frame and is exact. Default: 2 cm, 2 cm, 2 degrees.
   std::optional<sim::PoseNoise> pose_noise = sim::PoseNoise{0.02, 0.02, deg2rad(2.0)};
   OfficeConfig office;  ///< used by office scenes only
+  /// Fit the probabilistic method's a to the run's own outcomes (--alpha auto, the paper's §6):
+  /// before each scan, the expected cells seen of its view under every candidate a of
+  /// `observability`; after it, the cells it turned known; each decision takes the a that has
+  /// predicted best so far. Off: planner.gain.alpha throughout.
+  bool auto_alpha = false;
+  ObservabilityFitConfig observability;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -75,6 +82,7 @@ struct StageTimes {
   double plan = 0.0;        ///< the decision that chose this scan's view, candidates included
   double candidates = 0.0;  ///< ... of which finding the candidates (office: frontiers, travel)
   double reference = 0.0;   ///< ... of which greedy's prediction for the same views (Fig. 11)
+  double calibrate = 0.0;   ///< --alpha auto: the scan's view evaluated under every candidate a
 };
 
 /// One candidate a decision weighed, as `vantage view` shows it.
@@ -83,7 +91,8 @@ struct CandidateRecord {
   /// Table top: the ring view; office: the stop's sensor pose, heading along the way there.
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
   double predicted_gain = 0.0;         ///< under the method (office: summed over the sweep)
-  double greedy_predicted_gain = 0.0;  ///< under greedy, same view
+  double greedy_predicted_gain = 0.0;  ///< under greedy, same view [cells]
+  double predicted_cells = 0.0;        ///< the method's expected cells seen [cells]
 };
 
 /// Everything recorded after one scan (office: one stop, all steps of its sweep).
@@ -93,10 +102,14 @@ struct ScanRecord {
   /// True pose (office: of the sweep's first step, heading along the way the robot came).
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
   std::optional<double> predicted_gain;         ///< under the method (none for the first scan)
-  std::optional<double> greedy_predicted_gain;  ///< under greedy, same view
-  std::size_t actual_gain = 0;                  ///< cells that left the unobserved set
-  std::size_t reentered = 0;                    ///< cells that came back into it
-  std::size_t unobserved = 0;                   ///< unobserved cells after the scan
+  std::optional<double> greedy_predicted_gain;  ///< under greedy, same view [cells]
+  /// The method's prediction of the cells the scan sees: the probabilistic method's expected
+  /// cells seen E, the other methods' greedy count [cells]
+  std::optional<double> predicted_cells;
+  std::optional<double> alpha;     ///< the a the probabilistic method chose this view with
+  std::size_t actual_gain = 0;     ///< cells that left the unobserved set
+  std::size_t reentered = 0;       ///< cells that came back into it
+  std::size_t unobserved = 0;      ///< unobserved cells after the scan
   double coverage = 0.0;           ///< observed share of the observable surface, in [0, 1]
   double pose_error_before = 0.0;  ///< translation error of the believed pose [m]
   double pose_error_after = 0.0;   ///< ... after ICP [m]

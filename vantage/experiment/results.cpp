@@ -31,7 +31,8 @@ json config_json(const ExplorationConfig& config) {
   const MapperConfig& mapper = config.mapper;
   return {
       {"method", to_string(config.planner.method)},
-      {"alpha", gain.alpha},
+      {"alpha", config.auto_alpha ? json("auto") : json(gain.alpha)},
+      {"objective", to_string(config.planner.objective)},
       {"evaluation", to_string(gain.evaluation)},
       {"epsilon", gain.epsilon},
       {"lambda", config.planner.lambda},
@@ -95,7 +96,8 @@ json scan_json(const ScanRecord& r) {
               {"integrate", r.seconds.integrate},
               {"plan", r.seconds.plan},
               {"candidates", r.seconds.candidates},
-              {"reference", r.seconds.reference}}},
+              {"reference", r.seconds.reference},
+              {"calibrate", r.seconds.calibrate}}},
             {"travel_m", r.travel},
             {"fallback", r.fallback},
             {"candidates", r.candidates}};
@@ -106,12 +108,15 @@ json scan_json(const ScanRecord& r) {
   j["predicted_gain"] = r.predicted_gain ? json(*r.predicted_gain) : json(nullptr);
   j["greedy_predicted_gain"] =
       r.greedy_predicted_gain ? json(*r.greedy_predicted_gain) : json(nullptr);
+  j["predicted_cells"] = r.predicted_cells ? json(*r.predicted_cells) : json(nullptr);
+  j["alpha"] = r.alpha ? json(*r.alpha) : json(nullptr);
   json considered = json::array();
   for (const CandidateRecord& c : r.considered) {
     considered.push_back({{"view", c.view},
                           {"pose", pose_json(c.T_world_sensor)},
                           {"predicted_gain", c.predicted_gain},
-                          {"greedy_predicted_gain", c.greedy_predicted_gain}});
+                          {"greedy_predicted_gain", c.greedy_predicted_gain},
+                          {"predicted_cells", c.predicted_cells}});
   }
   j["considered"] = considered;
   return j;
@@ -154,17 +159,24 @@ void write_floor_map(const std::filesystem::path& path, const sim::Scene& scene,
 
 }  // namespace
 
+RunLabel run_label(std::string scene, const ExplorationConfig& config) {
+  return {std::move(scene), config.planner.method,
+          AlphaSetting{config.auto_alpha, config.planner.gain.alpha}, config.planner.objective,
+          config.start};
+}
+
 std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>& scans) {
-  const std::string alpha = label.method == PlannerMethod::kProbabilistic
-                                ? fmt::format("{:.15g}", label.alpha)
-                                : std::string();
+  const bool probabilistic = label.method == PlannerMethod::kProbabilistic;
+  const std::string alpha = probabilistic ? label.alpha.label() : std::string();
+  const std::string objective = probabilistic ? std::string(to_string(label.objective)) : "";
   std::string rows;
   for (const ScanRecord& r : scans) {
-    rows += fmt::format("{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g},{:.15g},{:d}\n", label.scene,
-                        to_string(label.method), alpha, label.trial, r.scan, r.view,
+    rows += fmt::format("{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g},{:.15g},{:d},{},{},{}\n",
+                        label.scene, to_string(label.method), alpha, label.trial, r.scan, r.view,
                         optional_number(r.predicted_gain), optional_number(r.greedy_predicted_gain),
                         r.actual_gain, r.unobserved, r.coverage, r.seconds.plan, r.travel,
-                        r.fallback ? 1 : 0);
+                        r.fallback ? 1 : 0, optional_number(r.predicted_cells),
+                        optional_number(r.alpha), objective);
   }
   return rows;
 }
@@ -172,7 +184,7 @@ std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>&
 void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
                      const ExplorationConfig& config, const ExplorationResult& result,
                      const Mapper& mapper) {
-  const RunLabel label{scene.name, config.planner.method, config.planner.gain.alpha, config.start};
+  const RunLabel label = run_label(scene.name, config);
   write_atomically(dir / "scans.csv",
                    std::string(kScansCsvHeader) + "\n" + scans_csv_rows(label, result.scans));
 
@@ -213,7 +225,8 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
   // every other method decides by) a count of cells.
   run["gain_units"] = {
       {"predicted_gain", config.planner.method == PlannerMethod::kProbabilistic ? "bits" : "cells"},
-      {"greedy_predicted_gain", "cells"}};
+      {"greedy_predicted_gain", "cells"},
+      {"predicted_cells", "cells"}};
   write_atomically(dir / "run.json", run.dump(2) + "\n");
 
   write_map_files(dir, grid);  // map.ot (lossless), map.bt, map_top.csv

@@ -16,17 +16,25 @@ namespace vantage {
 /// The header of scans.csv. Other tools read it: append columns, never change these.
 /// travel_m is the distance travelled to the scan's view (table top: the walk along the ring;
 /// office: the path driven), fallback 1 where the planned goal was not reachable (§5.3.1).
+/// `alpha` is the probabilistic method's setting (a number or "auto"), `alpha_used` the a its
+/// decision for this scan took; predicted_gain is in bits for the probabilistic method and in
+/// cells for the others, predicted_cells always in cells (E, or greedy's count), the unit of
+/// actual_gain; `objective` is what the probabilistic method ranked by (bits or cells).
 inline constexpr std::string_view kScansCsvHeader =
     "scene,method,alpha,trial,scan,view,predicted_gain,greedy_predicted_gain,actual_gain,"
-    "unobserved,coverage,plan_seconds,travel_m,fallback";
+    "unobserved,coverage,plan_seconds,travel_m,fallback,predicted_cells,alpha_used,objective";
 
 /// Which run a row belongs to.
 struct RunLabel {
   std::string scene;
   PlannerMethod method = PlannerMethod::kProbabilistic;
-  double alpha = kTableTopAlpha;  ///< written only for the probabilistic method
+  AlphaSetting alpha;                              ///< written only for the probabilistic method
+  GainObjective objective = GainObjective::kBits;  ///< written only for the probabilistic method
   int trial = 0;
 };
+
+/// The label of an exploration run with `config` on scene `scene`, trial = its start.
+RunLabel run_label(std::string scene, const ExplorationConfig& config);
 
 /// The rows of scans.csv for one run, without the header; numbers to 12+ significant digits,
 /// an empty field where a value does not exist (no prediction before the first scan).

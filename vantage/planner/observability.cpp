@@ -1,11 +1,48 @@
 #include "vantage/planner/observability.hpp"
 
+#include <charconv>
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include "vantage/util/text.hpp"
 
 namespace vantage {
+
+std::string AlphaSetting::label() const {
+  if (automatic) return "auto";
+  std::ostringstream out;
+  out.precision(15);  // as scans.csv has always written a: "{:.15g}"
+  out << value;
+  return out.str();
+}
+
+AlphaSetting parse_alpha_setting(std::string_view text, double prior) {
+  if (text == "auto") return {true, prior};
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !(value > 0.0 && value <= 1.0)) {
+    throw std::invalid_argument(
+        cat("alpha must be 'auto' or a number in (0, 1], got '", text, "'"));
+  }
+  return {false, value};
+}
+
+std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
+                                            std::span<const Frustum> views, GainConfig config,
+                                            std::span<const double> alphas) {
+  config.method = GainMethod::kProbabilistic;
+  std::vector<double> cells;
+  cells.reserve(alphas.size());
+  for (const double alpha : alphas) {
+    config.alpha = alpha;
+    double sum = 0.0;
+    for (const ViewGain& g : evaluate_views(grid, views, config)) sum += g.cells;
+    cells.push_back(sum);
+  }
+  return cells;
+}
 
 void ObservabilityFitConfig::validate() const {
   if (alphas.empty()) throw std::invalid_argument("observability.alphas must not be empty");

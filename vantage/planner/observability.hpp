@@ -12,18 +12,45 @@
 
 #include <cstddef>
 #include <span>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "vantage/gain/ray_model.hpp"
+#include "vantage/gain/view_gain.hpp"
+#include "vantage/map/occupancy_grid.hpp"
+#include "vantage/views/frustum.hpp"
 
 namespace vantage {
+
+/// The observability a of the probabilistic method: a fixed value, or fitted from the run's own
+/// outcomes (ObservabilityFit), starting from `value`.
+struct AlphaSetting {
+  bool automatic = false;
+  double value = kTableTopAlpha;  ///< the fixed a, or the prior of the fit, in (0, 1]
+
+  /// "0.997" (the value to 15 significant digits) or "auto".
+  std::string label() const;
+  friend bool operator==(const AlphaSetting&, const AlphaSetting&) = default;
+};
+
+/// Parses "auto" (with `prior` as its starting value) or a number in (0, 1]; throws
+/// std::invalid_argument naming the text.
+AlphaSetting parse_alpha_setting(std::string_view text, double prior = kTableTopAlpha);
+
+/// The expected number of cells seen (ViewGain::cells) of `views` together, under each of
+/// `alphas` in turn, with the rest of `config` (its method is taken as probabilistic) [cells]:
+/// the predictions ObservabilityFit::record takes for the views a scan is about to be taken from.
+std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
+                                            std::span<const Frustum> views, GainConfig config,
+                                            std::span<const double> alphas);
 
 /// Settings of the online fit.
 struct ObservabilityFitConfig {
   /// The candidate values of a, ascending, each in (0, 1]. The default spans the paper's
-  /// table-top (0.997) and office (0.9999) values and a decade either side in 1 - a.
-  std::vector<double> alphas = {0.97,   0.99,   0.995,  0.997,   0.998,   0.999,
-                                0.9995, 0.9998, 0.9999, 0.99995, 0.99998, 0.99999};
+  /// table-top (0.997) and office (0.9999) values and a decade either side in 1 - a; each costs
+  /// one evaluation of the scanned view per scan.
+  std::vector<double> alphas = {0.99, 0.995, 0.997, 0.999, 0.9995, 0.9999, 0.99999};
   double prior = kTableTopAlpha;  ///< the a in force until the first outcome, in (0, 1]
   /// Weight of an outcome relative to the one after it, in (0, 1]: 1 weighs all scans alike,
   /// 0.5 halves the weight of each older scan.

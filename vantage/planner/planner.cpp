@@ -42,18 +42,24 @@ struct Views {
   }
 };
 
+/// Each view's value under `method` (in bits or in cells, as `objective` says), and with
+/// `per_candidate` each candidate's summed gains.
 std::vector<double> gains_of(const OccupancyGrid& grid, const Views& views, GainConfig config,
-                             GainMethod method, std::vector<ViewGain>* per_candidate = nullptr) {
+                             GainMethod method, GainObjective objective,
+                             std::vector<ViewGain>* per_candidate = nullptr) {
   config.method = method;
   const std::vector<ViewGain> gains = evaluate_views(grid, views.frusta, config);
   std::vector<double> values;
   values.reserve(gains.size());
-  for (const ViewGain& g : gains) values.push_back(g.gain);
+  // NOTE: greedy's gain is its count of cells; only the probabilistic method's differ.
+  const bool cells = objective == GainObjective::kCells && method == GainMethod::kProbabilistic;
+  for (const ViewGain& g : gains) values.push_back(cells ? g.cells : g.gain);
   if (per_candidate != nullptr) {
     per_candidate->assign(views.first.size() - 1, ViewGain{});
     for (std::size_t v = 0; v < gains.size(); ++v) {
       ViewGain& sum = (*per_candidate)[views.candidate_of(v)];
       sum.gain += gains[v].gain;
+      sum.cells += gains[v].cells;
       sum.targets += gains[v].targets;
     }
   }
@@ -89,6 +95,16 @@ PlannerMethod parse_planner_method(std::string_view name) {
                                   "yamauchi)"));
 }
 
+std::string_view to_string(GainObjective objective) {
+  return objective == GainObjective::kCells ? "cells" : "bits";
+}
+
+GainObjective parse_gain_objective(std::string_view name) {
+  if (name == "bits") return GainObjective::kBits;
+  if (name == "cells") return GainObjective::kCells;
+  throw std::invalid_argument(cat("unknown objective '", name, "' (expected bits or cells)"));
+}
+
 void PlannerConfig::validate() const {
   gain.validate();
   if (!(lambda >= 0.0 && std::isfinite(lambda))) {
@@ -104,14 +120,15 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   Plan plan;
   const Views views(candidates);
   const bool probabilistic = config.method == PlannerMethod::kProbabilistic;
-  std::vector<double> view_scores =
-      gains_of(grid, views, config.gain,
-               probabilistic ? GainMethod::kProbabilistic : GainMethod::kGreedy, &plan.gains);
+  std::vector<double> view_scores = gains_of(
+      grid, views, config.gain, probabilistic ? GainMethod::kProbabilistic : GainMethod::kGreedy,
+      probabilistic ? config.objective : GainObjective::kCells, &plan.gains);
   if (!probabilistic) {
     plan.greedy_gains = views.sums(view_scores);
   } else if (config.greedy_reference) {
     const auto reference_start = std::chrono::steady_clock::now();
-    plan.greedy_gains = views.sums(gains_of(grid, views, config.gain, GainMethod::kGreedy));
+    plan.greedy_gains =
+        views.sums(gains_of(grid, views, config.gain, GainMethod::kGreedy, GainObjective::kCells));
     plan.reference_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start).count();
   }

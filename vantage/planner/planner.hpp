@@ -28,9 +28,21 @@ std::string_view to_string(PlannerMethod method);
 /// Parses probabilistic, greedy, random, latombe or yamauchi; throws std::invalid_argument.
 PlannerMethod parse_planner_method(std::string_view name);
 
+/// What the probabilistic method maximises over the candidates.
+enum class GainObjective {
+  kBits,   ///< the expected information gain of eq. (1), ViewGain::gain [bits]
+  kCells,  ///< the expected number of unobserved cells seen, ViewGain::cells [cells]
+};
+
+std::string_view to_string(GainObjective objective);
+/// Parses "bits" or "cells"; throws std::invalid_argument naming the value.
+GainObjective parse_gain_objective(std::string_view name);
+
 /// Settings of the decision.
 struct PlannerConfig {
   PlannerMethod method = PlannerMethod::kProbabilistic;
+  /// What the probabilistic method ranks by; the other methods count cells whatever it says.
+  GainObjective objective = GainObjective::kBits;
   /// Gain evaluation settings; `gain.method` is set from `method` (probabilistic for
   /// kProbabilistic, greedy for the others).
   GainConfig gain;

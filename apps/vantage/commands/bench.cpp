@@ -24,6 +24,7 @@ struct BenchOptions {
   std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
   std::vector<std::string> methods = {"probabilistic", "greedy", "random"};
   std::string alphas = fmt::format("{}", kTableTopAlpha);
+  std::string objectives = "bits";
   int trials = 10;
   int scans = 10;
   std::uint64_t seed = 1;
@@ -36,6 +37,18 @@ struct BenchOptions {
   PlanningOptions planning;
   MappingOptions mapping;
 };
+
+/// The comma-separated items of a list option.
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> items;
+  std::size_t from = 0;
+  for (;;) {
+    const std::size_t comma = text.find(',', from);
+    items.push_back(text.substr(from, comma - from));
+    if (comma == std::string::npos) return items;
+    from = comma + 1;
+  }
+}
 
 void parse_shard(const std::string& text, BenchConfig& config) {
   const auto slash = text.find('/');
@@ -56,7 +69,20 @@ void run(const BenchOptions& o) {
   config.scenes = o.scenes;
   config.methods.clear();
   for (const std::string& m : o.methods) config.methods.push_back(parse_planner_method(m));
-  config.alphas = parse_numbers(o.alphas, "--alphas");
+  // NOTE: auto starts from the literal a of the sweep's kind (§5.1, §5.2).
+  const double prior = o.kind == "office" ? kOfficeAlpha : kTableTopAlpha;
+  config.alphas.clear();
+  for (const std::string& a : split_list(o.alphas)) {
+    try {
+      config.alphas.push_back(parse_alpha_setting(a, prior));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("--alphas: {}", e.what()));
+    }
+  }
+  config.objectives.clear();
+  for (const std::string& name : split_list(o.objectives)) {
+    config.objectives.push_back(parse_gain_objective(name));
+  }
   config.trials = o.trials;
   config.exploration.planner = o.planning.planner_config();
   config.exploration.mapper.integration.mode = parse_integration_mode(o.mapping.integration);
@@ -93,7 +119,11 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   CLI::App* cmd = bench.add_subcommand(name, description);
   cmd->add_option("--scenes", o->scenes, "scenes")->delimiter(',')->capture_default_str();
   cmd->add_option("--methods", o->methods, "methods")->delimiter(',')->capture_default_str();
-  cmd->add_option("--alphas", o->alphas, "a values of the probabilistic method, a,b,...")
+  cmd->add_option("--alphas", o->alphas,
+                  "a settings of the probabilistic method, a,b,... (a number in (0, 1] or auto)")
+      ->capture_default_str();
+  cmd->add_option("--objectives", o->objectives,
+                  "what the probabilistic method ranks by, one trial set each: bits,cells")
       ->capture_default_str();
   cmd->add_option("--trials", o->trials, trials_help)->capture_default_str();
   cmd->add_option(
@@ -134,7 +164,7 @@ void add_bench_command(CLI::App& app) {
   office->scenes = paper.scenes;
   office->methods.clear();
   for (const PlannerMethod m : paper.methods) office->methods.emplace_back(to_string(m));
-  office->alphas = fmt::format("{},{}", paper.alphas[0], paper.alphas[1]);
+  office->alphas = fmt::format("{},{}", paper.alphas[0].label(), paper.alphas[1].label());
   office->trials = paper.trials;
   office->scans = paper.exploration.scans;
   office->out = "results/bench-office";

@@ -35,7 +35,6 @@ struct ExploreOptions {
   std::string out;
   bool plots = true;
   bool quiet = false;
-  bool alpha_given = false;  ///< --alpha on the command line (else the scene kind's default)
 };
 
 fs::path default_out(const ExploreOptions& o) {
@@ -66,11 +65,14 @@ void print_scan(const ScanRecord& r, int total) {
 void run(const ExploreOptions& o) {
   const sim::Scene scene = sim::load_scene(o.scene);
   const bool office = scene.kind == sim::SceneKind::kOffice;
-  PlanningOptions planning = o.planning;
-  // The paper's a for an office (§5.2) when --alpha is not given; table tops keep the default.
-  if (office && !o.alpha_given) planning.alpha = kOfficeAlpha;
+  // The paper's a for the scene's kind (§5.1, §5.2) when --alpha is not given, and the prior
+  // of --alpha auto.
+  const double literal = office ? kOfficeAlpha : kTableTopAlpha;
+  const AlphaSetting alpha = o.planning.alpha_setting(literal);
   ExplorationConfig config;
-  config.planner = planning.planner_config();
+  config.planner = o.planning.planner_config(literal);
+  config.auto_alpha = alpha.automatic;
+  config.observability.prior = alpha.value;
   config.mapper = o.mapping.mapper_config(scene);
   config.mapper.integration.num_threads = o.planning.threads;
   config.scans = o.scans;
@@ -87,7 +89,9 @@ void run(const ExploreOptions& o) {
   if (!o.quiet) {
     fmt::print("exploring {} with {} ({} evaluation{}), {} scans from start {}, seed {}\n",
                scene.name, o.planning.method, o.planning.evaluation,
-               o.planning.method == "probabilistic" ? fmt::format(", a = {}", planning.alpha) : "",
+               o.planning.method == "probabilistic"
+                   ? fmt::format(", a = {}, ranking by {}", alpha.label(), o.planning.objective)
+                   : "",
                o.scans, o.start, o.seed);
   }
   Mapper mapper(scene.grid, config.mapper);
@@ -115,9 +119,10 @@ void add_explore_command(CLI::App& app) {
   cmd->add_option("--scene,-s", o->scene, "built-in scene name or scene YAML file")
       ->capture_default_str();
   o->planning.add_to(*cmd);
-  cmd->get_option("--alpha")->description(
-      fmt::format("observability parameter a of the probabilistic method (table top {}, office {})",
-                  kTableTopAlpha, kOfficeAlpha));
+  cmd->get_option("--alpha")->description(fmt::format(
+      "observability parameter a of the probabilistic method, in (0, 1] (default: table top {}, "
+      "office {}), or 'auto': fitted to the run's own predictions and outcomes, starting there",
+      kTableTopAlpha, kOfficeAlpha));
   o->mapping.add_to(*cmd);
   cmd->add_option("--scans,-n", o->scans, "number of scans to take (office: stops, a sweep each)")
       ->capture_default_str();
@@ -134,10 +139,7 @@ void add_explore_command(CLI::App& app) {
   cmd->add_option("--out,-o", o->out, "results folder (default: a fresh folder under results/)");
   cmd->add_flag("!--no-plots", o->plots, "skip the pictures");
   cmd->add_flag("--quiet,-q", o->quiet, "no per-scan progress");
-  cmd->callback([o, cmd] {
-    o->alpha_given = cmd->get_option("--alpha")->count() > 0;
-    run(*o);
-  });
+  cmd->callback([o] { run(*o); });
 }
 
 }  // namespace vantage::cli

@@ -1,5 +1,7 @@
 #include "commands/options.hpp"
 
+#include <fmt/core.h>
+
 #include "vantage/experiment/exploration.hpp"
 
 namespace vantage::cli {
@@ -7,7 +9,13 @@ namespace vantage::cli {
 void PlanningOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--method,-m", method, "probabilistic, greedy, random, latombe or yamauchi")
       ->capture_default_str();
-  cmd.add_option("--alpha,-a", alpha, "observability parameter a of the probabilistic method")
+  cmd.add_option("--alpha,-a", alpha,
+                 "observability parameter a of the probabilistic method, in (0, 1], or 'auto': "
+                 "fitted to the run's own predictions and outcomes")
+      ->default_str(fmt::format("{}", kTableTopAlpha));
+  cmd.add_option("--objective", objective,
+                 "what the probabilistic method ranks by: bits (the information gain, eq. 1) or "
+                 "cells (the expected number of unobserved cells seen)")
       ->capture_default_str();
   cmd.add_option("--evaluation", evaluation,
                  "gain evaluation: auto (the cheaper of the two on each map state), fast or exact")
@@ -19,10 +27,20 @@ void PlanningOptions::add_to(CLI::App& cmd) {
       ->capture_default_str();
 }
 
-PlannerConfig PlanningOptions::planner_config() const {
+AlphaSetting PlanningOptions::alpha_setting(double literal) const {
+  if (alpha.empty()) return {false, literal};
+  try {
+    return parse_alpha_setting(alpha, literal);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(fmt::format("--alpha: {}", e.what()));
+  }
+}
+
+PlannerConfig PlanningOptions::planner_config(double literal_alpha) const {
   PlannerConfig config;
   config.method = parse_planner_method(method);
-  config.gain.alpha = alpha;
+  config.objective = parse_gain_objective(objective);
+  config.gain.alpha = alpha_setting(literal_alpha).value;
   config.gain.evaluation = parse_gain_evaluation(evaluation);
   config.gain.epsilon = epsilon;
   config.gain.num_threads = threads;

@@ -8,23 +8,29 @@
 
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/perception/mapper.hpp"
+#include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"
 
 namespace vantage::cli {
 
-/// --method, --alpha, --evaluation, --epsilon, --lambda, --threads.
+/// --method, --alpha, --objective, --evaluation, --epsilon, --lambda, --threads.
 struct PlanningOptions {
   std::string method = "probabilistic";
-  double alpha = kTableTopAlpha;
+  std::string alpha;  ///< a number, "auto", or empty: the caller's literal default
+  std::string objective = "bits";
   std::string evaluation = "auto";
   double epsilon = GainConfig{}.epsilon;
   double lambda = PlannerConfig{}.lambda;
   int threads = 0;
 
   void add_to(CLI::App& cmd);
+  /// --alpha as a setting; without it `literal` (the scene kind's a), which is also auto's prior.
   /// Throws std::invalid_argument naming the bad option.
-  PlannerConfig planner_config() const;
+  AlphaSetting alpha_setting(double literal = kTableTopAlpha) const;
+  /// Throws std::invalid_argument naming the bad option. Under --alpha auto, gain.alpha is the
+  /// fit's prior.
+  PlannerConfig planner_config(double literal_alpha = kTableTopAlpha) const;
 };
 
 /// --integration, --no-icp, --no-segmentation, --no-hole-filling.

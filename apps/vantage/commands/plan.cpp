@@ -159,6 +159,12 @@ void run(const PlanOptions& o) {
     throw std::invalid_argument("give a manifest or data folder, or --map FILE.bt|.ot, or both");
   }
   // NOTE: everything the command line alone can refuse is refused before any mapping.
+  if (o.planning.alpha_setting().automatic) {
+    // NOTE: auto fits a to a run's own predictions and outcomes, scan after scan; one decision
+    // from recorded clouds has none to fit to.
+    throw std::invalid_argument(
+        "--alpha auto fits a over an exploration's scans (explore, bench); plan takes a number");
+  }
   PlannerConfig planner = o.planning.planner_config();
   planner.greedy_reference = true;
   const PlanUnits units = units_of(planner.method);
