@@ -68,6 +68,11 @@ struct GainConfig {
 /// The predicted gain of one view.
 struct ViewGain {
   double gain = 0.0;  ///< expected information gain of the view, eq. (1) [bits]
+  /// Expected number of the unobserved cells in view that the view sees, E (MODEL.md "The
+  /// expected number of cells seen"): the sum of v_M, the visibility of each target [cells]. For
+  /// greedy, its count of unblocked targets (= gain). The fast mode adds the cells it leaves
+  /// uncredited (a pinned posterior) at the visibility of the ray that carries them.
+  double cells = 0.0;
   /// Exact mode: the unobserved cells inside the frustum. Fast mode: those it credited; the same
   /// cells with epsilon = 0, without those behind a ray's early stop and those deep in uniform
   /// unobserved space with a pinned posterior otherwise.
