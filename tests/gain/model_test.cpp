@@ -110,6 +110,11 @@ TEST(BothModes, FollowTheModelTheyAreGiven) {
     // H(p) - H(q) with q = p up to the rounding of a / (a + b) and the fast mode's series.
     EXPECT_NEAR(blind_exact[v].gain, 0.0, 1e-9) << "view " << v;
     EXPECT_NEAR(blind_fast[v].gain, 0.0, 1e-9) << "view " << v;
+    // In cells the same: the paper's model sees some, the blind one none, in both modes.
+    EXPECT_GT(paper_exact[v].cells, 10.0) << "view " << v;
+    EXPECT_NEAR(paper_fast[v].cells, paper_exact[v].cells, 1e-3 * paper_exact[v].cells);
+    EXPECT_EQ(blind_exact[v].cells, 0.0) << "view " << v;
+    EXPECT_EQ(blind_fast[v].cells, 0.0) << "view " << v;
   }
   // The public entry points run the paper's model.
   const auto plain = exact_view_gains(grid, views, config);

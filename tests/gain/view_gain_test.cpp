@@ -46,8 +46,9 @@ TEST(ExactGain, GreedyCountsUnobservedCellsBeforeTheFirstOccupied) {
   GainConfig config;
   config.method = GainMethod::kGreedy;
   const ViewGain gain = exact_view_gain(grid, looking_along_x({0.05, 0.0, 0.0}), config);
-  EXPECT_EQ(gain.targets, 6u);       // cells 5, 6, 7, 9, 10, 11
-  EXPECT_DOUBLE_EQ(gain.gain, 3.0);  // 5, 6, 7; the occupied cell 8 hides 9-11
+  EXPECT_EQ(gain.targets, 6u);        // cells 5, 6, 7, 9, 10, 11
+  EXPECT_DOUBLE_EQ(gain.gain, 3.0);   // 5, 6, 7; the occupied cell 8 hides 9-11
+  EXPECT_DOUBLE_EQ(gain.cells, 3.0);  // greedy's cells are its count
 }
 
 TEST(ExactGain, ProbabilisticIsTheSumOfRayModelGains) {
@@ -57,8 +58,11 @@ TEST(ExactGain, ProbabilisticIsTheSumOfRayModelGains) {
   std::vector<double> p;
   for (std::size_t i = 0; i < 20; ++i) p.push_back(grid.probability(i));
   const auto states = RayModel(alpha).trace(p);
-  double expected = 0.0;
-  for (const std::size_t j : {5, 6, 7, 9, 10, 11}) expected += states[j].gain();
+  double expected = 0.0, seen = 0.0;
+  for (const std::size_t j : {5, 6, 7, 9, 10, 11}) {
+    expected += states[j].gain();
+    seen += states[j].visibility;  // E: v_M of each target (MODEL.md)
+  }
   GainConfig config;
   config.alpha = alpha;
   config.epsilon = 0.0;  // the literal model, no early stop
@@ -67,6 +71,13 @@ TEST(ExactGain, ProbabilisticIsTheSumOfRayModelGains) {
   EXPECT_NEAR(gain.gain, expected, 1e-12);
   EXPECT_GT(gain.gain, 2.0);  // the three visible cells carry most of a bit each
   EXPECT_LT(gain.gain, 3.0);  // the three hidden ones almost nothing
+  EXPECT_NEAR(gain.cells, seen, 1e-12);
+  // By hand (MODEL.md's recursion): cells 5-7 behind free space are seen with v = 0.998, 0.980,
+  // 0.962; behind the occupied cell 8 visibility falls to 0.271 and climbs back through the
+  // unobserved cells (eq. 9's 0.1 way back) to 0.336 and 0.392, not to 0: E = 3.938 cells.
+  EXPECT_NEAR(gain.cells, 3.938, 1e-3);
+  for (const std::size_t j : {5, 6, 7}) EXPECT_GT(states[j].visibility, 0.95) << j;
+  for (const std::size_t j : {9, 10, 11}) EXPECT_LT(states[j].visibility, 0.4) << j;
 }
 
 TEST(ExactGain, CellsOutsideTheGridCountAsFree) {
@@ -83,6 +94,10 @@ TEST(ExactGain, CellsOutsideTheGridCountAsFree) {
   const ViewGain view = exact_view_gain(grid, looking_along_x(origin), config);
   EXPECT_EQ(view.targets, 20u);
   EXPECT_GT(view.gain, g0);
+  // E: the first unknown cell behind 10 free ones is seen with v_10, and every cell is seen with
+  // at least the 0.1 / 1.1 of eq. (9)'s way back, at most once.
+  EXPECT_GT(view.cells, 20.0 * 0.09);
+  EXPECT_LT(view.cells, 20.0);
 }
 
 TEST(ExactGain, KnownCellsAndCellsOutsideTheFrustumContributeNothing) {
@@ -124,6 +139,7 @@ TEST(ExactGain, SameResultForAnyThreadCount) {
     const auto b = exact_view_gains(grid, views, two);
     for (std::size_t v = 0; v < views.size(); ++v) {
       EXPECT_EQ(a[v].gain, b[v].gain);  // bitwise
+      EXPECT_EQ(a[v].cells, b[v].cells);
       EXPECT_EQ(a[v].targets, b[v].targets);
       EXPECT_GT(a[v].targets, 0u);
     }

@@ -246,16 +246,18 @@ std::vector<Visit> grid_walk(const GridSpec& spec, const Eigen::Vector3d& o,
   return visits;
 }
 
+/// A uniformly random point of the grid's box.
+Eigen::Vector3d random_inside(const GridSpec& spec, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double x = u(rng), y = u(rng), z = u(rng);
+  return spec.origin + spec.size().cwiseProduct(Eigen::Vector3d(x, y, z));
+}
+
 TEST(GridWalk, StartedMidRayContinuesTheSameWalk) {
   const GridSpec spec = test_grid();
   std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  auto inside = [&] {
-    return Eigen::Vector3d(spec.origin +
-                           spec.size().cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng))));
-  };
   for (int i = 0; i < 2000; ++i) {
-    const Eigen::Vector3d a = inside(), b = inside();
+    const Eigen::Vector3d a = random_inside(spec, rng), b = random_inside(spec, rng);
     const auto whole = walk(spec, a, b);  // traverse(), checked against the oracle above
     const auto mine = grid_walk(spec, a, b - a, spec.lattice_index(a), spec.lattice_index(b));
     ASSERT_EQ(mine.size(), whole.size()) << "segment " << i;
@@ -278,12 +280,8 @@ TEST(GridWalk, StartedMidRayContinuesTheSameWalk) {
 TEST(GridWalk, SkipMovesAlongTheWalk) {
   const GridSpec spec = test_grid();
   std::mt19937_64 rng(9);
-  std::uniform_real_distribution<double> u(0.0, 1.0);
   for (int i = 0; i < 2000; ++i) {
-    const Eigen::Vector3d a =
-        spec.origin + spec.size().cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng)));
-    const Eigen::Vector3d b =
-        spec.origin + spec.size().cwiseProduct(Eigen::Vector3d(u(rng), u(rng), u(rng)));
+    const Eigen::Vector3d a = random_inside(spec, rng), b = random_inside(spec, rng);
     const auto whole = grid_walk(spec, a, b - a, spec.lattice_index(a), spec.lattice_index(b));
     // Skipping the steps to any visited cell lands on it, and the walk goes on as before.
     const std::size_t to = whole.size() / 3;

@@ -29,16 +29,16 @@ struct GridCells {
   }
 };
 
-/// Gain of the target cell on its ray from `origin` under `Model`; 0 when the ray stops early
-/// (visibility below `epsilon`) before it. `Cells` is GainMap or GridCells.
+/// Gain and visibility of the target cell on its ray from `origin` under `Model`; 0 when the ray
+/// stops early (visibility below `epsilon`) before it. `Cells` is GainMap or GridCells.
 template <typename Model, typename Cells>
-double ray_gain(const Cells& map, const RayTables<Model>& tables, const Eigen::Vector3d& origin,
-                const Index3& target, double epsilon) {
+TargetPrediction ray_gain(const Cells& map, const RayTables<Model>& tables,
+                          const Eigen::Vector3d& origin, const Index3& target, double epsilon) {
   const GridSpec& spec = map.spec();
   const std::size_t target_linear = spec.linear(target);
   RayOdds state;
   double p_prev = 0.0;
-  double gain = 0.0;
+  TargetPrediction prediction;
   bool first = true;
   traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int m) {
     const auto cell = map.value(linear);
@@ -50,22 +50,25 @@ double ray_gain(const Cells& map, const RayTables<Model>& tables, const Eigen::V
     }
     p_prev = cell.p;
     if (linear == target_linear) {
-      gain = cell.entropy - entropy_bits(state.posterior());  // eq. (4)
+      prediction.gain = cell.entropy - entropy_bits(state.posterior());  // eq. (4)
+      prediction.seen = state.visibility();  // v_M: c_M's own occupancy does not update it
       return false;
     }
     // The fast mode's early stop: a ray stops once it is hidden.
     return !state.hidden(epsilon);
   });
-  return gain;
+  return prediction;
 }
 
-/// Whether nothing occludes the target (the simple greedy gain): 1 or 0.
+/// Whether nothing occludes the target (the simple greedy gain): 1 or 0, in bits and in cells.
 template <typename Cells>
-double greedy_gain(const Cells& map, const Eigen::Vector3d& origin, const Index3& target) {
-  return line_of_sight(map.spec(), origin, target,
-                       [&](std::size_t linear) { return map.value(linear).state; })
-             ? 1.0
-             : 0.0;
+TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin,
+                             const Index3& target) {
+  const double seen = line_of_sight(map.spec(), origin, target,
+                                    [&](std::size_t linear) { return map.value(linear).state; })
+                          ? 1.0
+                          : 0.0;
+  return {seen, seen};
 }
 
 /// Sums a per-target gain over the unobserved cells inside the frustum. The frustum and the
@@ -91,7 +94,9 @@ ViewGain sum_over_targets(const GainMap& map, const Frustum& view, CellGain&& ce
             !view.contains(spec.center(cell))) {
           continue;
         }
-        sum.gain += cell_gain(cell);
+        const TargetPrediction prediction = cell_gain(cell);
+        sum.gain += prediction.gain;
+        sum.cells += prediction.seen;
         ++sum.targets;
       }
       row_sums[row] = sum;
@@ -100,6 +105,7 @@ ViewGain sum_over_targets(const GainMap& map, const Frustum& view, CellGain&& ce
   ViewGain total;
   for (const ViewGain& row : row_sums) {
     total.gain += row.gain;
+    total.cells += row.cells;
     total.targets += row.targets;
   }
   return total;
@@ -168,10 +174,10 @@ double exact_cell_gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
                                 ") is outside the grid"));
   }
   const GridCells cells{grid};
-  if (config.method == GainMethod::kGreedy) return greedy_gain(cells, origin, target);
+  if (config.method == GainMethod::kGreedy) return greedy_gain(cells, origin, target).gain;
   const RayTables<PaperModel> tables(config.alpha, grid.params().p_min,
                                      max_ray_cells(grid.spec(), origin));
-  return ray_gain(cells, tables, origin, target, 0.0);
+  return ray_gain(cells, tables, origin, target, 0.0).gain;
 }
 
 }  // namespace vantage

@@ -69,6 +69,7 @@ std::vector<ViewGain> cast_all(const CastContext<Model>& cx, const CodeT* codes,
       for (std::size_t k = 0; k < groups[i].members.size(); ++k) {
         ViewGain& g = gains[groups[i].members[k]];
         g.gain += row_sums[r].gain[k];
+        g.cells += row_sums[r].cells[k];
         g.targets += row_sums[r].targets[k];
       }
     }

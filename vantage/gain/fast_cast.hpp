@@ -19,11 +19,13 @@ namespace vantage::detail {
 /// One ray's contribution to each member of its group.
 struct RaySum {
   double gain[kMaxGroup] = {};
+  double cells[kMaxGroup] = {};
   std::size_t targets[kMaxGroup] = {};
 
   void add(const RaySum& o, std::size_t n) {
     for (std::size_t i = 0; i < n; ++i) {
       gain[i] += o.gain[i];
+      cells[i] += o.cells[i];
       targets[i] += o.targets[i];
     }
   }
@@ -61,7 +63,7 @@ template <typename CodeT, typename Model>
                                           const RayGroup& rays, const Kept* history, int ray_m0,
                                           const GridWalk& walk, const Eigen::Vector3d& c,
                                           RaySum& sum) {
-  double g = 0.0;
+  TargetPrediction g;
   bool replayed = false;
   for (std::size_t k = 0; k < rays.views.size(); ++k) {
     if (!rays.views[k]->contains(c)) continue;
@@ -69,8 +71,31 @@ template <typename CodeT, typename Model>
       g = replay(cx, codes, rays, history, ray_m0, walk.cell, walk.m);
       replayed = true;
     }
-    sum.gain[k] += g;
+    sum.gain[k] += g.gain;
+    sum.cells[k] += g.seen;
     ++sum.targets[k];
+  }
+}
+
+/// Counts an owned unobserved cell that is not credited (its posterior is pinned, so it gains
+/// nothing) as seen with visibility `v`, the carrying ray's, by every member that holds it.
+inline void see(const RayGroup& rays, const Eigen::Vector3d& c, double v, RaySum& sum) {
+  for (std::size_t k = 0; k < rays.views.size(); ++k) {
+    if (rays.views[k]->contains(c)) sum.cells[k] += v;
+  }
+}
+
+/// Counts the cells a jump across uniform unobserved space passed over, from the walk `from` up to
+/// the landing cell c_{to_m}, with the steady state's visibility there.
+template <typename Model>
+void see_jumped(const CastContext<Model>& cx, std::size_t code, const RayGroup& rays,
+                const Footprint& footprint, GridWalk from, int to_m, RaySum& sum) {
+  const std::vector<RayOdds>& steady = cx.steady[code];
+  while (from.advance() && from.m < to_m) {
+    const Eigen::Vector3d c = cx.spec->center(from.cell);
+    if (footprint.owns(rays, c)) {
+      see(rays, c, steady[static_cast<std::size_t>(from.m)].visibility(), sum);
+    }
   }
 }
 
@@ -118,20 +143,31 @@ RaySum cast_ray(const CastContext<Model>& cx, const CodeT* codes, const RayGroup
     // border its own ray may graze known space and be re-armed, so it is replayed.
     const std::size_t block = blocks.index(walk.cell);
     const bool deep = blocks.code[block] == code_index && blocks.radius[block] >= kSkipMargin;
-    if (code.state == CellState::kUnobserved && !(deep && odds.pinned(eps))) {
+    if (code.state == CellState::kUnobserved) {
       const Eigen::Vector3d c = spec.center(walk.cell);
-      if (footprint.owns(rays, c)) credit(cx, codes, rays, history, m0, walk, c, sum);
+      if (footprint.owns(rays, c)) {
+        if (deep && odds.pinned(eps)) {
+          see(rays, c, odds.visibility(), sum);
+        } else {
+          credit(cx, codes, rays, history, m0, walk, c, sum);
+        }
+      }
     }
     if (odds.hidden(eps)) break;
     // A uniform region the state has settled in: jump it. The landing cell has the same code,
-    // nothing new to credit there.
+    // nothing new to credit there; the unobserved cells passed over still count as seen.
     const bool new_block = block != last_block;
     last_block = block;
     if (new_block && blocks.code[block] == code_index &&
         (code.state == CellState::kFree ||
-         (code.state == CellState::kUnobserved && odds.pinned(eps))) &&
-        settle_and_jump(cx, ray, code_index, m0, odds, history, walk)) {
-      continue;
+         (code.state == CellState::kUnobserved && odds.pinned(eps)))) {
+      const GridWalk from = walk;
+      if (settle_and_jump(cx, ray, code_index, m0, odds, history, walk)) {
+        if (code.state == CellState::kUnobserved) {
+          see_jumped(cx, code_index, rays, footprint, from, walk.m, sum);
+        }
+        continue;
+      }
     }
     if (!walk.advance()) break;
   }

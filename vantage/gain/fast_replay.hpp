@@ -60,11 +60,12 @@ inline double entropy_near_half(double q) {
   return 1.0 - (y / 2.0 + y * y / 12.0 + y * y * y / 30.0) / std::numbers::ln2;
 }
 
-/// The gain of a credited cell: the exact ray to its centre, replayed over its last cells from the
-/// state the carrying ray had there (docs/fast-gain.md).
+/// The gain and visibility of a credited cell: the exact ray to its centre, replayed over its last
+/// cells from the state the carrying ray had there (docs/fast-gain.md). The replay ends on the
+/// target, so v_M is at hand.
 template <typename CodeT, typename Model>
-double replay(const CastContext<Model>& cx, const CodeT* codes, const RayGroup& rays,
-              const Kept* history, int ray_m0, const Index3& target, int m_target) {
+TargetPrediction replay(const CastContext<Model>& cx, const CodeT* codes, const RayGroup& rays,
+                        const Kept* history, int ray_m0, const Index3& target, int m_target) {
   const GridSpec& spec = *cx.spec;
   const Eigen::Vector3d c = spec.center(target);
   const Eigen::Vector3d delta = c - rays.origin;
@@ -106,7 +107,7 @@ double replay(const CastContext<Model>& cx, const CodeT* codes, const RayGroup& 
     p_prev = code->p;
     if (!walk.advance()) break;
   }
-  return code->entropy - entropy_near_half(odds.posterior());  // eq. (4)
+  return {code->entropy - entropy_near_half(odds.posterior()), odds.visibility()};  // eq. (4)
 }
 
 /// One ray's line through the grid: o + s * dir for s in [s_in, s_out], ending in `last`.

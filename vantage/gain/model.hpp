@@ -41,6 +41,12 @@ struct RayOdds {
   bool pinned(double epsilon) const { return std::abs(a - b) < 2.0 * epsilon * (a + b); }
 };
 
+/// What the model predicts for one target cell c_M.
+struct TargetPrediction {
+  double gain = 0.0;  ///< eq. (4): H(p_M) - H(q_M) [bits]
+  double seen = 0.0;  ///< v_M, the chance the target is seen [cells]
+};
+
 /// The paper's model of one ray: the visibility HMM and the visibility-aware occupancy filter.
 /// THE place to change the ray model: every evaluation steps with `step`. `RayModel`
 /// (ray_model.hpp) is its readable twin, pinned to it by tests.
