@@ -147,11 +147,11 @@ class Explorer {
 
       // --alpha auto: what the view about to be scanned would see under every candidate a, set
       // against what it does see. The first scan calibrates too (on the empty map).
-      std::vector<double> calibration;
       if (fit_) {
         const auto start = Clock::now();
         const std::vector<Frustum> views = views_at(record.T_world_sensor);
-        calibration = expected_cells_by_alpha(mapper_.grid(), views, planner_.gain, fit_->alphas());
+        record.calibration =
+            expected_cells_by_alpha(mapper_.grid(), views, planner_.gain, fit_->alphas());
         record.seconds.calibrate = seconds_since(start);
       }
       if (office_) {
@@ -160,7 +160,7 @@ class Explorer {
         observe_view(k, record);
       }
       if (fit_) {
-        fit_->record(calibration, static_cast<double>(record.actual_gain));
+        fit_->record(record.calibration, static_cast<double>(record.actual_gain));
         planner_.gain.alpha = fit_->alpha();
       }
       record.unobserved = mapper_.grid().counts().unobserved;

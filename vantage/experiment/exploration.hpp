@@ -106,7 +106,10 @@ struct ScanRecord {
   /// The method's prediction of the cells the scan sees: the probabilistic method's expected
   /// cells seen E, the other methods' greedy count [cells]
   std::optional<double> predicted_cells;
-  std::optional<double> alpha;     ///< the a the probabilistic method chose this view with
+  std::optional<double> alpha;  ///< the a the probabilistic method chose this view with
+  /// --alpha auto: the view's expected cells seen under each candidate a of the fit, before the
+  /// scan (ExplorationConfig::observability.alphas) [cells]
+  std::vector<double> calibration;
   std::size_t actual_gain = 0;     ///< cells that left the unobserved set
   std::size_t reentered = 0;       ///< cells that came back into it
   std::size_t unobserved = 0;      ///< unobserved cells after the scan

@@ -33,6 +33,10 @@ json config_json(const ExplorationConfig& config) {
       {"method", to_string(config.planner.method)},
       {"alpha", config.auto_alpha ? json("auto") : json(gain.alpha)},
       {"objective", to_string(config.planner.objective)},
+      {"observability",
+       {{"alphas", config.observability.alphas},
+        {"prior", config.observability.prior},
+        {"recency", config.observability.recency}}},
       {"evaluation", to_string(gain.evaluation)},
       {"epsilon", gain.epsilon},
       {"lambda", config.planner.lambda},
@@ -110,6 +114,7 @@ json scan_json(const ScanRecord& r) {
       r.greedy_predicted_gain ? json(*r.greedy_predicted_gain) : json(nullptr);
   j["predicted_cells"] = r.predicted_cells ? json(*r.predicted_cells) : json(nullptr);
   j["alpha"] = r.alpha ? json(*r.alpha) : json(nullptr);
+  if (!r.calibration.empty()) j["calibration_cells"] = r.calibration;
   json considered = json::array();
   for (const CandidateRecord& c : r.considered) {
     considered.push_back({{"view", c.view},
