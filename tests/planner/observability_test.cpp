@@ -20,6 +20,9 @@ std::vector<double> predictions(const ObservabilityFit& fit, double scale = 1.0)
   return e;
 }
 
+/// Distance between two values of a on the fit's scale, ln(1 - a).
+double apart(double a, double b) { return std::abs(std::log1p(-a) - std::log1p(-b)); }
+
 TEST(ObservabilityFit, PriorUntilTheFirstOutcome) {
   ObservabilityFitConfig config;
   config.prior = 0.998;
@@ -29,28 +32,32 @@ TEST(ObservabilityFit, PriorUntilTheFirstOutcome) {
 }
 
 TEST(ObservabilityFit, FindsTheAThatPredictedTheOutcome) {
-  for (const double truth : {0.97, 0.995, 0.999, 0.9999}) {
+  // On the evaluated values and between them (the fit interpolates ln E against ln(1 - a)):
+  // the a it finds predicts what the true a did, to 2.5% (the interpolation between evaluated
+  // values of a costs up to 2% where E changes fast). Where E barely changes with a the a
+  // itself is poorly determined, and does not need to be.
+  for (const double truth : {0.99, 0.995, 0.996, 0.999, 0.9993, 0.9999, 0.99997}) {
     ObservabilityFit fit;
-    const std::vector<double> e = predictions(fit);
-    fit.record(e, expected(truth));
-    EXPECT_DOUBLE_EQ(fit.alpha(), truth) << "truth " << truth;
+    fit.record(predictions(fit), expected(truth));
+    EXPECT_NEAR(expected(fit.alpha()) / expected(truth), 1.0, 0.025)
+        << "truth " << truth << ", fit " << fit.alpha();
+    if (truth <= 0.9999) {
+      EXPECT_LT(apart(fit.alpha(), truth), 0.1) << "truth " << truth;
+    }
   }
 }
 
 TEST(ObservabilityFit, RecentOutcomesOutweighOldOnes) {
-  // Three scans that a = 0.9999 predicted, then two that a = 0.998 did: the scene got harder to
+  // Three scans that a = 0.9999 predicted, then two that a = 0.997 did: the scene got harder to
   // see into. With recency 0.5 the fit follows the change; weighing all scans alike it does not.
   for (const double recency : {0.5, 1.0}) {
     ObservabilityFitConfig config;
     config.recency = recency;
     ObservabilityFit fit(config);
     for (int i = 0; i < 3; ++i) fit.record(predictions(fit), expected(0.9999));
-    for (int i = 0; i < 2; ++i) fit.record(predictions(fit), expected(0.998));
-    if (recency < 1.0) {
-      EXPECT_DOUBLE_EQ(fit.alpha(), 0.998);
-    } else {
-      EXPECT_DOUBLE_EQ(fit.alpha(), 0.9999);
-    }
+    for (int i = 0; i < 2; ++i) fit.record(predictions(fit), expected(0.997));
+    const double want = recency < 1.0 ? 0.997 : 0.9999;
+    EXPECT_LT(apart(fit.alpha(), want), 0.05) << "recency " << recency << ", fit " << fit.alpha();
   }
 }
 
@@ -60,10 +67,10 @@ TEST(ObservabilityFit, ErrorIsARatioSoLargeAndSmallScansCountAlike) {
   ObservabilityFit small, large;
   small.record(predictions(small, 100.0), 2.0 * 100.0 * expected(0.999) + 1.0);
   large.record(predictions(large, 1e5), 2.0 * 1e5 * expected(0.999) + 1.0);
-  for (std::size_t j = 0; j < small.errors().size(); ++j) {
-    EXPECT_NEAR(small.errors()[j], large.errors()[j], 1e-2) << "a = " << small.alphas()[j];
+  for (const double a : small.alphas()) {
+    EXPECT_NEAR(small.error(a), large.error(a), 1e-2) << "a = " << a;
   }
-  EXPECT_DOUBLE_EQ(small.alpha(), large.alpha());
+  EXPECT_LT(apart(small.alpha(), large.alpha()), 0.05);
 }
 
 TEST(ObservabilityFit, TiesGoToTheLowerA) {
@@ -81,6 +88,12 @@ TEST(ObservabilityFit, RejectsBadSettingsAndOutcomes) {
   ObservabilityFitConfig zero;
   zero.alphas = {0.0, 0.5};
   EXPECT_THROW(ObservabilityFit{zero}, std::invalid_argument);
+  ObservabilityFitConfig one;  // ln(1 - a) has no value at a = 1
+  one.alphas = {0.999, 1.0};
+  EXPECT_THROW(ObservabilityFit{one}, std::invalid_argument);
+  ObservabilityFitConfig single;  // nothing to fit between
+  single.alphas = {0.999};
+  EXPECT_THROW(ObservabilityFit{single}, std::invalid_argument);
   ObservabilityFitConfig recency;
   recency.recency = 0.0;
   EXPECT_THROW(ObservabilityFit{recency}, std::invalid_argument);
@@ -93,6 +106,16 @@ TEST(ObservabilityFit, RejectsBadSettingsAndOutcomes) {
   e[3] = std::numeric_limits<double>::infinity();
   EXPECT_THROW(fit.record(e, 10.0), std::invalid_argument);
   EXPECT_EQ(fit.outcomes(), 0u);  // nothing recorded by a rejected outcome
+}
+
+TEST(AlphaSetting, ParsesNumbersAndAuto) {
+  EXPECT_EQ(parse_alpha_setting("0.9999"), (AlphaSetting{false, 0.9999}));
+  EXPECT_EQ(parse_alpha_setting("auto", 0.9999), (AlphaSetting{true, 0.9999}));
+  EXPECT_EQ(parse_alpha_setting("0.997").label(), "0.997");
+  EXPECT_EQ(parse_alpha_setting("auto").label(), "auto");
+  for (const char* bad : {"0", "1.5", "-0.1", "nan", "0.9x", "", "Auto"}) {
+    EXPECT_THROW(parse_alpha_setting(bad), std::invalid_argument) << bad;
+  }
 }
 
 }  // namespace

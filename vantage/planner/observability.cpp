@@ -1,5 +1,6 @@
 #include "vantage/planner/observability.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -45,11 +46,13 @@ std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
 }
 
 void ObservabilityFitConfig::validate() const {
-  if (alphas.empty()) throw std::invalid_argument("observability.alphas must not be empty");
+  if (alphas.size() < 2) {
+    throw std::invalid_argument("observability.alphas needs at least two values to fit between");
+  }
   for (std::size_t j = 0; j < alphas.size(); ++j) {
-    if (!(alphas[j] > 0.0 && alphas[j] <= 1.0)) {
+    if (!(alphas[j] > 0.0 && alphas[j] < 1.0)) {
       throw std::invalid_argument(
-          cat("observability.alphas[", j, "] must lie in (0, 1], got ", alphas[j]));
+          cat("observability.alphas[", j, "] must lie in (0, 1), got ", alphas[j]));
     }
     if (j > 0 && !(alphas[j] > alphas[j - 1])) {
       throw std::invalid_argument(cat("observability.alphas must ascend, but [", j,
@@ -66,39 +69,61 @@ void ObservabilityFitConfig::validate() const {
 
 ObservabilityFit::ObservabilityFit(ObservabilityFitConfig config) : config_(std::move(config)) {
   config_.validate();
-  error_.assign(config_.alphas.size(), 0.0);
+  for (const double a : config_.alphas) x_.push_back(std::log1p(-a));
 }
 
 void ObservabilityFit::record(std::span<const double> expected_cells, double actual_cells) {
-  if (expected_cells.size() != error_.size()) {
+  if (expected_cells.size() != x_.size()) {
     throw std::invalid_argument(cat("observability fit: ", expected_cells.size(),
-                                    " predictions for ", error_.size(), " values of a"));
+                                    " predictions for ", x_.size(), " values of a"));
   }
   if (!(actual_cells >= 0.0 && std::isfinite(actual_cells))) {
     throw std::invalid_argument(
         cat("observability fit: actual cells ", actual_cells, " must be finite and >= 0"));
   }
-  for (std::size_t j = 0; j < error_.size(); ++j) {
+  Outcome outcome;
+  for (std::size_t j = 0; j < x_.size(); ++j) {
     if (!(expected_cells[j] >= 0.0 && std::isfinite(expected_cells[j]))) {
       throw std::invalid_argument(cat("observability fit: expected cells ", expected_cells[j],
                                       " under a = ", config_.alphas[j],
                                       " must be finite and >= 0"));
     }
+    outcome.log_expected.push_back(std::log1p(expected_cells[j]));
   }
-  for (std::size_t j = 0; j < error_.size(); ++j) {
-    error_[j] = config_.recency * error_[j] +
-                std::abs(std::log((expected_cells[j] + 1.0) / (actual_cells + 1.0)));
+  outcome.log_actual = std::log1p(actual_cells);
+  outcomes_.push_back(std::move(outcome));
+}
+
+double ObservabilityFit::error(double alpha) const {
+  // The interval of x = ln(1 - a) holding alpha, and where in it (x_ descends as a ascends).
+  const double x = std::log1p(-alpha);
+  std::size_t j = 0;
+  while (j + 2 < x_.size() && x < x_[j + 1]) ++j;
+  const double f = std::clamp((x - x_[j]) / (x_[j + 1] - x_[j]), 0.0, 1.0);
+  double sum = 0.0;
+  for (const Outcome& o : outcomes_) {  // oldest first, so the recency weight applies as it goes
+    const double log_e = (1.0 - f) * o.log_expected[j] + f * o.log_expected[j + 1];
+    sum = config_.recency * sum + std::abs(log_e - o.log_actual);
   }
-  ++outcomes_;
+  return sum;
 }
 
 double ObservabilityFit::alpha() const {
-  if (outcomes_ == 0) return config_.prior;
-  std::size_t best = 0;
-  for (std::size_t j = 1; j < error_.size(); ++j) {
-    if (error_[j] < error_[best]) best = j;
+  if (outcomes_.empty()) return config_.prior;
+  double best = config_.alphas.front();
+  double best_error = error(best);
+  for (std::size_t j = 0; j + 1 < x_.size(); ++j) {
+    for (int k = 1; k <= kSearchSteps; ++k) {
+      const double x = x_[j] + (x_[j + 1] - x_[j]) * k / kSearchSteps;
+      const double a = -std::expm1(x);  // 1 - e^x
+      const double e = error(a);
+      if (e < best_error) {
+        best = a;
+        best_error = e;
+      }
+    }
   }
-  return config_.alphas[best];
+  return best;
 }
 
 }  // namespace vantage

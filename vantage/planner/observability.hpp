@@ -47,7 +47,9 @@ std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
 
 /// Settings of the online fit.
 struct ObservabilityFitConfig {
-  /// The candidate values of a, ascending, each in (0, 1]. The default spans the paper's
+  /// The values of a each scan's view is evaluated under, ascending, each in (0, 1); the fit
+  /// interpolates between them (ln E against ln(1 - a), piecewise linear) and may choose any a
+  /// in their range. The default spans the paper's
   /// table-top (0.997) and office (0.9999) values and a decade either side in 1 - a; each costs
   /// one evaluation of the scanned view per scan.
   std::vector<double> alphas = {0.99, 0.995, 0.997, 0.999, 0.9995, 0.9999, 0.99999};
@@ -75,19 +77,28 @@ class ObservabilityFit {
   /// Throws std::invalid_argument for a size mismatch or a negative or non-finite count.
   void record(std::span<const double> expected_cells, double actual_cells);
 
-  /// The a for the next decision: the prior before any outcome, then the candidate with the
-  /// least recency-weighted error |ln((E + 1) / (actual + 1))| (a ratio, so that a scan that
-  /// sees 100 000 cells and one that sees 1 000 count alike). Ties go to the lower a.
+  /// The a for the next decision: the prior before any outcome, then the a in the range of
+  /// alphas() with the least recency-weighted error |ln((E(a) + 1) / (actual + 1))| (a ratio, so
+  /// that a scan that sees 100 000 cells and one that sees 1 000 count alike), E(a) interpolated
+  /// between the evaluated values; searched on kSearchSteps points per interval of alphas().
+  /// Ties go to the lower a.
   double alpha() const;
 
-  /// Each candidate's recency-weighted error so far (the sum alpha() minimises).
-  const std::vector<double>& errors() const { return error_; }
-  std::size_t outcomes() const { return outcomes_; }
+  /// The recency-weighted error of the outcomes so far, were `alpha` in force (the sum alpha()
+  /// minimises). `alpha` must lie in the range of alphas().
+  double error(double alpha) const;
+  std::size_t outcomes() const { return outcomes_.size(); }
+
+  static constexpr int kSearchSteps = 32;
 
  private:
+  struct Outcome {
+    std::vector<double> log_expected;  // ln(E + 1) per candidate a
+    double log_actual = 0.0;           // ln(actual + 1)
+  };
   ObservabilityFitConfig config_;
-  std::vector<double> error_;  // per candidate a
-  std::size_t outcomes_ = 0;
+  std::vector<double> x_;  // ln(1 - a) per candidate a, descending
+  std::vector<Outcome> outcomes_;
 };
 
 }  // namespace vantage
