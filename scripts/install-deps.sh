@@ -6,7 +6,7 @@ set -euo pipefail
 core=(cmake g++ make pkg-config libeigen3-dev libtbb-dev libgtest-dev libbenchmark-dev
       libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libyaml-cpp-dev
       python3-matplotlib)
-edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev npm)
+edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev libnanoflann-dev npm)
 
 wanted=("${core[@]}")
 [[ "${1:-full}" == "full" ]] && wanted+=("${edge[@]}")

@@ -403,21 +403,32 @@ void ExplorationConfig::validate() const {
   office.validate();
 }
 
+perception::PoseSigma odometry_prior(const sim::PoseNoise& noise) {
+  // NOTE: the simulated error has no height, roll or pitch; the prior keeps a little slack there
+  // (PoseSigma's defaults), and a floor where a sigma is 0, which the prior cannot weigh.
+  constexpr double kFloor = 1e-4;
+  perception::PoseSigma prior;
+  prior.x = std::max(noise.x, kFloor);
+  prior.y = std::max(noise.y, kFloor);
+  prior.yaw = std::max(noise.yaw, kFloor);
+  return prior;
+}
+
 MapperConfig default_mapper_config(const sim::Scene& scene) {
   MapperConfig config;
   config.segment_table = scene.kind == sim::SceneKind::kTableTop;
+  config.registration.prior =
+      odometry_prior(ExplorationConfig{}.pose_noise.value_or(scene.pose_noise));
   if (scene.kind == sim::SceneKind::kOffice) {
-    // A sweep is registered as a whole: thinned to one point per map cell, guesses up to ~6 cm
-    // and a few degrees off (points 3.5 m away move by up to 0.3 m), Kinect noise of up to 2 cm.
+    // A sweep is registered as a whole, thinned to one point per map cell, against the sweeps so
+    // far at the same resolution; Kinect noise of up to 2 cm at 3.5 m.
     config.thin_to_cells = true;
     config.register_overlap_only = true;
-    config.icp = {.max_correspondence_distance = 0.04,
-                  .initial_correspondence_distance = 0.32,
-                  .voxel_size = 0.04};
-    // NOTE: 3 sigma of the default pose noise; a larger correction is a slide along a corridor
-    // or towards the part already mapped.
-    config.max_correction_translation = 0.06;
-    config.max_correction_rotation = deg2rad(6.0);
+    config.map.voxel_size = scene.grid.resolution;
+    config.registration.voxel_size = scene.grid.resolution;
+    config.registration.sensor_sigma = 0.01;
+    config.registration.min_distance = 2.0 * scene.grid.resolution;
+    config.reference_sigma = scene.grid.resolution / 4.0;
   }
   return config;
 }
