@@ -426,9 +426,13 @@ MapperConfig default_mapper_config(const sim::Scene& scene) {
     config.register_overlap_only = true;
     config.map.voxel_size = scene.grid.resolution;
     config.registration.voxel_size = scene.grid.resolution;
-    config.registration.sensor_sigma = 0.01;
+    // NOTE: a point thinned to its cell's centroid is off its surface by up to half a cell: the
+    // quantisation's sigma (resolution / sqrt(12)) adds to the Kinect's 1 cm.
+    config.registration.sensor_sigma = std::hypot(0.01, scene.grid.resolution / std::sqrt(12.0));
     config.registration.min_distance = 2.0 * scene.grid.resolution;
-    config.reference_sigma = scene.grid.resolution / 4.0;
+    // NOTE: a sweep's posterior rarely knows the position better than the prior along one
+    // direction (the floor outweighs the walls); 1 cm keeps the sweeps that pin it.
+    config.registration.max_position_sigma = 0.01;
   }
   return config;
 }

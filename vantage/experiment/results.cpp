@@ -70,7 +70,7 @@ json config_json(const ExplorationConfig& config) {
         {"convergence", reg.convergence},
         {"degenerate_ratio", reg.degenerate_ratio},
         {"independent_points", reg.independent_points},
-        {"reference_sigma", mapper.reference_sigma},
+        {"max_position_sigma", reg.max_position_sigma},
         {"max_mahalanobis2", reg.max_mahalanobis2},
         {"min_correspondences", reg.min_correspondences},
         {"thin_to_cells", mapper.thin_to_cells},

@@ -86,10 +86,6 @@ void MapperConfig::validate() const {
   if (register_scans) {
     registration.validate();
     map.validate();
-    if (!(reference_sigma > 0.0)) {
-      throw std::invalid_argument(
-          cat("mapper.reference_sigma must be > 0 m, got ", reference_sigma));
-    }
   }
   if (segment_table) table.validate();
 }
@@ -166,7 +162,7 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
         perception::register_scan(scan, T_world_sensor_guess, reference_, config_.registration);
     update.registration = r.outcome;
     update.registered = r.accepted();
-    trusted = r.accepted() && r.position_sigma <= config_.reference_sigma;
+    trusted = r.accepted();
     update.T_world_sensor = r.T_world_sensor;
   }
   update.seconds_register = seconds_since(start);

@@ -27,11 +27,10 @@ struct MapperConfig {
   /// against its believed pose (perception/registration.hpp).
   bool register_scans = true;
   perception::RegistrationConfig registration;
-  perception::VoxelMapConfig map;  ///< the registration's reference: the objects registered
-  /// A scan joins the reference only when registration kept its correction and the posterior
-  /// knows the sensor's position to this: a scan that overlapped little (the far side of the
-  /// table) would otherwise shift its part of the reference, and every later scan with it [m].
-  double reference_sigma = 0.002;
+  /// The registration's reference: the objects of the first scan and of every scan whose
+  /// registration passed the check (a scan left at its guess would shift its part of the map,
+  /// and every later scan with it).
+  perception::VoxelMapConfig map;
   /// Thin every scan to one point per map cell (the centroid of the cell's points) before it is
   /// registered and integrated. Paper-mode integration gives a cell one hit however many points
   /// it holds, so the map is the same; registration and the clouds kept get far smaller (an

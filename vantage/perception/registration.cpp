@@ -162,6 +162,10 @@ void RegistrationConfig::validate() const {
     throw std::invalid_argument(
         cat("registration.max_mahalanobis2 must be > 0, got ", max_mahalanobis2));
   }
+  if (!positive(max_position_sigma)) {
+    throw std::invalid_argument(
+        cat("registration.max_position_sigma must be > 0 m, got ", max_position_sigma));
+  }
   if (num_threads < 0) {
     throw std::invalid_argument(cat("registration.num_threads must be >= 0, got ", num_threads));
   }
@@ -177,6 +181,8 @@ std::string_view to_string(RegistrationOutcome outcome) {
       return "too_few_matches";
     case RegistrationOutcome::kOutsidePrior:
       return "outside_prior";
+    case RegistrationOutcome::kUncertain:
+      return "uncertain";
     case RegistrationOutcome::kWorseThanPrior:
       return "worse_than_prior";
   }
@@ -309,6 +315,8 @@ RegistrationResult register_scan(const PointCloud& points_sensor,
     result.outcome = RegistrationOutcome::kTooFewMatches;
   } else if (result.mahalanobis2 > config.max_mahalanobis2) {
     result.outcome = RegistrationOutcome::kOutsidePrior;
+  } else if (result.position_sigma > config.max_position_sigma) {
+    result.outcome = RegistrationOutcome::kUncertain;
   } else if (!(result.cost < result.guess_cost)) {
     result.outcome = RegistrationOutcome::kWorseThanPrior;
   } else {

@@ -55,8 +55,12 @@ struct RegistrationConfig {
   /// The check: the correction's squared Mahalanobis distance under the prior must not exceed
   /// this (chi-square, 6 degrees of freedom, 99.9 %), ...
   double max_mahalanobis2 = 22.46;
-  /// ... the last stage must pair at least this many points, and as many as the guess pairs.
+  /// ... the last stage must pair at least this many points, ...
   std::size_t min_correspondences = 50;
+  /// ... and the posterior must know the sensor's position to this (its largest standard
+  /// deviation): a scan that pins its pose no better (the far side of a table, seen after the
+  /// near side) is left at the guess [m].
+  double max_position_sigma = 0.0025;
   int num_threads = 0;  ///< 0 = all cores; the result is the same for any count
 
   /// Throws std::invalid_argument naming the field (e.g. "registration.min_distance").
@@ -69,6 +73,7 @@ enum class RegistrationOutcome {
   kEmptyMap,        ///< nothing to register against (the first scan)
   kTooFewMatches,   ///< the last stage paired fewer than min_correspondences points
   kOutsidePrior,    ///< the correction is implausible under the odometry noise model
+  kUncertain,       ///< the posterior does not know the position to max_position_sigma
   kWorseThanPrior,  ///< the posterior's cost is no lower at the solution than at the guess
 };
 
