@@ -61,6 +61,8 @@ TEST(Exploration, ShortRunRecordsConsistentFigures) {
     EXPECT_GE(r.actual_gain, previous - r.unobserved);
     EXPECT_GT(r.object_points, 0u);
     EXPECT_LT(r.object_points, r.points);  // the table's points were segmented out
+    // Registration never leaves a pose more than 1 mm worse than the odometry's (issue 14).
+    EXPECT_LE(r.pose_error_after, r.pose_error_before + 1e-3) << "scan " << r.scan;
     EXPECT_GE(r.coverage, 0.0);
     EXPECT_LE(r.coverage, 1.0);
     previous = r.unobserved;

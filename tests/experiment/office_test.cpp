@@ -66,6 +66,7 @@ TEST(Office, TwoStopsMeetTheTableTopInvariants) {
     EXPECT_EQ(r.actual_gain, previous - r.unobserved + r.reentered) << "stop " << r.scan;
     EXPECT_GE(r.actual_gain, previous - r.unobserved);
     EXPECT_GT(r.points, r.object_points);  // thinned to one point per cell
+    EXPECT_LE(r.pose_error_after, r.pose_error_before + 1e-3) << "stop " << r.scan;
     EXPECT_GT(r.object_points, 0u);
     EXPECT_GE(r.coverage, 0.0);
     EXPECT_LE(r.coverage, 1.0);

@@ -447,21 +447,36 @@ void ExplorationConfig::validate() const {
   office.validate();
 }
 
+perception::PoseSigma odometry_prior(const sim::PoseNoise& noise) {
+  // NOTE: the simulated error has no height, roll or pitch; the prior keeps a little slack there
+  // (PoseSigma's defaults), and a floor where a sigma is 0, which the prior cannot weigh.
+  constexpr double kFloor = 1e-4;
+  perception::PoseSigma prior;
+  prior.x = std::max(noise.x, kFloor);
+  prior.y = std::max(noise.y, kFloor);
+  prior.yaw = std::max(noise.yaw, kFloor);
+  return prior;
+}
+
 MapperConfig default_mapper_config(const sim::Scene& scene) {
   MapperConfig config;
   config.segment_table = scene.kind == sim::SceneKind::kTableTop;
+  config.registration.prior =
+      odometry_prior(ExplorationConfig{}.pose_noise.value_or(scene.pose_noise));
   if (scene.kind == sim::SceneKind::kOffice) {
-    // A sweep is registered as a whole: thinned to one point per map cell, guesses up to ~6 cm
-    // and a few degrees off (points 3.5 m away move by up to 0.3 m), Kinect noise of up to 2 cm.
+    // A sweep is registered as a whole, thinned to one point per map cell, against the sweeps so
+    // far at the same resolution; Kinect noise of up to 2 cm at 3.5 m.
     config.thin_to_cells = true;
     config.register_overlap_only = true;
-    config.icp = {.max_correspondence_distance = 0.04,
-                  .initial_correspondence_distance = 0.32,
-                  .voxel_size = 0.04};
-    // NOTE: 3 sigma of the default pose noise; a larger correction is a slide along a corridor
-    // or towards the part already mapped.
-    config.max_correction_translation = 0.06;
-    config.max_correction_rotation = deg2rad(6.0);
+    config.map.voxel_size = scene.grid.resolution;
+    config.registration.voxel_size = scene.grid.resolution;
+    // NOTE: a point thinned to its cell's centroid is off its surface by up to half a cell: the
+    // quantisation's sigma (resolution / sqrt(12)) adds to the Kinect's 1 cm.
+    config.registration.sensor_sigma = std::hypot(0.01, scene.grid.resolution / std::sqrt(12.0));
+    config.registration.min_distance = 2.0 * scene.grid.resolution;
+    // NOTE: a sweep's posterior rarely knows the position better than the prior along one
+    // direction (the floor outweighs the walls); 1 cm keeps the sweeps that pin it.
+    config.registration.max_position_sigma = 0.01;
   }
   return config;
 }

@@ -48,7 +48,7 @@ struct OfficeConfig {
 /// Settings of one exploration run.
 struct ExplorationConfig {
   PlannerConfig planner;  ///< method, alpha, evaluation; greedy_reference is forced on
-  MapperConfig mapper;    ///< ICP, table segmentation, integration
+  MapperConfig mapper;    ///< registration, table segmentation, integration
   int scans = 10;         ///< N, the number of scans to take (the first included)
   double min_gain = 0.0;  ///< stop early once the best predicted gain falls below this
   /// Table top: whether a ring view already taken stays a candidate. Off by default, as an
@@ -115,9 +115,9 @@ struct ScanRecord {
   std::size_t unobserved = 0;      ///< unobserved cells after the scan
   double coverage = 0.0;           ///< observed share of the observable surface, in [0, 1]
   double pose_error_before = 0.0;  ///< translation error of the believed pose [m]
-  double pose_error_after = 0.0;   ///< ... after ICP [m]
+  double pose_error_after = 0.0;   ///< ... after registration [m]
   double yaw_error_before = 0.0;   ///< rotation error of the believed pose [rad]
-  double yaw_error_after = 0.0;    ///< ... after ICP [rad]
+  double yaw_error_after = 0.0;    ///< ... after registration [rad]
   std::size_t points = 0;
   std::size_t object_points = 0;  ///< points integrated (office: thinned to one per cell)
   /// Distance travelled to this view from the previous one [m]: on the table top the walk along
@@ -150,10 +150,13 @@ using ScanCallback = std::function<void(const ScanRecord&, int total)>;
 ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
                           const ScanCallback& on_scan = {});
 
-/// The mapper settings a scene calls for: table segmentation for table tops; for offices, each
-/// stop's sweep thinned to one point per cell and registered where it overlaps the map, with
-/// corrections beyond 3 sigma of the default pose noise rejected.
+/// The mapper settings a scene calls for: registration weighed against the explorer's default
+/// pose noise; table segmentation for table tops; for offices, each stop's sweep thinned to one
+/// point per cell and registered where it overlaps the map, at the map's resolution.
 MapperConfig default_mapper_config(const sim::Scene& scene);
+
+/// The registration prior of a robot whose believed pose errs by `noise` (sigmas of x, y, yaw).
+perception::PoseSigma odometry_prior(const sim::PoseNoise& noise);
 
 /// The frusta that plan a stop's 360° sweep: one per step of the scene's sweep, each as wide as
 /// the yaw step (2 pi / steps) when the sensor is at least that wide, so they tile the sweep

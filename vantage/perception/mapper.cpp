@@ -31,26 +31,6 @@ PointCloud thin_to_cells(const PointCloud& points, const Eigen::Isometry3d& T_wo
   return transform(T_grid_points.inverse(), thinned);
 }
 
-/// One point per map cell of a world-frame cloud.
-PointCloud cells_of(const PointCloud& points_world, const GridSpec& grid) {
-  Eigen::Isometry3d T_grid_world = Eigen::Isometry3d::Identity();
-  T_grid_world.translation() = -grid.origin;
-  return transform(
-      T_grid_world.inverse(),
-      perception::voxel_downsample(transform(T_grid_world, points_world), grid.resolution));
-}
-
-/// The points of `cloud` within a square of half-side `reach` around (x, y) of `centre`.
-PointCloud crop(const PointCloud& cloud, const Eigen::Vector3d& centre, double reach) {
-  PointCloud out;
-  for (const Eigen::Vector3d& p : cloud) {
-    if (std::abs(p.x() - centre.x()) <= reach && std::abs(p.y() - centre.y()) <= reach) {
-      out.push_back(p);
-    }
-  }
-  return out;
-}
-
 /// The points (scan frame) that land, under the pose guess, in cells the map already knows.
 PointCloud known_part(const PointCloud& points, const Eigen::Isometry3d& T_world_points,
                       const OccupancyGrid& grid) {
@@ -103,12 +83,9 @@ class NetChange {
 void MapperConfig::validate() const {
   occupancy.validate();
   integration.validate();
-  if (register_scans) icp.validate();
-  if (!(max_correction_translation >= 0.0) || !(max_correction_rotation >= 0.0)) {
-    throw std::invalid_argument(
-        cat("mapper.max_correction_translation and mapper.max_correction_rotation must be >= 0, "
-            "got ",
-            max_correction_translation, " m and ", max_correction_rotation, " rad"));
+  if (register_scans) {
+    registration.validate();
+    map.validate();
   }
   if (segment_table) table.validate();
 }
@@ -119,6 +96,7 @@ Mapper::Mapper(const GridSpec& grid, const MapperConfig& config)
 Mapper::Mapper(OccupancyGrid grid, const MapperConfig& config)
     : config_(config), grid_(std::move(grid)) {
   config_.validate();
+  reference_ = perception::VoxelMap(config_.map);
 }
 
 MapperUpdate Mapper::add_scan(const PointCloud& points_sensor,
@@ -147,82 +125,73 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
   update.T_world_sensor_guess = T_world_sensor_guess;
   update.T_world_sensor = T_world_sensor_guess;
 
-  auto start = std::chrono::steady_clock::now();
-  // The scan as one cloud in its own frame: what registration aligns.
-  PointCloud merged;
-  if (parts.size() != 1) {
-    for (const ScanPart& part : parts) {
-      for (const Eigen::Vector3d& p : part.points_sensor) merged.push_back(part.T_scan_sensor * p);
+  // What each view contributes (its sensor frame): thinned, then the objects found at the guess.
+  // NOTE: segmentation looks at the scan alone (the table and the objects on it move together),
+  // so the guess serves as well as the corrected pose, and registration sees the objects only.
+  std::vector<PointCloud> kept(parts.size());
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const ScanPart& part = parts[k];
+    auto start = std::chrono::steady_clock::now();
+    const Eigen::Isometry3d T_guess_part = compose(T_world_sensor_guess, part.T_scan_sensor);
+    kept[k] = config_.thin_to_cells ? thin_to_cells(part.points_sensor, T_guess_part, grid_.spec())
+                                    : part.points_sensor;
+    update.points += part.points_sensor.size();
+    update.seconds_integrate += seconds_since(start);
+    start = std::chrono::steady_clock::now();
+    if (config_.segment_table) {
+      const perception::TableSegmentation table =
+          perception::segment_table(transform(T_guess_part, kept[k]), config_.table);
+      PointCloud objects;
+      objects.reserve(table.object_indices.size());
+      for (const std::size_t i : table.object_indices) objects.push_back(kept[k][i]);
+      kept[k] = std::move(objects);
     }
+    update.object_points += kept[k].size();
+    update.seconds_segment += seconds_since(start);
   }
-  const PointCloud& scan = parts.size() == 1 ? parts[0].points_sensor : merged;
-  const PointCloud source =
-      config_.thin_to_cells ? thin_to_cells(scan, T_world_sensor_guess, grid_.spec()) : scan;
-  if (config_.register_scans && scans_ > 0 && !reference_.empty() && !source.empty()) {
-    register_to_map(source, parts, update);
+
+  auto start = std::chrono::steady_clock::now();
+  bool trusted = scans_ == 0;  // the first scan defines the map frame
+  if (config_.register_scans && scans_ > 0 && !reference_.empty()) {
+    PointCloud scan;  // the scan's objects in its own frame
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      for (const Eigen::Vector3d& p : kept[k]) scan.push_back(parts[k].T_scan_sensor * p);
+    }
+    if (config_.register_overlap_only) scan = known_part(scan, T_world_sensor_guess, grid_);
+    const perception::RegistrationResult r =
+        perception::register_scan(scan, T_world_sensor_guess, reference_, config_.registration);
+    update.registration = r.outcome;
+    update.registered = r.accepted();
+    trusted = r.accepted();
+    update.T_world_sensor = r.T_world_sensor;
   }
-  const PointCloud source_world = transform(update.T_world_sensor, source);
-  reference_.insert(reference_.end(), source_world.begin(), source_world.end());
-  if (config_.thin_to_cells) reference_ = cells_of(reference_, grid_.spec());
   update.seconds_register = seconds_since(start);
 
   NetChange change(parts.size() > 1 ? grid_.spec().num_cells() : 0);
-  for (const ScanPart& part : parts) {
+  PointCloud registered;  // the scan's objects in the world, for the reference
+  for (std::size_t k = 0; k < parts.size(); ++k) {
     start = std::chrono::steady_clock::now();
-    const Eigen::Isometry3d T_world_part = compose(update.T_world_sensor, part.T_scan_sensor);
-    const PointCloud points_world =
-        transform(T_world_part, config_.thin_to_cells
-                                    ? thin_to_cells(part.points_sensor, T_world_part, grid_.spec())
-                                    : part.points_sensor);
-    update.seconds_integrate += seconds_since(start);
-
-    start = std::chrono::steady_clock::now();
-    PointCloud objects = config_.segment_table
-                             ? perception::segment_table(points_world, config_.table).objects
-                             : points_world;
-    update.points += part.points_sensor.size();
-    update.object_points += objects.size();
-    update.seconds_segment += seconds_since(start);
-
-    start = std::chrono::steady_clock::now();
-    IntegrationResult integration =
-        integrate_scan(grid_, Scan{objects, Frustum(T_world_part, part.fov)}, config_.integration);
+    const Eigen::Isometry3d T_world_part = compose(update.T_world_sensor, parts[k].T_scan_sensor);
+    const PointCloud objects = transform(T_world_part, kept[k]);
+    IntegrationResult integration = integrate_scan(
+        grid_, Scan{objects, Frustum(T_world_part, parts[k].fov)}, config_.integration);
     if (parts.size() > 1) {
       change.add(integration);
     } else {
       update.integration = std::move(integration);
     }
-    update.seconds_integrate += seconds_since(start);
     objects_.insert(objects_.end(), objects.begin(), objects.end());
+    if (config_.register_scans && trusted) {
+      registered.insert(registered.end(), objects.begin(), objects.end());
+    }
+    update.seconds_integrate += seconds_since(start);
   }
   if (parts.size() > 1) update.integration = change.result();
+  start = std::chrono::steady_clock::now();
+  reference_.add(registered, update.T_world_sensor.translation());
+  update.seconds_register += seconds_since(start);
   ++scans_;
   return update;
-}
-
-void Mapper::register_to_map(const PointCloud& scan, std::span<const ScanPart> parts,
-                             MapperUpdate& update) const {
-  const Eigen::Isometry3d& guess = update.T_world_sensor_guess;
-  PointCloud nearby, overlap;
-  if (config_.register_overlap_only) {
-    double max_range = 0.0;
-    for (const ScanPart& part : parts) max_range = std::max(max_range, part.fov.max_range);
-    const double reach = max_range + 2.0 * config_.icp.initial_correspondence_distance;
-    nearby = crop(reference_, guess.translation(), reach);
-    overlap = known_part(scan, guess, grid_);
-    if (nearby.empty() || overlap.size() < 3) return;
-  }
-  const perception::IcpResult icp =
-      config_.register_overlap_only
-          ? perception::register_scan(overlap, guess, nearby, config_.icp)
-          : perception::register_scan(scan, guess, reference_, config_.icp);
-  update.icp_fitness = icp.fitness;
-  const perception::PoseError step = perception::pose_error(icp.T_world_sensor, guess);
-  if (icp.converged && step.translation <= config_.max_correction_translation &&
-      step.rotation <= config_.max_correction_rotation) {
-    update.T_world_sensor = icp.T_world_sensor;
-    update.registered = true;
-  }
 }
 
 }  // namespace vantage

@@ -1,13 +1,13 @@
 #pragma once
 /// @file
-/// From scans to the map, as the paper's §4.1 chains it: register each new scan to the points
-/// so far with ICP (§4.2), keep the objects above the table (§5.1), and integrate them into the
-/// occupancy grid (§4.3, §4.4). `vantage explore` and `vantage plan` both map through this; a
-/// scan is one view (a table top) or several taken from one place (an office stop's 360° sweep).
+/// From scans to the map, as the paper's §4.1 chains it: keep the objects above the table
+/// (§5.1), register them to the objects mapped so far (§4.2; the paper's ICP, here point to
+/// plane weighed against the odometry), and integrate them into the occupancy grid (§4.3, §4.4).
+/// `vantage explore` and `vantage plan` both map through this; a scan is one view (a table top) or
+/// several taken from one place (an office stop's 360° sweep).
 
 #include <Eigen/Geometry>
 #include <cstddef>
-#include <limits>
 #include <span>
 
 #include "vantage/map/integrate.hpp"
@@ -23,24 +23,24 @@ namespace vantage {
 struct MapperConfig {
   OccupancyParams occupancy;
   IntegrationConfig integration;
-  bool register_scans = true;  ///< ICP each scan after the first against the points so far
-  perception::IcpConfig icp;
+  /// Register each scan after the first to the map of the registered objects so far, weighed
+  /// against its believed pose (perception/registration.hpp).
+  bool register_scans = true;
+  perception::RegistrationConfig registration;
+  /// The registration's reference: the objects of the first scan and of every scan whose
+  /// registration passed the check (a scan left at its guess would shift its part of the map,
+  /// and every later scan with it).
+  perception::VoxelMapConfig map;
   /// Thin every scan to one point per map cell (the centroid of the cell's points) before it is
-  /// registered and integrated, and keep the registration reference at one point per cell.
-  /// Paper-mode integration gives a cell one hit however many points it holds, so the map is
-  /// the same; ICP and the clouds kept get far smaller (an office sweep: 1.5M points).
+  /// registered and integrated. Paper-mode integration gives a cell one hit however many points
+  /// it holds, so the map is the same; registration and the clouds kept get far smaller (an
+  /// office sweep: 1.5M points).
   bool thin_to_cells = false;
-  /// Register only where the scan overlaps the map: the scan's points that land, under the
-  /// guess, in cells the map has already observed, against the reference points within the
-  /// sensor's reach (max range + 2 × icp.initial_correspondence_distance). ICP pairs every point
-  /// with its nearest reference point, and a scan's points in unexplored space would pair with
-  /// the edge of the explored part and drag the pose towards it.
+  /// Register only the scan's points that land, under the guess, in cells the map has already
+  /// observed: a scan's points in unexplored space would pair with the edge of the explored part
+  /// and drag the pose towards it (an office sweep).
   bool register_overlap_only = false;
-  /// A registration that moves the guess by more than this is taken for a slide (along a
-  /// corridor, or towards the part already mapped) and rejected: the guess is kept [m], [rad].
-  double max_correction_translation = std::numeric_limits<double>::infinity();
-  double max_correction_rotation = std::numeric_limits<double>::infinity();
-  bool segment_table = false;  ///< integrate only the points above the table
+  bool segment_table = false;  ///< integrate (and register) only the points above the table
   perception::TableConfig table;
 
   /// Throws std::invalid_argument naming the field.
@@ -59,8 +59,9 @@ struct ScanPart {
 struct MapperUpdate {
   Eigen::Isometry3d T_world_sensor_guess = Eigen::Isometry3d::Identity();  ///< as given
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();        ///< used for integration
-  bool registered = false;        ///< ICP ran, converged and its correction was kept
-  double icp_fitness = 0.0;       ///< ICP's mean squared correspondence distance [m^2]
+  bool registered = false;  ///< registration ran and its correction passed the check
+  /// Registration's outcome (kEmptyMap also when it is off or had no points).
+  perception::RegistrationOutcome registration = perception::RegistrationOutcome::kEmptyMap;
   std::size_t points = 0;         ///< points in the scan
   std::size_t object_points = 0;  ///< points integrated (after thinning and table segmentation)
   /// Cells that left or re-entered the unobserved set; over the parts of a scan, each cell
@@ -72,7 +73,8 @@ struct MapperUpdate {
 };
 
 /// Builds the map scan by scan. The first scan's pose defines the map frame as given; every later
-/// one is corrected by ICP against all registered points so far (when enabled).
+/// one is segmented at its believed pose, registered to the voxel map of the objects registered
+/// so far (when enabled), and integrated at the pose registration kept.
 class Mapper {
  public:
   /// Validates both; throws std::invalid_argument naming the field.
@@ -93,22 +95,16 @@ class Mapper {
 
   const OccupancyGrid& grid() const { return grid_; }
   const MapperConfig& config() const { return config_; }
-  /// The reference of the next registration: every registered scan (world frame), one point per
-  /// cell when `thin_to_cells`.
-  const PointCloud& registered_cloud() const { return reference_; }
+  /// The reference of the next registration: the registered objects, one point per voxel.
+  const perception::VoxelMap& reference() const { return reference_; }
   /// The registered points that went into the grid (world frame): the objects.
   const PointCloud& object_cloud() const { return objects_; }
   std::size_t scans() const { return scans_; }
 
  private:
-  /// Registers `scan` (the scan's points in its frame) against the reference; sets the update's
-  /// pose when the result is kept.
-  void register_to_map(const PointCloud& scan, std::span<const ScanPart> parts,
-                       MapperUpdate& update) const;
-
   MapperConfig config_;
   OccupancyGrid grid_;
-  PointCloud reference_;
+  perception::VoxelMap reference_;
   PointCloud objects_;
   std::size_t scans_ = 0;
 };

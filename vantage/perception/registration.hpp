@@ -1,85 +1,119 @@
 #pragma once
 /// @file
-/// Registration of a new scan to the accumulated cloud with ICP, starting from the robot's noisy
-/// pose estimate (§4.2), and the pose error that shows what it bought.
+/// Scan-to-map registration (§4.2) that cannot make a pose much worse than the robot's own
+/// estimate: point to plane against a voxel map of what was registered so far, a robust kernel,
+/// correspondence distances derived from the odometry noise model, the odometry prior in the
+/// cost, and a check of the result against the prior with a fallback to the prior.
 
 #include <Eigen/Geometry>
+#include <cstddef>
 #include <string_view>
 
 #include "vantage/map/point_cloud.hpp"
+#include "vantage/perception/voxel_map.hpp"
 
 namespace vantage::perception {
 
-/// The error ICP minimises.
-enum class IcpMetric {
-  /// Squared distance between paired points (Besl & McKay; the paper's [25]) in every stage.
-  kPointToPoint,
-  /// Point to point in the coarse stages, then the squared distance along the reference's normal
-  /// in the stages that pair within 2 × max_correspondence_distance.
-  kPointToPlane,
-};
+/// The odometry noise model: the standard deviation of a pose guess's error, a translation along
+/// the world axes and a rotation about the world axes through the sensor. The defaults are the
+/// simulator's default pose noise (2 cm, 2 cm, 2°) and a small slack on what a wheeled robot
+/// knows well (height, roll and pitch of its sensor mount).
+struct PoseSigma {
+  double x = 0.02;       ///< [m]
+  double y = 0.02;       ///< [m]
+  double z = 0.002;      ///< [m]
+  double roll = 0.002;   ///< [rad]
+  double pitch = 0.002;  ///< [rad]
+  double yaw = 0.035;    ///< [rad] (2°)
 
-std::string_view to_string(IcpMetric metric);
-/// Parses "point_to_point" or "point_to_plane"; throws std::invalid_argument naming the value.
-IcpMetric parse_icp_metric(std::string_view name);
-
-/// Settings of scan registration. ICP runs in stages: the first pairs points up to
-/// `initial_correspondence_distance` apart, each further stage halves the distance, and the last
-/// uses `max_correspondence_distance`; a stage pairing within d aligns the scan thinned to voxels
-/// of max(voxel_size, d / 2).
-///
-/// The defaults suit a table top (7.8 mm cells, a robot's pose off by a few cm and degrees):
-/// 8 cm covers most of how far such an error moves a point 1-2 m away, 1 cm is about a cell,
-/// and 1 cm voxels keep a scan to ~10k points. On simulated table-top scans (IcpStudy in
-/// tests/perception/registration_test.cpp; docs/perception.md) they bring guesses 5 cm / 6.4°
-/// off to 0.70 mm / 0.029° mean with 1 mm range noise, and to 2.05 mm / 0.077° with 3 mm.
-struct IcpConfig {
-  IcpMetric metric = IcpMetric::kPointToPlane;
-  double max_correspondence_distance = 0.01;      ///< [m] pairing distance of the final stage
-  double initial_correspondence_distance = 0.08;  ///< [m] of the first stage; it must exceed how
-                                                  ///< far the guess displaces a point
-  int max_iterations = 30;                        ///< per stage
-  double transformation_epsilon = 1e-10;    ///< [m²] converged when one iteration moves the scan
-                                            ///< by less than its square root (and turns it by less
-                                            ///< than acos(1 - epsilon))
-  double euclidean_fitness_epsilon = 1e-6;  ///< converged when the mean squared pair distance
-                                            ///< changes by less than this fraction
-  double voxel_size = 0.004;   ///< [m] both clouds are downsampled to this voxel; 0 = not at all
-  int normal_neighbours = 12;  ///< neighbours per normal of the reference (point to plane)
-
-  /// Throws std::invalid_argument naming the field (e.g. "icp.voxel_size").
+  /// Throws std::invalid_argument naming the field (all must be > 0).
   void validate() const;
 };
 
-/// What registration found.
-struct IcpResult {
-  Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();  ///< the corrected pose
-  /// The last stage met a convergence criterion (transformation or fitness epsilon) within
-  /// max_iterations. When false, T_world_sensor is still ICP's last estimate, or the guess when
-  /// too few points could be paired; the caller decides whether to trust it.
-  bool converged = false;
-  /// Mean squared distance [m²] from the aligned (downsampled) scan's points to their nearest
-  /// reference point, over the points within max_correspondence_distance; infinity if none.
-  double fitness = 0.0;
-  /// Share of the aligned (downsampled) scan's points within max_correspondence_distance of the
-  /// reference: the overlap ICP worked with.
-  double inlier_fraction = 0.0;
-  int iterations = 0;  ///< over all stages
+/// Settings of scan-to-map registration.
+///
+/// Correspondence distance (as KISS-ICP adapts its threshold to the motion model's error): the
+/// first stage pairs a scan point with the nearest map point within `sigmas` × (the displacement
+/// the prior allows a point at the scan's farthest range, plus `sensor_sigma`); each further
+/// stage halves it, down to `min_distance`. The robust kernel's scale is a third of the stage's
+/// distance.
+struct RegistrationConfig {
+  PoseSigma prior;              ///< the guess's uncertainty: the prior's weight and the threshold
+  double sensor_sigma = 0.002;  ///< [m] noise of a point against the map's surface
+  double sigmas = 3.0;          ///< the first stage's distance in standard deviations
+  double min_distance = 0.015;  ///< [m] correspondence distance of the last stage
+  double voxel_size = 0.01;     ///< [m] the scan is thinned to this (coarse stages: distance/4)
+  int max_iterations = 15;      ///< Gauss-Newton iterations per stage, at most
+  double convergence = 1e-5;    ///< a stage ends when a step is below this [m and rad]
+  /// Directions of the pose whose information from the data is below this share of the
+  /// strongest direction's (rotations at the scan's range) are degenerate: the data's noise is
+  /// all they hold, and the prior alone decides them.
+  double degenerate_ratio = 0.01;
+  /// Neighbouring points share map points, normals and the scan's systematic errors: all pairs
+  /// together weigh as this many independent ones against the prior.
+  std::size_t independent_points = 100;
+  /// The check: the correction's squared Mahalanobis distance under the prior must not exceed
+  /// this (chi-square, 6 degrees of freedom, 99.9 %), ...
+  double max_mahalanobis2 = 22.46;
+  /// ... the last stage must pair at least this many points, ...
+  std::size_t min_correspondences = 50;
+  /// ... and the posterior must know the sensor's position to this (its largest standard
+  /// deviation): a scan that pins its pose no better (the far side of a table, seen after the
+  /// near side) is left at the guess [m].
+  double max_position_sigma = 0.0025;
+  int num_threads = 0;  ///< 0 = all cores; the result is the same for any count
+
+  /// Throws std::invalid_argument naming the field (e.g. "registration.min_distance").
+  void validate() const;
 };
 
-/// Aligns a scan to the accumulated reference cloud, starting from the noisy pose
-/// `T_world_sensor_guess`, and returns the corrected pose (§4.2). Deterministic.
-///
-/// Throws std::invalid_argument for a bad config, an empty scan or reference, or a non-finite
-/// point (naming the cloud and index).
-IcpResult register_scan(const PointCloud& points_sensor,
-                        const Eigen::Isometry3d& T_world_sensor_guess,
-                        const PointCloud& reference_world, const IcpConfig& config);
+/// Why a registration's result was kept or the prior taken instead.
+enum class RegistrationOutcome {
+  kAccepted,        ///< the corrected pose passed the check
+  kEmptyMap,        ///< nothing to register against (the first scan)
+  kTooFewMatches,   ///< the last stage paired fewer than min_correspondences points
+  kOutsidePrior,    ///< the correction is implausible under the odometry noise model
+  kUncertain,       ///< the posterior does not know the position to max_position_sigma
+  kWorseThanPrior,  ///< the posterior's cost is no lower at the solution than at the guess
+};
 
-/// Silences what PCL prints to stderr on its own, such as ICP's "Not enough correspondences
-/// found": Vantage reports each outcome itself (IcpResult::converged, the segmentation's result).
-/// PCL's verbosity is a process-wide setting, so this is the application's call; the vantage CLI
-/// makes it.
+std::string_view to_string(RegistrationOutcome outcome);
+
+/// What registration found.
+struct RegistrationResult {
+  /// The corrected pose when accepted, else the guess.
+  Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+  /// What the optimisation reached, whether or not it was accepted.
+  Eigen::Isometry3d T_world_sensor_solved = Eigen::Isometry3d::Identity();
+  RegistrationOutcome outcome = RegistrationOutcome::kEmptyMap;
+  double mahalanobis2 = 0.0;              ///< of the solved correction under the prior
+  std::size_t correspondences = 0;        ///< pairs in the last stage at the solved pose
+  std::size_t guess_correspondences = 0;  ///< ... at the guess
+  double first_distance = 0.0;            ///< [m] the first stage's correspondence distance
+  int iterations = 0;                     ///< over all stages
+  /// Directions of the pose (of 6) the data constrained in the last iteration; the prior alone
+  /// decided the others.
+  int constrained_directions = 0;
+  /// [m] the posterior's standard deviation of the sensor's position along its worst axis.
+  double position_sigma = 0.0;
+  /// The posterior's cost (robust point to plane on the last stage's pairing, plus the prior)
+  /// at the solution, and at the guess, where the prior costs nothing.
+  double cost = 0.0;
+  double guess_cost = 0.0;
+
+  bool accepted() const { return outcome == RegistrationOutcome::kAccepted; }
+};
+
+/// Aligns a scan (sensor frame) to the map, starting from and weighed against the odometry's
+/// guess `T_world_sensor_guess`. Deterministic for any thread count. Throws
+/// std::invalid_argument for a bad config, a non-finite guess or point (naming its index).
+RegistrationResult register_scan(const PointCloud& points_sensor,
+                                 const Eigen::Isometry3d& T_world_sensor_guess, const VoxelMap& map,
+                                 const RegistrationConfig& config);
+
+/// Silences what PCL prints to stderr on its own, such as RANSAC's warnings: Vantage reports
+/// each outcome itself. PCL's verbosity is a process-wide setting, so this is the application's
+/// call; the vantage CLI makes it.
 void silence_pcl_console();
 
 /// Distance between two poses.
@@ -88,7 +122,7 @@ struct PoseError {
   double rotation = 0.0;     ///< [rad] angle of the relative rotation, in [0, π]
 };
 
-/// The error of pose `a` against pose `b` (e.g. before or after ICP against the true pose).
+/// The error of pose `a` against pose `b` (e.g. before or after registration against the truth).
 PoseError pose_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
 
 }  // namespace vantage::perception

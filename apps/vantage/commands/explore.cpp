@@ -75,6 +75,8 @@ void run(const ExploreOptions& o) {
   config.observability.prior = alpha.value;
   config.mapper = o.mapping.mapper_config(scene);
   config.mapper.integration.num_threads = o.planning.threads;
+  config.mapper.registration.num_threads = o.planning.threads;
+  config.mapper.map.num_threads = o.planning.threads;
   config.scans = o.scans;
   config.min_gain = o.min_gain;
   config.revisit = o.revisit;

@@ -52,7 +52,7 @@ PlannerConfig PlanningOptions::planner_config(double literal_alpha) const {
 void MappingOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--integration", integration, "scan integration: paper or endpoint")
       ->capture_default_str();
-  cmd.add_flag("!--no-icp", icp, "trust the believed poses, no ICP");
+  cmd.add_flag("!--no-icp", icp, "trust the believed poses, no scan-to-map registration");
   cmd.add_flag("!--no-segmentation", segmentation, "integrate the table's points too");
   cmd.add_flag("!--no-hole-filling", hole_filling, "skip the MRF/ICM hole filling");
 }

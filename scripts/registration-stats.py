@@ -1,0 +1,66 @@
+#!/usr/bin/python3
+"""Registration figures over a set of `vantage explore` run folders (issue 14's bar).
+
+    scripts/registration-stats.py RUN_DIR [RUN_DIR ...]     # folders holding run.json
+    scripts/registration-stats.py /tmp/runs/*                # e.g. every run of a sweep
+
+Over every scan after each run's first (the first defines the map frame and is exact): the
+translation error of the pose used after registration (median, 95th percentile, worst), the
+worst worsening (after minus before; > 0 means registration moved the pose away from the truth),
+how many scans got worse by more than 1 mm, and the median registration time per scan. Run
+folders whose scene is an office are reported apart from table tops.
+"""
+import json
+import math
+import sys
+from pathlib import Path
+
+
+def percentile(values, q):
+    """Linear interpolation between closest ranks (numpy's default)."""
+    s = sorted(values)
+    if not s:
+        return math.nan
+    k = (len(s) - 1) * q
+    lo, hi = math.floor(k), math.ceil(k)
+    return s[lo] + (s[hi] - s[lo]) * (k - lo)
+
+
+def main(argv):
+    if len(argv) < 2:
+        sys.exit(__doc__)
+    groups = {}
+    for arg in argv[1:]:
+        path = Path(arg) / "run.json"
+        if not path.is_file():
+            sys.exit(f"registration-stats: {path}: no such file (expected a run folder)")
+        try:
+            run = json.loads(path.read_text())
+            kind = run["scene"]["kind"]
+            scans = run["scans"]
+        except (json.JSONDecodeError, KeyError, TypeError) as e:
+            sys.exit(f"registration-stats: {path}: not a run.json ({e})")
+        rows = groups.setdefault(kind, [])
+        for scan in scans[1:]:
+            e = scan["pose_error"]
+            rows.append((e["before_m"], e["after_m"], scan["seconds"]["register"]))
+    for kind, rows in sorted(groups.items()):
+        before = [r[0] for r in rows]
+        after = [r[1] for r in rows]
+        worse = [a - b for b, a, _ in rows]
+        seconds = [r[2] for r in rows]
+        print(f"{kind}: {len(rows)} registered scans from {len(argv) - 1} runs")
+        print(f"  pose error before  median {1e3 * percentile(before, 0.5):7.2f} mm"
+              f"  p95 {1e3 * percentile(before, 0.95):7.2f} mm"
+              f"  worst {1e3 * max(before):7.2f} mm")
+        print(f"  pose error after   median {1e3 * percentile(after, 0.5):7.2f} mm"
+              f"  p95 {1e3 * percentile(after, 0.95):7.2f} mm"
+              f"  worst {1e3 * max(after):7.2f} mm")
+        print(f"  worst worsening {1e3 * max(worse):+.2f} mm;"
+              f" scans made worse by > 1 mm: {sum(w > 1e-3 for w in worse)}")
+        print(f"  registration time  median {1e3 * percentile(seconds, 0.5):.1f} ms"
+              f"  p95 {1e3 * percentile(seconds, 0.95):.1f} ms per scan")
+
+
+if __name__ == "__main__":
+    main(sys.argv)
