@@ -75,7 +75,7 @@ OctoMapGains octomap_view_gains(const octomap::OcTree& tree, const GridSpec& spe
       octomap::KeySet credited;  // count each cell once per view
       octomap::KeyRay ray;
       const octomap::OcTreeKey k_origin = tree.coordToKey(to_point(o));
-      // The grid's cells as keys: beyond them is the free space of MODEL.md, not OctoMap's
+      // The grid's cells as keys: beyond them is the free space of docs/model.md, not OctoMap's
       // unknown.
       const octomap::OcTreeKey k_lo = tree.coordToKey(to_point(spec.center(Index3::Zero())));
       const octomap::OcTreeKey k_hi =
@@ -92,7 +92,7 @@ OctoMapGains octomap_view_gains(const octomap::OcTree& tree, const GridSpec& spe
         for (int col = 0; col < cols; ++col) {
           const Eigen::Vector3d dir =
               R * Eigen::Vector3d(1.0, u_lo + (col + 0.5) * du, v_lo + (row + 0.5) * du);
-          // Clip to the grid: the cells before it are free (MODEL.md), a table lookup.
+          // Clip to the grid: the cells before it are free (docs/model.md), a table lookup.
           double s_in = 0.0, s_out = reach / dir.norm();
           if (!clip_to_grid(spec, o, dir, s_in, s_out) || s_in >= s_out) continue;
           const double nudge = 1e-6 * spec.resolution / dir.norm();

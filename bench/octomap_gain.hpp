@@ -30,7 +30,7 @@ struct OctoMapGains {
 /// Gains of the views the way OctoMap-based planners compute them: per view a pinhole ray per
 /// pixel at the pitch of the fast mode (one ray per ray_spacing cells at the farthest cell in
 /// view), each ray's cells from OcTree::computeRayKeys, each cell looked up with OcTree::search,
-/// the model of MODEL.md run along the ray (the same odds form, the same early stop, the same
+/// the model of docs/model.md run along the ray (the same odds form, the same early stop, the same
 /// table of states before the grid), and each unobserved cell credited once per view, by the
 /// first ray that reaches it, through a KeySet. Views run in parallel (config.num_threads).
 OctoMapGains octomap_view_gains(const octomap::OcTree& tree, const GridSpec& spec,

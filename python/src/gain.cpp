@@ -69,7 +69,7 @@ void bind_gain(py::module_& m) {
       .def("__len__", [](const RayTrace& r) { return r.states.size(); });
 
   py::class_<RayModel>(m, "RayModel",
-                       "The paper's visibility-aware model of one ray (MODEL.md, 'One ray').")
+                       "The paper's visibility-aware model of one ray (docs/model.md, 'One ray').")
       .def(py::init<double>(), py::arg("alpha") = kTableTopAlpha,
            "Observability parameter a in (0, 1]; ValueError otherwise.")
       .def_property_readonly("alpha", &RayModel::alpha, "Observability parameter a.")

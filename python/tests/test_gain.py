@@ -9,7 +9,7 @@ FOV = vt.SensorFov.from_degrees(57, 43, 0.3, 2.5)
 
 
 def cells_in_view(spec, pose, fov):
-    """Cells whose centre lies inside the frustum (MODEL.md, 'One view'), by brute force."""
+    """Cells whose centre lies inside the frustum (docs/model.md, 'One view'), by brute force."""
     i, j, k = np.meshgrid(*(np.arange(n) for n in spec.shape), indexing="ij")
     centres = spec.origin + (np.stack([i, j, k], axis=-1) + 0.5) * spec.resolution
     local = (centres - pose[:3, 3]) @ pose[:3, :3]  # into the sensor frame

@@ -1,4 +1,4 @@
-"""The ray model through the bindings: MODEL.md's worked check, pinned in
+"""The ray model through the bindings: docs/model.md's worked check, pinned in
 tests/gain/ray_model_test.cpp, and the model's properties."""
 
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 
 import vantage as vt
 
-# a = 0.997, cells [0.12, 0.12, 0.5, 0.5, 0.97, 0.5] (MODEL.md, "Worked check").
+# a = 0.997, cells [0.12, 0.12, 0.5, 0.5, 0.97, 0.5] (docs/model.md, "Worked check").
 WORKED_CELLS = [0.12, 0.12, 0.5, 0.5, 0.97, 0.5]
 WORKED_VISIBILITY = [1.0, 0.9995898464202707, 0.9991282570004986, 0.9902502264739204,
                      0.9793955677542567, 0.47427131583438575]
@@ -33,7 +33,7 @@ def test_gain_is_entropy_difference():
 
 
 def test_visibility_through_unobserved_cells_tends_to_its_limit():
-    # MODEL.md: through unobserved cells (p = 0.5) v tends to 0.1 / (1.1 - t), t = a^m.
+    # docs/model.md: through unobserved cells (p = 0.5) v tends to 0.1 / (1.1 - t), t = a^m.
     a = 0.997
     trace = vt.RayModel(a).trace(np.full(3000, 0.5))
     assert np.all((trace.visibility >= 0.0) & (trace.visibility <= 1.0))

@@ -1,6 +1,6 @@
 // The oracle of the fast gain evaluation on the built-in table tops of vantage::sim: after 1, 3
 // and 6 paper-mode scans from the scene's start poses, the fast gain of each of the 30 ring
-// candidates against the exact evaluation of the literal model (MODEL.md).
+// candidates against the exact evaluation of the literal model (docs/model.md).
 
 #include <gtest/gtest.h>
 
@@ -84,7 +84,7 @@ void check_scene(const std::string& name) {
     std::sort(errors.begin(), errors.end());
     EXPECT_LE(errors[errors.size() / 2], 0.02) << state << ": median relative error";
     EXPECT_LE(errors.back(), 0.05) << state << ": worst relative error";
-    // E in cells (MODEL.md): tighter bounds than the bits, ~10x the worst measured (median
+    // E in cells (docs/model.md): tighter bounds than the bits, ~10x the worst measured (median
     // <= 7.8e-6, worst <= 4.4e-5 over the 12 states).
     std::vector<double> cell_errors;
     for (std::size_t v = 0; v < views.size(); ++v) {

@@ -303,7 +303,7 @@ TEST_F(FastGainOracle, PerViewErrorAndChoiceWithinBounds) {
     EXPECT_GE(chosen, 0.99 * best) << state.name;
     RecordProperty(state.name,
                    "median " + std::to_string(median) + ", worst " + std::to_string(sorted.back()));
-    // E in cells (MODEL.md): tighter bounds than the bits, ~10x the worst measured (median
+    // E in cells (docs/model.md): tighter bounds than the bits, ~10x the worst measured (median
     // 4e-6, worst 5.3e-5 here and on the built-in scenes).
     std::sort(cell_errors.begin(), cell_errors.end());
     const double cell_median = cell_errors[cell_errors.size() / 2];

@@ -1,4 +1,4 @@
-// The paper's ray model: MODEL.md's worked example, pinned, and the properties the paper asks of
+// The paper's ray model: docs/model.md's worked example, pinned, and the properties the paper asks of
 // it (§3.1.1, §3.2.2).
 
 #include "vantage/gain/ray_model.hpp"
@@ -13,7 +13,7 @@ namespace {
 
 TEST(RayModel, WorkedExampleOfModel) {
   // a = 0.997, cells [0.12, 0.12, 0.5, 0.5, 0.97, 0.5]. Expected values computed once by an
-  // independent implementation (a few lines of Python following MODEL.md).
+  // independent implementation (a few lines of Python following docs/model.md).
   const RayModel model(0.997);
   const std::vector<double> cells = {0.12, 0.12, 0.5, 0.5, 0.97, 0.5};
   const auto states = model.trace(cells);

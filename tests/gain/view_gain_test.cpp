@@ -61,7 +61,7 @@ TEST(ExactGain, ProbabilisticIsTheSumOfRayModelGains) {
   double expected = 0.0, seen = 0.0;
   for (const std::size_t j : {5, 6, 7, 9, 10, 11}) {
     expected += states[j].gain();
-    seen += states[j].visibility;  // E: v_M of each target (MODEL.md)
+    seen += states[j].visibility;  // E: v_M of each target (docs/model.md)
   }
   GainConfig config;
   config.alpha = alpha;
@@ -72,7 +72,7 @@ TEST(ExactGain, ProbabilisticIsTheSumOfRayModelGains) {
   EXPECT_GT(gain.gain, 2.0);  // the three visible cells carry most of a bit each
   EXPECT_LT(gain.gain, 3.0);  // the three hidden ones almost nothing
   EXPECT_NEAR(gain.cells, seen, 1e-12);
-  // By hand (MODEL.md's recursion): cells 5-7 behind free space are seen with v = 0.998, 0.980,
+  // By hand (docs/model.md's recursion): cells 5-7 behind free space are seen with v = 0.998, 0.980,
   // 0.962; behind the occupied cell 8 visibility falls to 0.271 and climbs back through the
   // unobserved cells (eq. 9's 0.1 way back) to 0.336 and 0.392, not to 0: E = 3.938 cells.
   EXPECT_NEAR(gain.cells, 3.938, 1e-3);

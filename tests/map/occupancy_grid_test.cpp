@@ -16,7 +16,7 @@ TEST(OccupancyGrid, StartsUnknown) {
 TEST(OccupancyGrid, OneMissIsFreeOneHitIsOccupied) {
   OccupancyGrid grid = small_grid();
   grid.miss(0);
-  EXPECT_EQ(grid.state(0), CellState::kFree);  // p = 0.4 exactly is free (MODEL.md)
+  EXPECT_EQ(grid.state(0), CellState::kFree);  // p = 0.4 exactly is free (docs/model.md)
   EXPECT_NEAR(grid.probability(0), 0.4, 1e-6);
   grid.hit(1);
   EXPECT_EQ(grid.state(1), CellState::kOccupied);

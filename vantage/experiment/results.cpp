@@ -239,7 +239,7 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
                             {"min_range_m", fov.min_range},
                             {"max_range_m", fov.max_range},
                             {"sweep_steps", scene.sensor.sweep_steps}};
-  // NOTE: MODEL.md, "Bits are not cells": the probabilistic gain is information, greedy's (which
+  // NOTE: docs/model.md, "Bits are not cells": the probabilistic gain is information, greedy's (which
   // every other method decides by) a count of cells.
   run["gain_units"] = {
       {"predicted_gain", config.planner.method == PlannerMethod::kProbabilistic ? "bits" : "cells"},

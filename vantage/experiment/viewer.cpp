@@ -208,7 +208,7 @@ json candidate_of(const Field& c, std::string_view pose_key, std::string_view in
   return candidate;
 }
 
-/// What a method's predicted gain is counted in (MODEL.md, "Bits are not cells").
+/// What a method's predicted gain is counted in (docs/model.md, "Bits are not cells").
 std::string gain_unit_of(std::string_view method) {
   return method == "probabilistic" ? "bits" : "cells";
 }

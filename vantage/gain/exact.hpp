@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The exact gain evaluation (MODEL.md "One view"): every unobserved cell inside the frustum on
+/// The exact gain evaluation (docs/model.md "One view"): every unobserved cell inside the frustum on
 /// its own ray from the sensor origin to the cell's centre, summed. The paper's definition and
 /// the reference for every faster evaluation.
 

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The ray model every gain evaluation runs (MODEL.md "One ray", eqs. 5-15): the state it
+/// The ray model every gain evaluation runs (docs/model.md "One ray", eqs. 5-15): the state it
 /// carries along a ray, the one step that folds in a cell (`PaperModel::step`), and the tables
 /// one evaluation builds once (a^m, the free cells before the grid).
 ///
@@ -88,7 +88,7 @@ struct BlindModel {
 };
 
 /// What every ray of one evaluation shares, built once: a^m, and the states after the free cells
-/// between the sensor and the grid (MODEL.md: outside the grid is free with p = p_min), so the
+/// between the sensor and the grid (docs/model.md: outside the grid is free with p = p_min), so the
 /// state where a ray enters the grid is a lookup indexed by the cells it skipped.
 template <typename Model>
 struct RayTables {

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The paper's model of one ray (§3.1, §3.2; MODEL.md "One ray"): a visibility HMM along the ray
+/// The paper's model of one ray (§3.1, §3.2; docs/model.md "One ray"): a visibility HMM along the ray
 /// and a visibility-aware occupancy filter, which together predict the information a sensor gains
 /// on the ray's target cell.
 
@@ -31,7 +31,7 @@ struct RayState {
 };
 
 /// The visibility-aware ray model with observability parameter `a` (alpha), in the direct form of
-/// MODEL.md: the readable reference that `vantage ray` prints. The evaluations run the same
+/// docs/model.md: the readable reference that `vantage ray` prints. The evaluations run the same
 /// model in odds form, `PaperModel` (model.hpp); tests pin the two together to 1e-12.
 class RayModel {
  public:
@@ -43,7 +43,7 @@ class RayModel {
   /// State at the origin's cell c_0: v_0 = 1, q_0 = p_0.
   static RayState start(double p0);
 
-  /// Folds in the next cell c_m with occupancy p_m (MODEL.md, for m >= 1).
+  /// Folds in the next cell c_m with occupancy p_m (docs/model.md, for m >= 1).
   RayState step(const RayState& prev, double p_m) const;
 
   /// Runs the model over a whole ray of occupancy probabilities; one state per cell.
@@ -57,7 +57,7 @@ class RayModel {
 /// The model's states after a prefix of k cells that all have occupancy p, for k = 1 … n.
 ///
 /// Cells outside the grid between the sensor and the grid count as free with p = p_min
-/// (MODEL.md), so the state where a ray enters the grid depends only on how many cells it skipped:
+/// (docs/model.md), so the state where a ray enters the grid depends only on how many cells it skipped:
 /// `at(k)` is the state after c_0 … c_{k-1}, ready to step into c_k.
 ///
 /// The table is built once and read-only afterwards, so threads may share it.

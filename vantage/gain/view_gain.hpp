@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Expected information gain of candidate views (eqs. 1, 3, 4; MODEL.md "One view"): the settings,
+/// Expected information gain of candidate views (eqs. 1, 3, 4; docs/model.md "One view"): the settings,
 /// the result, and the façade `evaluate_views`, which takes the evaluation
 /// `GainConfig::evaluation` names: the exact one (exact.hpp), the fast one (fast.hpp), or for
 /// `kAuto` the cheaper of the two. The ray model both run is `PaperModel` (model.hpp).
@@ -53,7 +53,7 @@ struct GainConfig {
   /// Early stop, in [0, 0.5): a ray stops once its visibility falls below epsilon. In the fast
   /// mode an unobserved cell whose posterior lies within epsilon of 0.5 ("pinned", gain below
   /// 3 epsilon^2 bits) is not credited, and a pinned ray crosses uniform unobserved space in one
-  /// jump. 0 gives the literal model of MODEL.md.
+  /// jump. 0 gives the literal model of docs/model.md.
   double epsilon = 1e-6;
   /// Fast mode: spacing of neighbouring rays at the farthest cell in view [cells], in (0, 1].
   /// At most 1/sqrt(2) (the default) guarantees that every cell in view is crossed by the ray
@@ -68,7 +68,7 @@ struct GainConfig {
 /// The predicted gain of one view.
 struct ViewGain {
   double gain = 0.0;  ///< expected information gain of the view, eq. (1) [bits]
-  /// Expected number of the unobserved cells in view that the view sees, E (MODEL.md "The
+  /// Expected number of the unobserved cells in view that the view sees, E (docs/model.md "The
   /// expected number of cells seen"): the sum of v_M, the visibility of each target [cells]. For
   /// greedy, its count of unblocked targets (= gain). The fast mode adds the cells it leaves
   /// uncredited (a pinned posterior) at the visibility of the ray that carries them.

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// MRF hole filling with iterated conditional modes (§4.4, eqs. 17–21; MODEL.md step 2).
+/// MRF hole filling with iterated conditional modes (§4.4, eqs. 17–21; docs/model.md step 2).
 ///
 /// Every cell is a node s in {-1, +1}: +1 occupied, -1 not (unobserved or free). The observation
 /// o is the cell's state before filling. The energy is

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Integration of one scan into the occupancy grid (§4.3; MODEL.md "After a real scan").
+/// Integration of one scan into the occupancy grid (§4.3; docs/model.md "After a real scan").
 
 #include <Eigen/Core>
 #include <cstddef>

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The greedy occlusion rule, written once: the simple greedy gain (MODEL.md "Baselines"),
+/// The greedy occlusion rule, written once: the simple greedy gain (docs/model.md "Baselines"),
 /// unknown-space estimation (§4.3.1) and the reference `greedy_visible` all ask it.
 
 #include <Eigen/Core>
@@ -15,7 +15,7 @@ namespace vantage {
 inline bool occludes(CellState state) { return state == CellState::kOccupied; }
 
 /// Whether no cell on the ray from `origin` to the centre of `target`, before the target itself,
-/// occludes. Cells outside the grid are free (MODEL.md). `state_of(linear)` gives a cell's class,
+/// occludes. Cells outside the grid are free (docs/model.md). `state_of(linear)` gives a cell's class,
 /// so any view of the grid (the grid, a gain snapshot) can be asked.
 template <typename StateOf>
 bool line_of_sight(const GridSpec& spec, const Eigen::Vector3d& origin, const Index3& target,

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// A dense occupancy grid in log-odds, updated as OctoMap does (MODEL.md, "Cells and their
+/// A dense occupancy grid in log-odds, updated as OctoMap does (docs/model.md, "Cells and their
 /// states").
 
 #include <cmath>
@@ -30,13 +30,13 @@ struct OccupancyParams {
   void validate() const;
 };
 
-/// The three classes of MODEL.md: unobserved 0.4 < p < 0.6, free p <= 0.4, occupied p >= 0.6.
+/// The three classes of docs/model.md: unobserved 0.4 < p < 0.6, free p <= 0.4, occupied p >= 0.6.
 enum class CellState : std::uint8_t { kUnobserved = 0, kFree = 1, kOccupied = 2 };
 
 inline constexpr double kFreeMaxProbability = 0.4;      ///< p <= this is free
 inline constexpr double kOccupiedMinProbability = 0.6;  ///< p >= this is occupied
 
-/// Class of a probability by MODEL.md's thresholds.
+/// Class of a probability by docs/model.md's thresholds.
 inline CellState classify(double p) {
   if (p <= kFreeMaxProbability) return CellState::kFree;
   if (p >= kOccupiedMinProbability) return CellState::kOccupied;
@@ -53,7 +53,7 @@ struct CellCounts {
 /// Dense grid of float log-odds, 0 (p = 0.5) meaning unknown.
 ///
 /// Classification works on the stored log-odds against float thresholds, so that a single miss
-/// at p_miss = 0.4 lands exactly on the free side, as MODEL.md says it must.
+/// at p_miss = 0.4 lands exactly on the free side, as docs/model.md says it must.
 class OccupancyGrid {
  public:
   /// Validates both arguments; throws std::invalid_argument (or std::length_error when the grid

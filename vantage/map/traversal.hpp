@@ -50,7 +50,7 @@ inline bool clip_to_grid(const GridSpec& spec, const Eigen::Vector3d& o, const E
 
 /// An exact Amanatides–Woo walk along o + s * dir from a cell the ray crosses to `last`, on the
 /// grid's lattice extended to all of space, with m counted from the origin's cell (c_m of
-/// MODEL.md). Every cell the ray passes through with positive length is visited once,
+/// docs/model.md). Every cell the ray passes through with positive length is visited once,
 /// consecutive cells share a face, and where the ray runs exactly through an edge or a corner
 /// one of the touching cells is visited as the step between them (the lower axis first).
 ///
@@ -153,7 +153,7 @@ struct GridWalk {
 
 /// What one traversal did.
 struct TraversalResult {
-  /// Lattice cells the segment crossed before it entered the grid. They are not visited; MODEL.md
+  /// Lattice cells the segment crossed before it entered the grid. They are not visited; docs/model.md
   /// counts them as free. When the segment never enters the grid, every cell it crosses counts.
   int skipped = 0;
   int visited = 0;           ///< grid cells handed to the visitor
@@ -171,7 +171,7 @@ struct TraversalResult {
 /// segment leaves the grid.
 ///
 /// @param visit  `bool(const Index3& cell, std::size_t linear, int m)` or the same returning void;
-///               `m` is the cell's position along the whole segment from `from` (c_m of MODEL.md).
+///               `m` is the cell's position along the whole segment from `from` (c_m of docs/model.md).
 ///               Returning false stops the walk.
 template <typename Visitor>
 TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// Candidate views on a circle around a region of interest (§5.1; MODEL.md "table-top
+/// Candidate views on a circle around a region of interest (§5.1; docs/model.md "table-top
 /// candidates").
 
 #include <Eigen/Geometry>
