@@ -112,11 +112,14 @@ void bind_gain(py::module_& m) {
   py::class_<ViewGain>(m, "ViewGain", "The predicted gain of one view.")
       .def_readonly("gain", &ViewGain::gain,
                     "Expected information gain of the view, eq. (1) [bits].")
+      .def_readonly("cells", &ViewGain::cells,
+                    "Expected number of the unobserved cells in view that the view sees, E (the "
+                    "sum of each target's visibility) [cells]; greedy's count for greedy.")
       .def_readonly("targets", &ViewGain::targets,
                     "Unobserved cells evaluated: exact mode, all those in the frustum; fast mode, "
                     "those it credited.")
       .def("__repr__", [](const ViewGain& g) {
-        return cat("ViewGain(gain=", g.gain, ", targets=", g.targets, ")");
+        return cat("ViewGain(gain=", g.gain, ", cells=", g.cells, ", targets=", g.targets, ")");
       });
 
   m.def(

@@ -246,9 +246,13 @@ void bind_plan(py::module_& m) {
           "T_world_sensor",
           [](const MapperUpdate& u) { return Eigen::Matrix4d(u.T_world_sensor.matrix()); },
           "The pose the scan was integrated at (after ICP, when it ran).")
-      .def_readonly("registered", &MapperUpdate::registered, "ICP ran and converged.")
-      .def_readonly("icp_fitness", &MapperUpdate::icp_fitness,
-                    "ICP's mean squared correspondence distance [m^2].")
+      .def_readonly("registered", &MapperUpdate::registered,
+                    "Registration ran and its correction passed the check against the prior.")
+      .def_property_readonly(
+          "registration",
+          [](const MapperUpdate& u) { return std::string(perception::to_string(u.registration)); },
+          "Registration's outcome: accepted, or why the believed pose was kept (empty_map, "
+          "too_few_matches, outside_prior, uncertain, worse_than_prior).")
       .def_readonly("points", &MapperUpdate::points, "Points in the scan.")
       .def_readonly("object_points", &MapperUpdate::object_points,
                     "Points integrated (after table segmentation).")

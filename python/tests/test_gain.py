@@ -76,3 +76,12 @@ def test_plan_chooses_the_highest_gain(setup):
     assert plan.greedy_gains == []  # not asked for
     greedy = vt.plan_next_view(grid, poses, FOV, vt.PlannerConfig(method="greedy"))
     assert greedy.best == int(np.argmax(greedy.scores))
+
+
+def test_expected_cells_seen_lie_between_nothing_and_every_target(setup):
+    _, grid, poses = setup
+    prob = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(evaluation="exact"))
+    greedy = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(method="greedy", evaluation="exact"))
+    for p, g in zip(prob, greedy):
+        assert 0.0 < p.cells <= p.targets  # each target is seen with a probability
+        assert g.cells == g.gain  # greedy's prediction in cells is its count
