@@ -99,9 +99,14 @@ TEST(Office, TwoStopsMeetTheTableTopInvariants) {
   EXPECT_EQ(csv.substr(0, kScansCsvHeader.size()), kScansCsvHeader);
   const auto rows = parse_csv(csv);
   ASSERT_EQ(rows.size(), 3u);
-  ASSERT_EQ(rows[0].size(), 14u);
+  ASSERT_EQ(rows[0].size(), 17u);
   EXPECT_EQ(rows[0][12], "travel_m");
   EXPECT_EQ(rows[0][13], "fallback");
+  EXPECT_EQ(rows[0][14], "predicted_cells");
+  EXPECT_EQ(rows[1][14], "");  // no prediction before the first stop
+  ASSERT_TRUE(scans[1].predicted_cells.has_value());
+  EXPECT_NEAR(std::stod(rows[2][14]), *scans[1].predicted_cells, 1e-9 * *scans[1].predicted_cells);
+  EXPECT_GT(*scans[1].predicted_cells, 0.0);
   EXPECT_EQ(rows[1][12], "0");
   EXPECT_DOUBLE_EQ(std::stod(rows[2][12]), scans[1].travel);
   EXPECT_EQ(rows[2][13], scans[1].fallback ? "1" : "0");

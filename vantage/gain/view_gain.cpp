@@ -72,41 +72,24 @@ std::vector<ViewGain> cheapest_view_gains(const GainMap& map, std::span<const Fr
 
 }  // namespace
 
-std::string_view to_string(GainMethod method) {
-  switch (method) {
-    case GainMethod::kProbabilistic:
-      return "probabilistic";
-    case GainMethod::kGreedy:
-      return "greedy";
-  }
-  return "unknown";
-}
+constexpr EnumNames<GainMethod, 2> kMethodNames = {
+    {{GainMethod::kProbabilistic, "probabilistic"}, {GainMethod::kGreedy, "greedy"}}};
+constexpr EnumNames<GainEvaluation, 3> kEvaluationNames = {{{GainEvaluation::kExact, "exact"},
+                                                            {GainEvaluation::kFast, "fast"},
+                                                            {GainEvaluation::kAuto, "auto"}}};
+
+std::string_view to_string(GainMethod method) { return name_of(method, kMethodNames); }
 
 GainMethod parse_gain_method(std::string_view name) {
-  if (name == "probabilistic") return GainMethod::kProbabilistic;
-  if (name == "greedy") return GainMethod::kGreedy;
-  throw std::invalid_argument(
-      cat("unknown gain method '", name, "' (expected probabilistic or greedy)"));
+  return value_named(name, kMethodNames, "gain method");
 }
 
 std::string_view to_string(GainEvaluation evaluation) {
-  switch (evaluation) {
-    case GainEvaluation::kExact:
-      return "exact";
-    case GainEvaluation::kFast:
-      return "fast";
-    case GainEvaluation::kAuto:
-      return "auto";
-  }
-  return "unknown";
+  return name_of(evaluation, kEvaluationNames);
 }
 
 GainEvaluation parse_gain_evaluation(std::string_view name) {
-  if (name == "exact") return GainEvaluation::kExact;
-  if (name == "fast") return GainEvaluation::kFast;
-  if (name == "auto") return GainEvaluation::kAuto;
-  throw std::invalid_argument(
-      cat("unknown gain evaluation '", name, "' (expected exact, fast or auto)"));
+  return value_named(name, kEvaluationNames, "gain evaluation");
 }
 
 void GainConfig::validate() const {
