@@ -57,7 +57,8 @@ nlohmann::json trial_settings(const BenchConfig& config) {
           {"segmentation", m.segment_table},
           {"mapper_from_scene", config.mapper_from_scene},
           {"observability_alphas", e.observability.alphas},
-          {"observability_recency", e.observability.recency}};
+          {"observability_recency", e.observability.recency},
+          {"project_stops", e.office.project_stops}};
 }
 
 /// The settings a folder's trials were run with, or null when it has none yet.

@@ -320,8 +320,20 @@ class Explorer {
     std::vector<Stop> stops;
     for (const FrontierRegion& region : frontier_regions(grid, frontier_)) {
       Stop s{region.centroid.head<2>(), region.centroid.head<2>(), 0.0, false};
-      const std::optional<Index2> cell = nav.cell_of(s.goal);
+      std::optional<Index2> cell = nav.cell_of(s.goal);
       s.reachable = cell && travel.reachable(*cell);
+      if (!s.reachable && config_.office.project_stops) {
+        std::vector<Eigen::Vector2d> places;
+        for (const std::uint32_t i : region.cells) {
+          places.push_back(grid.spec().center(grid.spec().unravel(i)).head<2>());
+        }
+        if (const auto projected = travel.nearest_reachable_among(places, s.goal)) {
+          cell = projected;
+          s.goal = nav.center(*projected);
+          s.arrival = s.goal;
+          s.reachable = true;
+        }
+      }
       const Index2 end = s.reachable ? *cell : travel.nearest_reachable(s.goal);
       if (!s.reachable) s.arrival = nav.center(end);
       s.travel = travel.distance(end);

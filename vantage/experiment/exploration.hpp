@@ -40,6 +40,10 @@ struct OfficeConfig {
   /// already taken is dropped: the sweep there would see what that one saw. It also drops the
   /// frontier ring that the sensor's minimum range leaves around the robot [m].
   double min_move = 0.5;
+  /// A frontier centroid the robot cannot reach (inside furniture, say) moves to the reachable
+  /// cell of its own region nearest it, so the robot scans at that frontier; false keeps the
+  /// paper's fallback (§5.3.1): drive as close to the centroid as possible and scan there.
+  bool project_stops = true;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;

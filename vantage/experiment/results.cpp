@@ -87,7 +87,8 @@ json config_json(const ExplorationConfig& config) {
         {"max_frontier_radius", config.office.max_frontier_radius},
         {"min_obstacle_height", config.office.min_obstacle_height},
         {"unknown_blocks", config.office.unknown_blocks},
-        {"min_move", config.office.min_move}}},
+        {"min_move", config.office.min_move},
+        {"project_stops", config.office.project_stops}}},
   };
 }
 
@@ -239,8 +240,8 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
                             {"min_range_m", fov.min_range},
                             {"max_range_m", fov.max_range},
                             {"sweep_steps", scene.sensor.sweep_steps}};
-  // NOTE: docs/model.md, "Bits are not cells": the probabilistic gain is information, greedy's (which
-  // every other method decides by) a count of cells.
+  // NOTE: docs/model.md, "Bits are not cells": the probabilistic gain is information, greedy's
+  // (which every other method decides by) a count of cells.
   run["gain_units"] = {
       {"predicted_gain", config.planner.method == PlannerMethod::kProbabilistic ? "bits" : "cells"},
       {"greedy_predicted_gain", "cells"},
