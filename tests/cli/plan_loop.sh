@@ -37,8 +37,8 @@ def fail(message):
     sys.exit(f"FAIL: {message}")
 
 loop, once = load("step2"), load("all")
-key = lambda p: [(c["index"], c["predicted_gain"], c["greedy_gain"], c["score"])
-                 for c in p["candidates"]]
+key = lambda p: [(c["index"], c["predicted_gain"], c["predicted_cells"], c["greedy_gain"],
+                  c["score"]) for c in p["candidates"]]
 if key(loop) != key(once):
     fail("planning from step 1's map.ot plus the new cloud ranks or scores differently")
 if loop["next_best_view"]["index"] != once["next_best_view"]["index"]:
@@ -49,6 +49,15 @@ if loop["version"] != 2 or loop["units"]["predicted_gain"] != "bits":
 yamauchi, latombe, greedy = load("yamauchi"), load("latombe"), load("greedy")
 if greedy["units"]["predicted_gain"] != "cells" or yamauchi["units"]["score"] != "-m":
     fail("the units do not follow the method")
+# The prediction in cells: greedy's is its count; the model's E lies in (0, greedy's count]
+# for the chosen view (a visibility is at most 1 and greedy counts the targets it can see).
+if loop["units"]["predicted_cells"] != "cells" or loop["objective"] not in ("bits", "cells"):
+    fail(f"plan.json lacks the prediction in cells or the objective: {loop['units']}")
+if any(c["predicted_cells"] != c["predicted_gain"] for c in greedy["candidates"]):
+    fail("greedy's predicted cells are not its count")
+best = loop["next_best_view"]
+if not 0 < best["predicted_cells"]:
+    fail(f"the model predicts no cells for the chosen view: {best}")
 robot = yamauchi["robot"]
 if robot is None or robot["from"] != "the last cloud's pose":
     fail(f"no robot pose from the manifest: {robot}")

@@ -54,9 +54,9 @@ struct PlanOptions {
 /// plan.json's format: 2 added version, units, the robot's pose, travel and yaw.
 constexpr int kPlanJsonVersion = 2;
 
-/// What a plan's numbers count (MODEL.md: bits are not cells). The probabilistic method predicts
-/// information (eq. 4, bits); greedy, random and latombe count cells (latombe discounted by
-/// travel); yamauchi maximises minus the travel distance.
+/// What a plan's numbers count (docs/model.md: bits are not cells). The probabilistic method
+/// predicts information (eq. 4, bits); greedy, random and latombe count cells (latombe discounted
+/// by travel); yamauchi maximises minus the travel distance.
 struct PlanUnits {
   std::string_view predicted_gain;
   std::string_view score;
@@ -274,6 +274,7 @@ void run(const PlanOptions& o) {
               {"yaw", yaw_deg(poses[i])},
               {"cloud_frame", pose_json(T_world_cloud)},
               {"predicted_gain", plan.gains[i].gain},
+              {"predicted_cells", plan.gains[i].cells},
               {"greedy_gain", plan.greedy_gains[i]},
               {"score", plan.scores[i]}};
     if (robot) j["travel"] = candidates[i].travel;
@@ -286,6 +287,7 @@ void run(const PlanOptions& o) {
        {{"position", "m"},
         {"yaw", "deg"},
         {"predicted_gain", units.predicted_gain},
+        {"predicted_cells", "cells"},
         {"greedy_gain", "cells"},
         {"score", units.score},
         {"travel", "m"},
@@ -294,6 +296,7 @@ void run(const PlanOptions& o) {
       {"next_best_view", nbv(plan.best)},
       {"method", to_string(planner.method)},
       {"alpha", planner.gain.alpha},
+      {"objective", to_string(planner.objective)},
       {"evaluation", to_string(planner.gain.evaluation)},
       {"frames", {{"sensor", "x forward, y left, z up"}, {"cloud_frame", to_string(frame)}}},
       {"map",
@@ -322,20 +325,27 @@ void run(const PlanOptions& o) {
   }
   const bool show_score =
       planner.method == PlannerMethod::kLatombe || planner.method == PlannerMethod::kYamauchi;
+  // NOTE: the probabilistic method also predicts in cells (E, docs/model.md), the number its
+  // prediction error is measured in; greedy's gain already is a count of cells.
+  const bool show_cells = planner.method == PlannerMethod::kProbabilistic;
   const std::string gain_header = fmt::format("predicted gain [{}]", units.predicted_gain);
+  const std::string cells_header = "predicted seen [cells]";
   const std::string score_header = fmt::format("score [{}]", units.score);
-  fmt::print("\n{:>4} {:>5} {:>26} {:>9} {:>{}} {:>19}{}{}\n", "rank", "view", "position [m]",
-             "yaw [deg]", gain_header, gain_header.size(), "greedy gain [cells]",
+  fmt::print("\n{:>4} {:>5} {:>26} {:>9} {:>{}}{} {:>19}{}{}\n", "rank", "view", "position [m]",
+             "yaw [deg]", gain_header, gain_header.size(),
+             show_cells ? fmt::format(" {}", cells_header) : "", "greedy gain [cells]",
              robot ? fmt::format(" {:>10}", "travel [m]") : "",
              show_score ? fmt::format(" {:>{}}", score_header, score_header.size()) : "");
   for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top); ++r) {
     const std::size_t i = ranking[r];
     const Eigen::Vector3d p = poses[i].translation();
-    fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {:>{}.1f} {:>19.1f}{}{}\n", r + 1, i,
-               fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z()), yaw_deg(poses[i]),
-               plan.gains[i].gain, gain_header.size(), plan.greedy_gains[i],
-               robot ? fmt::format(" {:>10.3f}", candidates[i].travel) : "",
-               show_score ? fmt::format(" {:>{}.3f}", plan.scores[i], score_header.size()) : "");
+    fmt::print(
+        "{:>4} {:>5} {:>26} {:>9.1f} {:>{}.1f}{} {:>19.1f}{}{}\n", r + 1, i,
+        fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z()), yaw_deg(poses[i]),
+        plan.gains[i].gain, gain_header.size(),
+        show_cells ? fmt::format(" {:>{}.1f}", plan.gains[i].cells, cells_header.size()) : "",
+        plan.greedy_gains[i], robot ? fmt::format(" {:>10.3f}", candidates[i].travel) : "",
+        show_score ? fmt::format(" {:>{}.3f}", plan.scores[i], score_header.size()) : "");
   }
   fmt::print(
       "\nnext best view: candidate {} ({} method{}), decided in {:.3f} s\n"
@@ -379,7 +389,8 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("--top", o->top, "rows of the ranked table")->capture_default_str();
   cmd->footer(
       "Units: the probabilistic method's predicted gain is information in bits (eq. 4: an "
-      "unobserved cell holds 1 bit, a view turning it known is credited less); greedy, random "
+      "unobserved cell holds 1 bit, a view turning it known is credited less) and its predicted "
+      "seen is the expected number of unobserved cells the view sees [cells]; greedy, random "
       "and latombe count cells (latombe's score: greedy gain x exp(-lambda x travel)); yamauchi "
       "scores minus the travel [m]. Travel is the straight line from --pose [m]. Writes "
       "plan.json, map.ot (lossless, for --map), map.bt (viewers), map.ply (occupied red, "
