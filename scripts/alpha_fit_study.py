@@ -48,6 +48,23 @@ def fit_choice(history, xs, recency):
     return best
 
 
+def best_x(cal, actual, xs):
+    """The x = ln(1 - a) whose interpolated E matches this one scan's outcome best."""
+    return fit_choice([(cal, actual)], xs, 1.0)
+
+
+def trend_choice(history, xs, damping):
+    """The last scan's best x moved on by `damping` times its change since the scan before:
+    the best a falls through a run, and a fit of the past lags it by a scan."""
+    if not history:
+        return None
+    last = best_x(*history[-1], xs)
+    if len(history) < 2:
+        return last
+    step = last - best_x(*history[-2], xs)
+    return min(xs[0], max(xs[-1], last + damping * step))
+
+
 def predicted(cal, xs, x):
     return math.expm1(interpolate(cal, xs, x))
 
@@ -75,6 +92,10 @@ def main(dirs):
                     x = fit_choice(history[1:], xs, r)
                     x = prior if x is None else x  # the second scan: the prior, the literal a
                     rows[scene][f"fit recency={r}, no scan-1"].append(
+                        abs(predicted(cal, xs, x) - actual))
+                for damping in (0.0, 0.5, 1.0):
+                    x = trend_choice(history, xs, damping)
+                    rows[scene][f"trend damping={damping}"].append(
                         abs(predicted(cal, xs, x) - actual))
                 rows[scene]["greedy count"].append(abs(float(s["greedy_predicted_gain"]) - actual))
                 rows[scene]["run's own prediction"].append(abs(float(s["predicted_cells"]) - actual))

@@ -34,6 +34,7 @@ struct BenchOptions {
   std::string kind = "tabletop";  ///< which experiment: tabletop or office
   bool plots = true;
   bool revisit = false;
+  bool project_stops = true;  ///< office: unreachable frontier centroids move into their region
   PlanningOptions planning;
   MappingOptions mapping;
 };
@@ -93,6 +94,7 @@ void run(const BenchOptions& o) {
   config.exploration.scans = o.scans;
   config.exploration.seed = o.seed;
   config.exploration.revisit = o.revisit;
+  config.exploration.office.project_stops = o.project_stops;
   config.jobs = o.jobs;
   parse_shard(o.shard, config);
   config.validate();
@@ -139,6 +141,8 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   if (o->kind == "tabletop") {
     cmd->add_flag("--revisit", o->revisit,
                   "views already taken stay candidates (the paper's loop taken literally)");
+  } else {
+    cmd->add_flag("!--no-stop-projection", o->project_stops, kNoStopProjectionHelp);
   }
   o->planning.add_to(*cmd);
   o->mapping.add_to(*cmd);

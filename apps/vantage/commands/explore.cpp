@@ -30,6 +30,7 @@ struct ExploreOptions {
   int scans = 10;
   double min_gain = 0.0;
   bool revisit = false;
+  bool project_stops = true;
   int start = 0;
   std::uint64_t seed = 1;
   std::string out;
@@ -80,6 +81,7 @@ void run(const ExploreOptions& o) {
   config.scans = o.scans;
   config.min_gain = o.min_gain;
   config.revisit = o.revisit;
+  config.office.project_stops = o.project_stops;
   config.start = o.start;
   config.seed = o.seed;
   config.validate();
@@ -135,6 +137,8 @@ void add_explore_command(CLI::App& app) {
   cmd->add_flag(
       "--revisit", o->revisit,
       "table top: views already taken stay candidates (the paper's loop taken literally)");
+  cmd->add_flag("!--no-stop-projection", o->project_stops,
+                fmt::format("office: {}", kNoStopProjectionHelp));
   cmd->add_option("--start", o->start, "start pose index of the scene")->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of sensor noise, pose noise and random choice")
       ->capture_default_str();

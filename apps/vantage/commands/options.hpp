@@ -14,6 +14,11 @@
 
 namespace vantage::cli {
 
+/// Help of --no-stop-projection (explore and bench office).
+inline constexpr const char* kNoStopProjectionHelp =
+    "keep the paper's fallback for a frontier centroid the robot cannot reach (drive as close "
+    "as possible, section 5.3.1) instead of moving it to its region's nearest reachable cell";
+
 /// --method, --alpha, --objective, --evaluation, --epsilon, --lambda, --threads.
 struct PlanningOptions {
   std::string method = "probabilistic";
