@@ -10,6 +10,8 @@ second on it scores, against the cells the scan really turned known:
   scans before, E interpolated between the evaluated values of a as ObservabilityFit does, the
   first scan's calibration on the empty map included) for several recencies, and without the
   first scan (the prior for the second);
+- the trend rule: the last scan's best a moved on by a damped step of its last change;
+- the a chosen in hindsight for each scan (a bound on any rule that picks one a per scan);
 - greedy's count on the same pose.
 Prints the mean absolute error [cells] over scans 2.. per scene and overall.
 """
@@ -97,6 +99,11 @@ def main(dirs):
                     x = trend_choice(history, xs, damping)
                     rows[scene][f"trend damping={damping}"].append(
                         abs(predicted(cal, xs, x) - actual))
+                # Not a rule: the a that would have matched this very scan, chosen in hindsight.
+                # It bounds what any way of choosing one a per scan can reach.
+                x = best_x(cal, actual, xs)
+                rows[scene]["hindsight a (bound, not a rule)"].append(
+                    abs(predicted(cal, xs, x) - actual))
                 rows[scene]["greedy count"].append(abs(float(s["greedy_predicted_gain"]) - actual))
                 rows[scene]["run's own prediction"].append(abs(float(s["predicted_cells"]) - actual))
             history.append((cal, actual))
