@@ -77,7 +77,12 @@ class Converter {
       node->kind = Node::Kind::kMap;
       for (const auto& item : in) {
         const int key_line = item.first.Mark().line + 1;
-        if (!item.first.IsScalar()) {
+        // NOTE: a key with a line break or another control character (a plain scalar folded
+        // over a blank line, found by fuzz/scene_fuzzer.cpp) is never one of ours, and echoing it
+        // would break the one-line message.
+        if (!item.first.IsScalar() ||
+            std::any_of(item.first.Scalar().begin(), item.first.Scalar().end(),
+                        [](unsigned char c) { return c < 0x20 || c == 0x7f; })) {
           throw_error(source_, key_line, key, "a map key must be a plain name");
         }
         const std::string name = item.first.Scalar();
