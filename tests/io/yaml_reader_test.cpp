@@ -85,6 +85,10 @@ TEST(YamlReader, EveryMistakeIsOneLineWithFileLineAndKey) {
       // folded over a blank line), which the message must not echo.
       {[&] { parse_yaml("a:\n  \"e\\nf\": 1\n", "break.yaml"); },
        "break.yaml:2: a: a map key must be a plain name"},
+      // issue 15, found by fuzz/manifest_fuzzer.cpp: yaml-cpp's LoadAll never returned on these.
+      {[&] { parse_yaml(",", "comma.yaml"); }, "comma.yaml:1: not valid YAML"},
+      {[&] { parse_yaml("a: 1\n---\n, b\n", "comma.yaml"); },
+       "comma.yaml:3: a second YAML document"},
   };
   for (const auto& [action, expected] : cases) {
     const std::string message = error_of(action);

@@ -1,11 +1,13 @@
 #include "vantage/io/yaml_reader.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <utility>
 
 #include "vantage/io/format_parsing.hpp"
@@ -104,6 +106,38 @@ class Converter {
   const std::string& source_;
   /// Collections converted so far, by position in the text (checked to be the same node).
   std::map<int, std::pair<YAML::Node, std::shared_ptr<const Node>>> shared_;
+};
+
+/// Where a document's first node starts; the rest of the document is only parsed.
+class FirstNodeMark : public YAML::EventHandler {
+ public:
+  YAML::Mark mark = YAML::Mark::null_mark();
+
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& at, YAML::anchor_t) override { note(at); }
+  void OnAlias(const YAML::Mark& at, YAML::anchor_t) override { note(at); }
+  void OnScalar(const YAML::Mark& at, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    note(at);
+  }
+  void OnSequenceStart(const YAML::Mark& at, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    note(at);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& at, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    note(at);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void note(const YAML::Mark& at) {
+    if (!seen_) mark = at;
+    seen_ = true;
+  }
+  bool seen_ = false;
 };
 
 std::string lower(std::string text) {
@@ -266,20 +300,29 @@ Eigen::Vector3d YamlField::positive_vec3() const {
 
 YamlField parse_yaml(std::string_view text, const std::string& source) {
   auto shared_source = std::make_shared<const std::string>(source);
-  std::vector<YAML::Node> documents;
+  const std::string owned(text);
+  YAML::Node root;
   try {
-    documents = YAML::LoadAll(std::string(text));
+    // NOTE: YAML::Load reads the first document and ignores the rest without a word, and
+    // yaml-cpp 0.7's LoadAll never returns on a stray ',' outside a flow collection (each
+    // document it reads there is an empty one that consumes nothing, and memory grows without
+    // bound; found by fuzz/manifest_fuzzer.cpp). So the documents are counted, two at most, by
+    // where their first node starts, and then the first is loaded.
+    std::istringstream in(owned);
+    YAML::Parser parser(in);
+    FirstNodeMark first, second;
+    if (parser.HandleNextDocument(first) && parser.HandleNextDocument(second)) {
+      const int line = second.mark.line >= 0 ? second.mark.line + 1 : 0;
+      if (second.mark.pos == first.mark.pos) {
+        throw_error(source, line, "", "not valid YAML: nothing can be read from here on");
+      }
+      throw_error(source, line, "", "a second YAML document (after '---'): the file must hold one");
+    }
+    root = YAML::Load(owned);
   } catch (const YAML::Exception& e) {
     throw_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", cat("not valid YAML: ", e.msg));
   }
-  // NOTE: YAML::Load reads the first document and ignores the rest without a word.
-  if (documents.size() > 1) {
-    const int line = documents[1].Mark().line;
-    throw_error(source, line >= 0 ? line + 1 : 0, "",
-                "a second YAML document (after '---'): the file must hold one");
-  }
   Converter converter(*shared_source);
-  const YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   return YamlField(converter.convert(root, "", 1), "", shared_source);
 }
 
