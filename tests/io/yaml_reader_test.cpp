@@ -87,6 +87,12 @@ TEST(YamlReader, EveryMistakeIsOneLineWithFileLineAndKey) {
        "break.yaml:2: a: a map key must be a plain name"},
       // issue 15, found by fuzz/manifest_fuzzer.cpp: yaml-cpp's LoadAll never returned on these.
       {[&] { parse_yaml(",", "comma.yaml"); }, "comma.yaml:1: not valid YAML"},
+      // issue 15, found by fuzz/manifest_fuzzer.cpp: yaml-cpp's message quoted a line break.
+      {[&] {
+         constexpr char kBytes[] = "ud\x1c\0\n  - fame: x_forward\n   ";
+         parse_yaml(std::string_view(kBytes, sizeof kBytes - 1), "escape.yaml");
+       },
+       "escape.yaml:2: not valid YAML: unknown escape character: \\x0a"},
       {[&] { parse_yaml("a: 1\n---\n, b\n", "comma.yaml"); },
        "comma.yaml:3: a second YAML document"},
   };
