@@ -31,7 +31,7 @@ for reader in "${readers[@]}"; do
   "$harness" "${flags[@]}" -artifact_prefix="$findings/" "$corpus" "fuzz/corpus/$reader" \
     >"$log" 2>&1
   code=$?
-  stats=$(grep -E '^stat::(number_of_executed_units|peak_rss_mb)' "$log" | sed 's/^stat:://' |
+  stats=$(grep -E '^stat::(number_of_executed_units|peak_rss_mb)' "$log" | sed 's/^stat:://' | tr -s ' ' |
           tr '\n' ' ')
   if [[ $code -eq 0 ]]; then
     echo "fuzz $reader: ${seconds} s, no finding ($stats, corpus $(ls "$corpus" | wc -l) inputs)"
