@@ -1,11 +1,13 @@
 # Vantage: two commands do all the set-up on a fresh Debian machine.
 #   make demo   installs what it needs, builds, and runs the main job on the default scene
 #   make test   installs what it needs, builds, and runs the whole test suite
+#   make fuzz   builds the libFuzzer harnesses (clang) and runs each for FUZZ_SECONDS (docs/fuzzing.md)
 PRESET ?= release
 BUILD_DIR := build/$(PRESET)
 VANTAGE := $(BUILD_DIR)/apps/vantage/vantage
+FUZZ_SECONDS ?= 60
 
-.PHONY: all deps configure build demo test bench format clean
+.PHONY: all deps configure build demo test bench fuzz format clean
 
 all: build
 
@@ -31,6 +33,13 @@ test: build
 
 bench: build
 	@$(BUILD_DIR)/bench/vantage_bench
+
+# Each file reader under libFuzzer with ASan and UBSan for FUZZ_SECONDS; fails on any finding.
+fuzz:
+	@scripts/install-deps.sh fuzz
+	@cmake --preset fuzz >/dev/null
+	@cmake --build --preset fuzz
+	@scripts/run-fuzzers.sh build/fuzz $(FUZZ_SECONDS)
 
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

@@ -7,9 +7,19 @@ function(vantage_target_defaults target)
   if(VANTAGE_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()
-  if(VANTAGE_SANITIZE)
+  if(VANTAGE_FUZZ)
+    # libFuzzer's coverage, and undefined behaviour that stops the run, so the fuzzer sees it.
+    target_compile_options(${target} PUBLIC -fsanitize=fuzzer-no-link,address,undefined
+                                            -fno-sanitize-recover=undefined -fno-omit-frame-pointer)
+    target_link_options(${target} PUBLIC -fsanitize=address,undefined)
+  elseif(VANTAGE_SANITIZE)
     target_compile_options(${target} PUBLIC -fsanitize=address,undefined -fno-omit-frame-pointer)
     target_link_options(${target} PUBLIC -fsanitize=address,undefined)
+  elseif(VANTAGE_TSAN)
+    target_compile_options(${target} PUBLIC -fsanitize=thread -fno-omit-frame-pointer)
+    target_link_options(${target} PUBLIC -fsanitize=thread)
+  endif()
+  if(VANTAGE_FUZZ OR VANTAGE_SANITIZE)
     # NOTE: under ASan, Eigen stops trusting malloc's 16-byte alignment and pads its own
     # allocations. Eigen's inline allocator in our binary then interposes on PCL's (built
     # without ASan), and PCL frees with plain free() what our copy allocated padded: a bad free

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages Vantage builds against. Idempotent: quiet and quick when all
-# are present. Usage: scripts/install-deps.sh [core|full]   (default: full)
+# are present. Usage: scripts/install-deps.sh [core|full|fuzz]   (default: full; fuzz = full and
+# clang with libFuzzer and llvm-symbolizer, for `make fuzz` and the fuzz preset)
 set -euo pipefail
 
 core=(cmake g++ make pkg-config libeigen3-dev libtbb-dev libgtest-dev libbenchmark-dev
@@ -9,8 +10,16 @@ core=(cmake g++ make pkg-config libeigen3-dev libtbb-dev libgtest-dev libbenchma
 # chromium: the test that renders `vantage view`'s page headless (skipped without it).
 edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev libnanoflann-dev npm chromium)
 
+# libclang-rt-dev: libFuzzer and the sanitizer runtimes; llvm: llvm-symbolizer for their reports.
+fuzz=(clang libclang-rt-dev llvm)
+
 wanted=("${core[@]}")
-[[ "${1:-full}" == "full" ]] && wanted+=("${edge[@]}")
+case "${1:-full}" in
+  core) ;;
+  full) wanted+=("${edge[@]}") ;;
+  fuzz) wanted+=("${edge[@]}" "${fuzz[@]}") ;;
+  *) echo "install-deps: unknown set '$1' (core, full or fuzz)" >&2; exit 2 ;;
+esac
 
 missing=()
 for pkg in "${wanted[@]}"; do

@@ -81,10 +81,25 @@ TEST(YamlReader, EveryMistakeIsOneLineWithFileLineAndKey) {
       {[&] { parse_yaml("- {x: 1, x: 1}\n", "d.yaml"); }, "d.yaml:1: [0].x: duplicate key 'x'"},
       {[&] { parse_yaml("a: 1\n---\na: 2\n", "two.yaml"); }, "two.yaml:3: a second YAML document"},
       {[&] { parse_yaml("a: 1\n...\n---\n", "end.yaml"); }, "end.yaml:"},
+      // issue 15, found by fuzz/scene_fuzzer.cpp: a key with a line break (there, a plain key
+      // folded over a blank line), which the message must not echo.
+      {[&] { parse_yaml("a:\n  \"e\\nf\": 1\n", "break.yaml"); },
+       "break.yaml:2: a: a map key must be a plain name"},
+      // issue 15, found by fuzz/manifest_fuzzer.cpp: yaml-cpp's LoadAll never returned on these.
+      {[&] { parse_yaml(",", "comma.yaml"); }, "comma.yaml:1: not valid YAML"},
+      // issue 15, found by fuzz/manifest_fuzzer.cpp: yaml-cpp's message quoted a line break.
+      {[&] {
+         constexpr char kBytes[] = "ud\x1c\0\n  - fame: x_forward\n   ";
+         parse_yaml(std::string_view(kBytes, sizeof kBytes - 1), "escape.yaml");
+       },
+       "escape.yaml:2: not valid YAML: unknown escape character: \\x0a"},
+      {[&] { parse_yaml("a: 1\n---\n, b\n", "comma.yaml"); },
+       "comma.yaml:3: a second YAML document"},
   };
   for (const auto& [action, expected] : cases) {
     const std::string message = error_of(action);
     EXPECT_NE(message.find(expected), std::string::npos) << message << " | " << expected;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
 }
 

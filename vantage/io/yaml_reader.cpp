@@ -1,11 +1,13 @@
 #include "vantage/io/yaml_reader.hpp"
 
+#include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
+#include <sstream>
 #include <utility>
 
 #include "vantage/io/format_parsing.hpp"
@@ -46,6 +48,22 @@ std::string where(const std::string& source, int line) {
   throw YamlError(cat(where(source, line), ": ", key, key.empty() ? "" : ": ", what));
 }
 
+/// `text` with each control character written as \xHH: yaml-cpp's messages quote the offending
+/// character, a line break included (found by fuzz/manifest_fuzzer.cpp).
+std::string printable(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f) {
+      constexpr char kHex[] = "0123456789abcdef";
+      out += {'\\', 'x', kHex[u >> 4], kHex[u & 0xf]};
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
+
 std::string child_key(const std::string& parent, std::string_view key) {
   return parent.empty() ? std::string(key) : cat(parent, ".", key);
 }
@@ -77,7 +95,12 @@ class Converter {
       node->kind = Node::Kind::kMap;
       for (const auto& item : in) {
         const int key_line = item.first.Mark().line + 1;
-        if (!item.first.IsScalar()) {
+        // NOTE: a key with a line break or another control character (a plain scalar folded
+        // over a blank line, found by fuzz/scene_fuzzer.cpp) is never one of ours, and echoing it
+        // would break the one-line message.
+        if (!item.first.IsScalar() ||
+            std::any_of(item.first.Scalar().begin(), item.first.Scalar().end(),
+                        [](unsigned char c) { return c < 0x20 || c == 0x7f; })) {
           throw_error(source_, key_line, key, "a map key must be a plain name");
         }
         const std::string name = item.first.Scalar();
@@ -99,6 +122,38 @@ class Converter {
   const std::string& source_;
   /// Collections converted so far, by position in the text (checked to be the same node).
   std::map<int, std::pair<YAML::Node, std::shared_ptr<const Node>>> shared_;
+};
+
+/// Where a document's first node starts; the rest of the document is only parsed.
+class FirstNodeMark : public YAML::EventHandler {
+ public:
+  YAML::Mark mark = YAML::Mark::null_mark();
+
+  void OnDocumentStart(const YAML::Mark&) override {}
+  void OnDocumentEnd() override {}
+  void OnNull(const YAML::Mark& at, YAML::anchor_t) override { note(at); }
+  void OnAlias(const YAML::Mark& at, YAML::anchor_t) override { note(at); }
+  void OnScalar(const YAML::Mark& at, const std::string&, YAML::anchor_t,
+                const std::string&) override {
+    note(at);
+  }
+  void OnSequenceStart(const YAML::Mark& at, const std::string&, YAML::anchor_t,
+                       YAML::EmitterStyle::value) override {
+    note(at);
+  }
+  void OnSequenceEnd() override {}
+  void OnMapStart(const YAML::Mark& at, const std::string&, YAML::anchor_t,
+                  YAML::EmitterStyle::value) override {
+    note(at);
+  }
+  void OnMapEnd() override {}
+
+ private:
+  void note(const YAML::Mark& at) {
+    if (!seen_) mark = at;
+    seen_ = true;
+  }
+  bool seen_ = false;
 };
 
 std::string lower(std::string text) {
@@ -261,20 +316,30 @@ Eigen::Vector3d YamlField::positive_vec3() const {
 
 YamlField parse_yaml(std::string_view text, const std::string& source) {
   auto shared_source = std::make_shared<const std::string>(source);
-  std::vector<YAML::Node> documents;
+  const std::string owned(text);
+  YAML::Node root;
   try {
-    documents = YAML::LoadAll(std::string(text));
+    // NOTE: YAML::Load reads the first document and ignores the rest without a word, and
+    // yaml-cpp 0.7's LoadAll never returns on a stray ',' outside a flow collection (each
+    // document it reads there is an empty one that consumes nothing, and memory grows without
+    // bound; found by fuzz/manifest_fuzzer.cpp). So the documents are counted, two at most, by
+    // where their first node starts, and then the first is loaded.
+    std::istringstream in(owned);
+    YAML::Parser parser(in);
+    FirstNodeMark first, second;
+    if (parser.HandleNextDocument(first) && parser.HandleNextDocument(second)) {
+      const int line = second.mark.line >= 0 ? second.mark.line + 1 : 0;
+      if (second.mark.pos == first.mark.pos) {
+        throw_error(source, line, "", "not valid YAML: nothing can be read from here on");
+      }
+      throw_error(source, line, "", "a second YAML document (after '---'): the file must hold one");
+    }
+    root = YAML::Load(owned);
   } catch (const YAML::Exception& e) {
-    throw_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, "", cat("not valid YAML: ", e.msg));
-  }
-  // NOTE: YAML::Load reads the first document and ignores the rest without a word.
-  if (documents.size() > 1) {
-    const int line = documents[1].Mark().line;
-    throw_error(source, line >= 0 ? line + 1 : 0, "",
-                "a second YAML document (after '---'): the file must hold one");
+    throw_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, "",
+                cat("not valid YAML: ", printable(e.msg)));
   }
   Converter converter(*shared_source);
-  const YAML::Node root = documents.empty() ? YAML::Node() : documents.front();
   return YamlField(converter.convert(root, "", 1), "", shared_source);
 }
 

@@ -1,0 +1,195 @@
+#!/usr/bin/python3
+"""Writes the seed corpora of fuzz/corpus/<reader>/: tiny valid files and edge cases of each
+format. The files are checked in; rerun after changing this script. Usage: fuzz/make_seeds.py"""
+import os
+import struct
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def lzf_literal(data):
+    """LZF of `data` as literal runs only (up to 32 bytes a run), which any LZF decoder reads."""
+    out = bytearray()
+    for i in range(0, len(data), 32):
+        chunk = data[i:i + 32]
+        out.append(len(chunk) - 1)
+        out += chunk
+    return bytes(out)
+
+
+def write(reader, name, data):
+    folder = os.path.join(HERE, "corpus", reader)
+    os.makedirs(folder, exist_ok=True)
+    with open(os.path.join(folder, name), "wb") as f:
+        f.write(data if isinstance(data, bytes) else data.encode())
+
+
+def pcd_header(fields, size, type_, count, n, data, viewpoint="0 0 0 1 0 0 0"):
+    return (f"# .PCD v0.7 - Point Cloud Data file format\nVERSION 0.7\nFIELDS {fields}\n"
+            f"SIZE {size}\nTYPE {type_}\nCOUNT {count}\nWIDTH {n}\nHEIGHT 1\n"
+            f"VIEWPOINT {viewpoint}\nPOINTS {n}\nDATA {data}\n")
+
+
+def pcd_seeds():
+    pts = [(0.1, 0.2, 1.0), (-0.5, 0.25, 2.0), (1.5, -1.0, 0.5)]
+    write("pcd", "ascii.pcd", pcd_header("x y z", "4 4 4", "F F F", "1 1 1", 3, "ascii") +
+          "".join(f"{x} {y} {z}\n" for x, y, z in pts))
+    binary = b"".join(struct.pack("<3f", *p) for p in pts)
+    write("pcd", "binary.pcd", pcd_header("x y z", "4 4 4", "F F F", "1 1 1", 3, "binary").encode() + binary)
+    # binary_compressed: fields stored one after another (x x x y y y z z z), then LZF.
+    soa = b"".join(struct.pack("<3f", *[p[a] for p in pts]) for a in range(3))
+    packed = lzf_literal(soa)
+    write("pcd", "compressed.pcd",
+          pcd_header("x y z", "4 4 4", "F F F", "1 1 1", 3, "binary_compressed").encode() +
+          struct.pack("<II", len(packed), len(soa)) + packed)
+    # More fields, doubles, an rgb and a count of 2, an organized cloud with a NaN, a viewpoint.
+    write("pcd", "fields.pcd",
+          pcd_header("x y z rgb normal", "8 8 8 4 4", "F F F U F", "1 1 1 1 2", 2, "ascii",
+                     "1 2 3 0.7071068 0 0.7071068 0") +
+          "0 0 1 4278190335 0 1\n0.5 0.5 1.5 255 1 0\n")
+    write("pcd", "organized_nan.pcd",
+          "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 2\n"
+          "POINTS 4\nDATA ascii\nnan nan nan\n0 0 1\n1 1 1\nnan nan nan\n")
+    write("pcd", "ints.pcd", pcd_header("x y z", "2 2 2", "I I I", "1 1 1", 1, "binary").encode() +
+          struct.pack("<3h", 1, -2, 3))
+    write("pcd", "header_only.pcd", pcd_header("x y z", "4 4 4", "F F F", "1 1 1", 0, "ascii"))
+
+
+def ply_seeds():
+    pts = [(0.1, 0.2, 1.0), (-0.5, 0.25, 2.0), (1.5, -1.0, 0.5)]
+
+    def header(fmt, extra=""):
+        return (f"ply\nformat {fmt} 1.0\ncomment seed\nelement vertex 3\nproperty float x\n"
+                f"property float y\nproperty float z\n{extra}end_header\n")
+    write("ply", "ascii.ply", header("ascii") + "".join(f"{x} {y} {z}\n" for x, y, z in pts))
+    write("ply", "le.ply", header("binary_little_endian").encode() +
+          b"".join(struct.pack("<3f", *p) for p in pts))
+    write("ply", "be.ply", header("binary_big_endian").encode() +
+          b"".join(struct.pack(">3f", *p) for p in pts))
+    # A mesh: colours, a face list with uchar counts and int indices, obj_info.
+    write("ply", "mesh.ply",
+          "ply\nformat ascii 1.0\nobj_info seed\nelement vertex 3\nproperty double x\n"
+          "property double y\nproperty double z\nproperty uchar red\nelement face 1\n"
+          "property list uchar int vertex_indices\nend_header\n"
+          "0 0 0 255\n1 0 0 0\n0 1 0 9\n3 0 1 2\n")
+    write("ply", "mesh_le.ply",
+          b"ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float32 x\n"
+          b"property float32 y\nproperty float32 z\nelement face 1\n"
+          b"property list uint8 uint32 vertex_indices\nend_header\n" +
+          struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<B3I", 3, 0, 1, 2))
+    write("ply", "crlf.ply", header("ascii").replace("\n", "\r\n") + "1 2 3\r\n4 5 6\r\n7 8 9\r\n")
+
+
+MANIFEST = """clouds:
+  - file: a.pcd
+    pose:
+      - [0.0, 0.0, 1.0, -0.90]
+      - [-1.0, 0.0, 0.0, 0.00]
+      - [0.0, -1.0, 0.0, 0.75]
+      - [0.0, 0.0, 0.0, 1.0]
+  - file: a.ply
+    pose: [-1, 0, 0, 0,  0, 0, -1, 0.9,  0, -1, 0, 0.75,  0, 0, 0, 1]
+sensor:
+  frame: optical
+  intrinsics: {fx: 525.0, fy: 525.0, cx: 319.5, cy: 239.5, width: 640, height: 480}
+  min_range: 0.3
+  max_range: 3.5
+roi:
+  min: [-0.5, -0.5, 0.0]
+  max: [0.5, 0.5, 0.5]
+resolution: 0.0078125
+options: {table_segmentation: false, icp: false, integration: paper, skip_non_finite: false}
+"""
+
+
+def manifest_seeds():
+    # The harness puts a.pcd (with a VIEWPOINT), a.ply, 2.5.pcd and trajectory.txt beside the
+    # manifest (fuzz/manifest_fuzzer.cpp).
+    write("manifest", "poses.yaml", "version: 1\n" + MANIFEST)
+    write("manifest", "fov_xforward.yaml",
+          "clouds: [{file: a.pcd, stamp: 1.5}]\nsensor: {frame: x_forward, "
+          "fov_deg: {horizontal: 90, vertical: 45}, min_range: 0.1, max_range: 3.0}\n"
+          "roi: {min: [-0.5, -0.5, 0.75], max: [0.5, 0.5, 1.25]}\nresolution: 0.01\n"
+          "options: {integration: endpoint}\n")
+    write("manifest", "trajectory.yaml",
+          "clouds: [{file: a.pcd, stamp: 1.0}, {file: 2.5.pcd}]\n"
+          "trajectory: {file: trajectory.txt, match: timestamp, max_time_difference: 0.02}\n"
+          "sensor: {frame: optical, fov_deg: {horizontal: 57, vertical: 43}, min_range: 0.3, "
+          "max_range: 3.5}\nroi: {min: [-1, -1, 0], max: [1, 1, 1]}\nresolution: 0.05\n")
+    write("manifest", "folder.yaml",
+          "trajectory: {file: trajectory.txt}\nsensor: {frame: optical, fov_deg: "
+          "{horizontal: 57, vertical: 43}, min_range: 0.3, max_range: 3.5}\n"
+          "roi: {min: [-1, -1, 0], max: [1, 1, 1]}\nresolution: 0.05\n")
+    write("manifest", "viewpoint.yaml",
+          "clouds: [{file: a.pcd}]\nsensor: {frame: x_forward, fov_deg: {horizontal: 60, "
+          "vertical: 45}, min_range: 0.1, max_range: 2}\nroi: {min: [0, 0, 0], max: [1, 1, 1]}\n"
+          "resolution: 0.1\n")
+    write("manifest", "anchors.yaml",
+          "clouds: [{file: a.pcd}]\nsensor: {frame: optical, fov_deg: {horizontal: 60, "
+          "vertical: 45}, min_range: &r 0.1, max_range: 2}\nroi: {min: [0, 0, 0], "
+          "max: [1, 1, 1]}\nresolution: *r\n")
+    write("manifest", "bad_pose.yaml", MANIFEST.replace("-0.90", ".nan"))
+
+
+def scene_seeds():
+    scenes = os.path.join(HERE, "..", "scenes")
+    for name in ("tabletop-1", "office-small-sparse"):
+        with open(os.path.join(scenes, name + ".yaml"), "rb") as f:
+            write("scene", name + ".yaml", f.read())
+    write("scene", "minimal.yaml",
+          "name: tiny\nkind: tabletop\ngrid: {origin: [0, 0, 0], resolution: 0.1, "
+          "dims: [4, 4, 4]}\ntable: {size: [1, 1], height: 0.5}\nobjects:\n"
+          "  - {type: box, size: [0.1, 0.1, 0.1], pose: [0, 0, 0.5, 0, 0, 0]}\n"
+          "sensor: hokuyo\nmount: {height: 1.0, target: [0, 0, 0.5]}\n"
+          "candidates: {generator: ring, radius: 1.0, positions: 3, yaw_offsets_deg: [0]}\n"
+          "start_poses: ring\n")
+
+
+def bt_node(codes):
+    """A `.bt` inner node: its 8 children's 2-bit codes (1 free leaf, 2 occupied leaf, 3 inner,
+    0 unknown), child i in bits 2i and 2i+1."""
+    bits = 0
+    for i, code in enumerate(codes):
+        bits |= code << (2 * i)
+    return struct.pack("<H", bits)
+
+
+def chain(child_at_root, leaves):
+    """Inner nodes from the root down to depth 15, through child `child_at_root` of the root and
+    child 0 below it, so that the leaves at depth 16 (OctoMap's finest voxels) lie at the origin
+    (child 7 of the root, then child 0) or far from it."""
+    first = [0] * 8
+    first[child_at_root] = 3
+    nodes = [first] + [[3, 0, 0, 0, 0, 0, 0, 0] for _ in range(14)] + [leaves]
+    return nodes
+
+
+def octomap_seeds():
+    head = b"# Octomap OcTree binary file\n# comment\nid OcTree\nsize %d\nres 0.1\ndata\n"
+    nodes = chain(7, [2, 0, 0, 0, 0, 0, 0, 1])  # one occupied and one free voxel at the origin
+    write("octomap", "tiny.bt", head % (len(nodes) + 2) + b"".join(bt_node(n) for n in nodes))
+    far = chain(0, [2, 2, 2, 2, 1, 1, 1, 1])
+    write("octomap", "far.bt", head % (len(far) + 8) + b"".join(bt_node(n) for n in far))
+    write("octomap", "coarse.bt", head % 3 + bt_node([2, 0, 0, 0, 0, 0, 0, 1]))
+    write("octomap", "empty.bt", b"# Octomap OcTree binary file\nid OcTree\nsize 0\nres 0.05\ndata\n")
+
+    # .ot: per node its float log-odds (a ColorOcTree adds r, g, b), then a byte with a bit per
+    # existing child; children follow depth first.
+    def ot(color):
+        extra = b"\x01\x02\x03" if color else b""
+        body = b""
+        for depth in range(16):
+            body += struct.pack("<f", 0.85) + extra + bytes([0x80 if depth == 0 else 0x01])
+        body += struct.pack("<f", 0.85) + extra + b"\x00"  # occupied leaf
+        tree = b"ColorOcTree" if color else b"OcTree"
+        return (b"# Octomap OcTree file\nid " + tree + b"\nsize 17\nres 0.05\ndata\n" + body)
+    write("octomap", "tiny.ot", ot(False))
+    write("octomap", "color.ot", ot(True))
+
+
+if __name__ == "__main__":
+    pcd_seeds()
+    ply_seeds()
+    manifest_seeds()
+    scene_seeds()
+    octomap_seeds()
