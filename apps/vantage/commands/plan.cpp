@@ -68,6 +68,14 @@ PlanUnits units_of(PlannerMethod method) {
       return {"bits", "bits"};
     case PlannerMethod::kYamauchi:
       return {"cells", "-m"};
+    case PlannerMethod::kOcclusionAware:
+    case PlannerMethod::kUnobservedVoxel:
+    case PlannerMethod::kRearSideVoxel:
+    case PlannerMethod::kRearSideEntropy:
+    case PlannerMethod::kProximityCount:
+    case PlannerMethod::kAverageEntropy:
+    case PlannerMethod::kAreaFactor:
+      return {"metric", "metric"};  // docs/model.md "The field's metrics": each its own unit
     default:
       return {"cells", "cells"};
   }
