@@ -8,41 +8,24 @@
 #include <cmath>
 #include <random>
 
+#include "row_grid.hpp"
 #include "vantage/gain/ray_model.hpp"
 
 namespace vantage {
 namespace {
 
-// A single row of 20 cells along x, 0.1 m each; the sensor sits in cell 0 and looks along +x.
-// Every ray runs along the row from cell 0 until it leaves the row's 0.1 m cross-section, the
-// rays near the axis to the end, so the set of cells the view's rays reach is the row up to and
-// including the first occupied cell, each with the visibility of the row before it.
-GridSpec row_spec() {
-  GridSpec spec;
-  spec.origin = {0.0, -0.05, -0.05};
-  spec.resolution = 0.1;
-  spec.dims = {20, 1, 1};
-  return spec;
-}
+// The row of tests/gain/row_grid.hpp, the sensor in cell 0. Every ray runs along the row from
+// cell 0 until it leaves the row's 0.1 m cross-section, the rays near the axis to the end, so the
+// set of cells the view's rays reach is the row up to and including the first occupied cell,
+// each with the visibility of the row before it.
+using test::looking_along_x;
+using test::row_grid;
 
-Frustum looking_along_x(const Eigen::Vector3d& origin, double fov_deg = 60.0) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = origin;
-  return Frustum(pose, SensorFov{deg2rad(fov_deg), deg2rad(fov_deg), 0.0, 10.0});
-}
-
-// Cells 0-4 free (p_min), 5-7 unobserved, 8 occupied (p_max), 9-11 unobserved, 12-19 free.
-OccupancyGrid row_grid() {
-  OccupancyGrid grid(row_spec());
-  for (std::size_t i = 0; i < 20; ++i) {
-    if (i == 8) {
-      grid.set_probability(i, grid.params().p_max);
-    } else if (i < 5 || i > 11) {
-      grid.set_probability(i, grid.params().p_min);
-    }
-  }
-  return grid;
-}
+// The seven metrics.
+constexpr GainMethod kMetrics[] = {GainMethod::kOcclusionAware, GainMethod::kUnobservedVoxel,
+                                   GainMethod::kRearSideVoxel,  GainMethod::kRearSideEntropy,
+                                   GainMethod::kProximityCount, GainMethod::kAverageEntropy,
+                                   GainMethod::kAreaFactor};
 
 ViewGain metric_on_row(GainMethod method, GainEvaluation evaluation = GainEvaluation::kExact) {
   GainConfig config;
@@ -211,10 +194,7 @@ TEST(Metrics, SameValuesForAnyThreadCount) {
     pose.translation() = Eigen::Vector3d(-0.5, 0.1 * (i - 3), 0.0);
     views.emplace_back(pose, SensorFov{deg2rad(50), deg2rad(40), 0.1, 3.0});
   }
-  for (const GainMethod m :
-       {GainMethod::kOcclusionAware, GainMethod::kUnobservedVoxel, GainMethod::kRearSideVoxel,
-        GainMethod::kRearSideEntropy, GainMethod::kProximityCount, GainMethod::kAverageEntropy,
-        GainMethod::kAreaFactor}) {
+  for (const GainMethod m : kMetrics) {
     GainConfig config;
     config.method = m;
     config.num_threads = 1;
@@ -230,10 +210,7 @@ TEST(Metrics, SameValuesForAnyThreadCount) {
 }
 
 TEST(Metrics, NamesParseBack) {
-  for (const GainMethod m :
-       {GainMethod::kOcclusionAware, GainMethod::kUnobservedVoxel, GainMethod::kRearSideVoxel,
-        GainMethod::kRearSideEntropy, GainMethod::kProximityCount, GainMethod::kAverageEntropy,
-        GainMethod::kAreaFactor}) {
+  for (const GainMethod m : kMetrics) {
     EXPECT_TRUE(is_volumetric_metric(m));
     EXPECT_EQ(parse_gain_method(to_string(m)), m);
   }

@@ -172,18 +172,6 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   // NOTE: a score is summed over the candidate's views (Latombe: each view's gain times the
   // candidate's travel factor), in the order of its views.
   switch (config.method) {
-    case PlannerMethod::kProbabilistic:
-    case PlannerMethod::kGreedy:
-    case PlannerMethod::kOcclusionAware:
-    case PlannerMethod::kUnobservedVoxel:
-    case PlannerMethod::kRearSideVoxel:
-    case PlannerMethod::kRearSideEntropy:
-    case PlannerMethod::kProximityCount:
-    case PlannerMethod::kAverageEntropy:
-    case PlannerMethod::kAreaFactor:
-      plan.scores = views.sums(view_scores);
-      plan.best = choose_best(plan.scores);
-      break;
     case PlannerMethod::kRandom:
       plan.scores = views.sums(view_scores);
       plan.best = views.candidate_of(choose_random(views.frusta.size(), seed));
@@ -200,6 +188,10 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
     case PlannerMethod::kYamauchi:
       plan.scores.clear();
       for (const Candidate& c : candidates) plan.scores.push_back(-c.travel);
+      plan.best = choose_best(plan.scores);
+      break;
+    default:  // probabilistic, greedy and the metrics: the highest score
+      plan.scores = views.sums(view_scores);
       plan.best = choose_best(plan.scores);
       break;
   }
