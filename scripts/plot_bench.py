@@ -27,7 +27,15 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 COLOURS = {"probabilistic": "#d32f2f", "greedy": "#1976d2", "random": "#388e3c",
-           "latombe": "#7b1fa2", "yamauchi": "#f57c00"}
+           "latombe": "#7b1fa2", "yamauchi": "#f57c00",
+           # The field's metrics (docs/model.md "The field's metrics").
+           "occlusion-aware": "#00838f", "unobserved-voxel": "#6d4c41",
+           "rear-side-voxel": "#c2185b", "rear-side-entropy": "#9e9d24",
+           "proximity-count": "#5e35b1", "average-entropy": "#546e7a", "area-factor": "#ef6c00"}
+# Methods whose prediction in cells is their own (the paper's model's expected cells seen, each
+# metric's unobserved-voxel count on its poses), plotted against the actual cells seen.
+PREDICTING = {"probabilistic", "occlusion-aware", "unobserved-voxel", "rear-side-voxel",
+              "rear-side-entropy", "proximity-count", "average-entropy", "area-factor"}
 
 
 def mean_std(values):
@@ -201,7 +209,7 @@ def plot_prediction_error(out, scenes, g):
     fig, axes = grid_axes(len(scenes))
     for ax, scene in zip(axes, scenes):
         for (s, method, alpha), by_scan in sorted(g.items()):
-            if s != scene or method != "probabilistic":
+            if s != scene or method not in PREDICTING:
                 continue
             errs = prediction_errors(by_scan)
             scans = sorted(errs)
@@ -210,6 +218,8 @@ def plot_prediction_error(out, scenes, g):
             ax.errorbar(scans, [x[0] for x in own], yerr=[x[1] for x in own], fmt="o-", ms=3,
                         capsize=2, color=colour(g, method, alpha),
                         label=f"{label(method, alpha)}: expected cells seen")
+            if method != "probabilistic":
+                continue  # greedy's reference once per panel is enough to read it by
             ax.errorbar(scans, [x[0] for x in greedy], yerr=[x[1] for x in greedy], fmt="s--",
                         ms=3, capsize=2, color=COLOURS["greedy"], alpha=0.6,
                         label=f"greedy's count on the same poses ({label(method, alpha)} run)")

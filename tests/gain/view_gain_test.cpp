@@ -6,40 +6,16 @@
 
 #include <random>
 
+#include "row_grid.hpp"
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/ray_model.hpp"
 
 namespace vantage {
 namespace {
 
-// A single row of 20 cells along x, 0.1 m each; the sensor looks along +x.
-GridSpec row_spec() {
-  GridSpec spec;
-  spec.origin = {0.0, -0.05, -0.05};
-  spec.resolution = 0.1;
-  spec.dims = {20, 1, 1};
-  return spec;
-}
-
-Frustum looking_along_x(const Eigen::Vector3d& origin) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  pose.translation() = origin;
-  return Frustum(pose, SensorFov{deg2rad(60), deg2rad(60), 0.0, 10.0});
-}
-
-// Cells 0-4 free (seen often: p_min), 5-7 unobserved, 8 occupied (p_max), 9-11 unobserved,
-// 12-19 free.
-OccupancyGrid row_grid() {
-  OccupancyGrid grid(row_spec());
-  for (std::size_t i = 0; i < 20; ++i) {
-    if (i == 8) {
-      grid.set_probability(i, grid.params().p_max);
-    } else if (i < 5 || i > 11) {
-      grid.set_probability(i, grid.params().p_min);
-    }
-  }
-  return grid;
-}
+using test::looking_along_x;
+using test::row_grid;
+using test::row_spec;
 
 TEST(ExactGain, GreedyCountsUnobservedCellsBeforeTheFirstOccupied) {
   const OccupancyGrid grid = row_grid();
@@ -72,8 +48,8 @@ TEST(ExactGain, ProbabilisticIsTheSumOfRayModelGains) {
   EXPECT_GT(gain.gain, 2.0);  // the three visible cells carry most of a bit each
   EXPECT_LT(gain.gain, 3.0);  // the three hidden ones almost nothing
   EXPECT_NEAR(gain.cells, seen, 1e-12);
-  // By hand (docs/model.md's recursion): cells 5-7 behind free space are seen with v = 0.998, 0.980,
-  // 0.962; behind the occupied cell 8 visibility falls to 0.271 and climbs back through the
+  // By hand (docs/model.md's recursion): cells 5-7 behind free space are seen with v = 0.998,
+  // 0.980, 0.962; behind the occupied cell 8 visibility falls to 0.271 and climbs back through the
   // unobserved cells (eq. 9's 0.1 way back) to 0.336 and 0.392, not to 0: E = 3.938 cells.
   EXPECT_NEAR(gain.cells, 3.938, 1e-3);
   for (const std::size_t j : {5, 6, 7}) EXPECT_GT(states[j].visibility, 0.95) << j;

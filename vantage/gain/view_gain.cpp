@@ -6,6 +6,7 @@
 
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/fast.hpp"
+#include "vantage/gain/metrics.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"
 
@@ -72,8 +73,16 @@ std::vector<ViewGain> cheapest_view_gains(const GainMap& map, std::span<const Fr
 
 }  // namespace
 
-constexpr EnumNames<GainMethod, 2> kMethodNames = {
-    {{GainMethod::kProbabilistic, "probabilistic"}, {GainMethod::kGreedy, "greedy"}}};
+constexpr EnumNames<GainMethod, 9> kMethodNames = {
+    {{GainMethod::kProbabilistic, "probabilistic"},
+     {GainMethod::kGreedy, "greedy"},
+     {GainMethod::kOcclusionAware, "occlusion-aware"},
+     {GainMethod::kUnobservedVoxel, "unobserved-voxel"},
+     {GainMethod::kRearSideVoxel, "rear-side-voxel"},
+     {GainMethod::kRearSideEntropy, "rear-side-entropy"},
+     {GainMethod::kProximityCount, "proximity-count"},
+     {GainMethod::kAverageEntropy, "average-entropy"},
+     {GainMethod::kAreaFactor, "area-factor"}}};
 constexpr EnumNames<GainEvaluation, 3> kEvaluationNames = {{{GainEvaluation::kExact, "exact"},
                                                             {GainEvaluation::kFast, "fast"},
                                                             {GainEvaluation::kAuto, "auto"}}};
@@ -110,6 +119,7 @@ void GainConfig::validate() const {
 
 std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const Frustum> views,
                                      const GainConfig& config) {
+  if (is_volumetric_metric(config.method)) return metric_view_gains(grid, views, config);
   switch (config.evaluation) {
     case GainEvaluation::kExact:
       return exact_view_gains(grid, views, config);

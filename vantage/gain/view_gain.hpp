@@ -1,7 +1,7 @@
 #pragma once
 /// @file
-/// Expected information gain of candidate views (eqs. 1, 3, 4; docs/model.md "One view"): the settings,
-/// the result, and the façade `evaluate_views`, which takes the evaluation
+/// Expected information gain of candidate views (eqs. 1, 3, 4; docs/model.md "One view"): the
+/// settings, the result, and the façade `evaluate_views`, which takes the evaluation
 /// `GainConfig::evaluation` names: the exact one (exact.hpp), the fast one (fast.hpp), or for
 /// `kAuto` the cheaper of the two. The ray model both run is `PaperModel` (model.hpp).
 
@@ -22,10 +22,21 @@ namespace vantage {
 enum class GainMethod {
   kProbabilistic,  ///< the paper's visibility HMM and occupancy filter, parameter alpha
   kGreedy,  ///< simple greedy: 1 if nothing occupied lies before the cell (infinite visibility)
+  // The field's volumetric metrics (vantage/gain/metrics.hpp, docs/model.md "The field's
+  // metrics"): sums over the cells the view's rays cross, not per-target predictions.
+  kOcclusionAware,   ///< entropy weighted by visibility, eq. M1
+  kUnobservedVoxel,  ///< unobserved cells reached, eq. M2
+  kRearSideVoxel,    ///< occupied cells reached from unobserved ones, eq. M3
+  kRearSideEntropy,  ///< visible entropy on rays that end on a rear side, eq. M4
+  kProximityCount,   ///< unobserved cells near occupied ones, eq. M5
+  kAverageEntropy,   ///< Kriegel's mean entropy of the cells reached, eq. M6
+  kAreaFactor,       ///< Vasquez-Gomez's area factor, eq. M7
 };
 
 std::string_view to_string(GainMethod method);
-/// Parses "probabilistic" or "greedy"; throws std::invalid_argument naming the value.
+/// Parses "probabilistic", "greedy" or a metric's name (occlusion-aware, unobserved-voxel,
+/// rear-side-voxel, rear-side-entropy, proximity-count, average-entropy, area-factor); throws
+/// std::invalid_argument naming the value.
 GainMethod parse_gain_method(std::string_view name);
 
 /// How a view's gain is computed from the per-cell model.

@@ -80,19 +80,52 @@ std::string_view to_string(PlannerMethod method) {
       return "latombe";
     case PlannerMethod::kYamauchi:
       return "yamauchi";
+    default:
+      return to_string(gain_method_of(method));
   }
-  return "unknown";
+}
+
+GainMethod gain_method_of(PlannerMethod method) {
+  switch (method) {
+    case PlannerMethod::kProbabilistic:
+      return GainMethod::kProbabilistic;
+    case PlannerMethod::kOcclusionAware:
+      return GainMethod::kOcclusionAware;
+    case PlannerMethod::kUnobservedVoxel:
+      return GainMethod::kUnobservedVoxel;
+    case PlannerMethod::kRearSideVoxel:
+      return GainMethod::kRearSideVoxel;
+    case PlannerMethod::kRearSideEntropy:
+      return GainMethod::kRearSideEntropy;
+    case PlannerMethod::kProximityCount:
+      return GainMethod::kProximityCount;
+    case PlannerMethod::kAverageEntropy:
+      return GainMethod::kAverageEntropy;
+    case PlannerMethod::kAreaFactor:
+      return GainMethod::kAreaFactor;
+    case PlannerMethod::kGreedy:
+    case PlannerMethod::kRandom:
+    case PlannerMethod::kLatombe:
+    case PlannerMethod::kYamauchi:
+      break;
+  }
+  return GainMethod::kGreedy;
 }
 
 PlannerMethod parse_planner_method(std::string_view name) {
   for (const PlannerMethod m :
        {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy, PlannerMethod::kRandom,
-        PlannerMethod::kLatombe, PlannerMethod::kYamauchi}) {
+        PlannerMethod::kLatombe, PlannerMethod::kYamauchi, PlannerMethod::kOcclusionAware,
+        PlannerMethod::kUnobservedVoxel, PlannerMethod::kRearSideVoxel,
+        PlannerMethod::kRearSideEntropy, PlannerMethod::kProximityCount,
+        PlannerMethod::kAverageEntropy, PlannerMethod::kAreaFactor}) {
     if (name == to_string(m)) return m;
   }
-  throw std::invalid_argument(cat("unknown method '", name,
-                                  "' (expected probabilistic, greedy, random, latombe or "
-                                  "yamauchi)"));
+  throw std::invalid_argument(
+      cat("unknown method '", name,
+          "' (expected probabilistic, greedy, random, latombe, yamauchi, occlusion-aware, "
+          "unobserved-voxel, rear-side-voxel, rear-side-entropy, proximity-count, "
+          "average-entropy or area-factor)"));
 }
 
 std::string_view to_string(GainObjective objective) {
@@ -120,10 +153,13 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   Plan plan;
   const Views views(candidates);
   const bool probabilistic = config.method == PlannerMethod::kProbabilistic;
-  std::vector<double> view_scores = gains_of(
-      grid, views, config.gain, probabilistic ? GainMethod::kProbabilistic : GainMethod::kGreedy,
-      probabilistic ? config.objective : GainObjective::kCells, &plan.gains);
-  if (!probabilistic) {
+  // NOTE: the paper's model and the metrics score by something other than greedy's count, so
+  // greedy's prediction on the same poses is the reference of their predictions (Fig. 11).
+  const GainMethod scored_by = gain_method_of(config.method);
+  std::vector<double> view_scores =
+      gains_of(grid, views, config.gain, scored_by,
+               probabilistic ? config.objective : GainObjective::kCells, &plan.gains);
+  if (scored_by == GainMethod::kGreedy) {
     plan.greedy_gains = views.sums(view_scores);
   } else if (config.greedy_reference) {
     const auto reference_start = std::chrono::steady_clock::now();
@@ -136,11 +172,6 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   // NOTE: a score is summed over the candidate's views (Latombe: each view's gain times the
   // candidate's travel factor), in the order of its views.
   switch (config.method) {
-    case PlannerMethod::kProbabilistic:
-    case PlannerMethod::kGreedy:
-      plan.scores = views.sums(view_scores);
-      plan.best = choose_best(plan.scores);
-      break;
     case PlannerMethod::kRandom:
       plan.scores = views.sums(view_scores);
       plan.best = views.candidate_of(choose_random(views.frusta.size(), seed));
@@ -157,6 +188,10 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
     case PlannerMethod::kYamauchi:
       plan.scores.clear();
       for (const Candidate& c : candidates) plan.scores.push_back(-c.travel);
+      plan.best = choose_best(plan.scores);
+      break;
+    default:  // probabilistic, greedy and the metrics: the highest score
+      plan.scores = views.sums(view_scores);
       plan.best = choose_best(plan.scores);
       break;
   }

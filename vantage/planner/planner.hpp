@@ -22,11 +22,22 @@ enum class PlannerMethod {
   kRandom,         ///< a uniformly random candidate, seeded
   kLatombe,        ///< González-Baños & Latombe: greedy gain * exp(-lambda * travel)
   kYamauchi,       ///< the candidate nearest by travel distance
+  // The highest value of one of the field's volumetric metrics (vantage/gain/metrics.hpp).
+  kOcclusionAware,
+  kUnobservedVoxel,
+  kRearSideVoxel,
+  kRearSideEntropy,
+  kProximityCount,
+  kAverageEntropy,
+  kAreaFactor,
 };
 
 std::string_view to_string(PlannerMethod method);
-/// Parses probabilistic, greedy, random, latombe or yamauchi; throws std::invalid_argument.
+/// Parses probabilistic, greedy, random, latombe, yamauchi or a metric's name (as GainMethod's);
+/// throws std::invalid_argument.
 PlannerMethod parse_planner_method(std::string_view name);
+/// The gain method a planner method scores by: probabilistic, a metric, or greedy for the rest.
+GainMethod gain_method_of(PlannerMethod method);
 
 /// What the probabilistic method maximises over the candidates.
 enum class GainObjective {
@@ -43,8 +54,7 @@ struct PlannerConfig {
   PlannerMethod method = PlannerMethod::kProbabilistic;
   /// What the probabilistic method ranks by; the other methods count cells whatever it says.
   GainObjective objective = GainObjective::kBits;
-  /// Gain evaluation settings; `gain.method` is set from `method` (probabilistic for
-  /// kProbabilistic, greedy for the others).
+  /// Gain evaluation settings; `gain.method` is set from `method` (gain_method_of).
   GainConfig gain;
   double lambda = 0.5;  ///< kLatombe's travel penalty [1/m]
   /// Also predict every candidate's greedy gain when the method uses another, so predictions can

@@ -7,7 +7,10 @@
 namespace vantage::cli {
 
 void PlanningOptions::add_to(CLI::App& cmd) {
-  cmd.add_option("--method,-m", method, "probabilistic, greedy, random, latombe or yamauchi")
+  cmd.add_option("--method,-m", method,
+                 "probabilistic, greedy, random, latombe, yamauchi, or one of the field's metrics: "
+                 "occlusion-aware, unobserved-voxel, rear-side-voxel, rear-side-entropy, "
+                 "proximity-count, average-entropy, area-factor (docs/model.md)")
       ->capture_default_str();
   cmd.add_option("--alpha,-a", alpha,
                  "observability parameter a of the probabilistic method, in (0, 1], or 'auto': "

@@ -20,6 +20,7 @@
 #include "commands/options.hpp"
 #include "shell.hpp"
 #include "vantage/experiment/recorded.hpp"
+#include "vantage/gain/metrics.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/map_files.hpp"
 #include "vantage/io/octomap_io.hpp"
@@ -63,6 +64,8 @@ struct PlanUnits {
 };
 
 PlanUnits units_of(PlannerMethod method) {
+  // docs/model.md "The field's metrics": each in its own unit.
+  if (is_volumetric_metric(gain_method_of(method))) return {"metric", "metric"};
   switch (method) {
     case PlannerMethod::kProbabilistic:
       return {"bits", "bits"};

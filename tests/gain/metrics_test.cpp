@@ -1,0 +1,222 @@
+// The field's volumetric metrics (vantage/gain/metrics.hpp, docs/model.md "The field's
+// metrics") on grids where each value is worked out by hand.
+
+#include "vantage/gain/metrics.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "row_grid.hpp"
+#include "vantage/gain/ray_model.hpp"
+
+namespace vantage {
+namespace {
+
+// The row of tests/gain/row_grid.hpp, the sensor in cell 0. Every ray runs along the row from
+// cell 0 until it leaves the row's 0.1 m cross-section, the rays near the axis to the end, so the
+// set of cells the view's rays reach is the row up to and including the first occupied cell,
+// each with the visibility of the row before it.
+using test::looking_along_x;
+using test::row_grid;
+
+// The seven metrics.
+constexpr GainMethod kMetrics[] = {GainMethod::kOcclusionAware, GainMethod::kUnobservedVoxel,
+                                   GainMethod::kRearSideVoxel,  GainMethod::kRearSideEntropy,
+                                   GainMethod::kProximityCount, GainMethod::kAverageEntropy,
+                                   GainMethod::kAreaFactor};
+
+ViewGain metric_on_row(GainMethod method, GainEvaluation evaluation = GainEvaluation::kExact) {
+  GainConfig config;
+  config.method = method;
+  config.evaluation = evaluation;
+  const Frustum view = looking_along_x({0.05, 0.0, 0.0});
+  return evaluate_views(row_grid(), std::span<const Frustum>(&view, 1), config).front();
+}
+
+// The row's stored probabilities (log-odds round to float) and entropies.
+struct Row {
+  double free, occupied;  // p of cells 0-4 and of cell 8
+  double h_free, h_occupied;
+  Row() {
+    const OccupancyGrid grid = row_grid();
+    free = grid.probability(0);
+    occupied = grid.probability(8);
+    h_free = entropy_bits(free);
+    h_occupied = entropy_bits(occupied);
+  }
+  // P_v of cell 5: the five free cells before it, eq. M1.
+  double v5() const { return std::pow(1.0 - free, 5); }
+};
+
+TEST(Metrics, OcclusionAwareWeighsEveryReachedCellsEntropyByItsVisibility) {
+  const Row r;
+  // Cells 0-4: h_free * (1 - p)^j; cells 5, 6, 7: 1 bit at v5, v5 / 2, v5 / 4; cell 8, where the
+  // rays end: h_occupied at v5 / 8. Cells 9-19 lie behind it.
+  double expected = 0.0;
+  for (int j = 0; j < 5; ++j) expected += r.h_free * std::pow(1.0 - r.free, j);
+  expected += r.v5() * (1.0 + 0.5 + 0.25) + r.v5() * 0.125 * r.h_occupied;
+  EXPECT_NEAR(metric_on_row(GainMethod::kOcclusionAware).gain, expected, 1e-12);
+}
+
+TEST(Metrics, UnobservedVoxelCountsTheUnobservedCellsBeforeTheFirstOccupied) {
+  const ViewGain g = metric_on_row(GainMethod::kUnobservedVoxel);
+  EXPECT_DOUBLE_EQ(g.gain, 3.0);  // cells 5, 6, 7; cell 8 hides 9-11
+  EXPECT_DOUBLE_EQ(g.cells, 3.0);
+  EXPECT_EQ(g.targets, 3u);
+}
+
+TEST(Metrics, RearSideVoxelCountsOccupiedCellsReachedFromUnobservedOnes) {
+  EXPECT_DOUBLE_EQ(metric_on_row(GainMethod::kRearSideVoxel).gain, 1.0);  // cell 8, after 7
+  // With cell 7 free, cell 8 is a front side: no rear side at all.
+  OccupancyGrid grid = row_grid();
+  grid.set_probability(7, grid.params().p_min);
+  GainConfig config;
+  config.method = GainMethod::kRearSideVoxel;
+  config.evaluation = GainEvaluation::kExact;
+  const Frustum view = looking_along_x({0.05, 0.0, 0.0});
+  EXPECT_DOUBLE_EQ(evaluate_views(grid, std::span<const Frustum>(&view, 1), config)[0].gain, 0.0);
+}
+
+TEST(Metrics, RearSideEntropySumsVisibleEntropyOnRaysThatEndOnARearSide) {
+  const Row r;
+  // The rays that reach cell 8 end on a rear side; their unobserved cells 5-7 count at their
+  // visibility. Rays that leave the row earlier end on no rear side and credit nothing.
+  EXPECT_NEAR(metric_on_row(GainMethod::kRearSideEntropy).gain, r.v5() * 1.75, 1e-12);
+}
+
+TEST(Metrics, ProximityCountWeighsUnobservedCellsByHowNearAnOccupiedOneTheyLie) {
+  // Cells 7, 6, 5 lie 1, 2, 3 cells from cell 8: (4 - 1) + (4 - 2) + (4 - 3) with D = 4.
+  ASSERT_EQ(kProximityCells, 4.0);
+  EXPECT_DOUBLE_EQ(metric_on_row(GainMethod::kProximityCount).gain, 6.0);
+}
+
+TEST(Metrics, AverageEntropyIsTheMeanEntropyOfTheCellsReached) {
+  const Row r;
+  const double expected = (5.0 * r.h_free + 3.0 + r.h_occupied) / 9.0;  // cells 0-8
+  EXPECT_NEAR(metric_on_row(GainMethod::kAverageEntropy).gain, expected, 1e-12);
+}
+
+TEST(Metrics, AreaFactorIsACubicThatPeaksAtItsDesiredFraction) {
+  for (const double alpha : {kAreaOccupied, kAreaOccplane}) {
+    EXPECT_NEAR(area_factor(0.0, alpha), 0.0, 1e-12);
+    EXPECT_NEAR(area_factor(alpha, alpha), 1.0, 1e-12);
+    EXPECT_NEAR(area_factor(1.0, alpha), 0.0, 1e-12);
+    EXPECT_NEAR(area_factor(alpha / 2.0, alpha), 0.5, 1e-12);  // the rising half is a smoothstep
+    EXPECT_NEAR(area_factor((1.0 + alpha) / 2.0, alpha), 0.5, 1e-12);
+  }
+  // By hand: f(0.5; 0.2) = (-0.25 + 0.9 - 0.6 - 0.4) / (-0.512) = 0.68359375, and f(0.5; 0.8) =
+  // -2 / 0.512 * 0.125 + 3 / 0.64 * 0.25, the same.
+  EXPECT_NEAR(area_factor(0.5, 0.2), 0.68359375, 1e-12);
+  EXPECT_NEAR(area_factor(0.5, 0.8), 0.68359375, 1e-12);
+}
+
+TEST(Metrics, AreaFactorOfAViewHalfOnAFrontSurfaceAndHalfOnOccplane) {
+  // A 10 x 40 x 40 block of 0.1 m cells, the sensor 1 m before its x = 0 face looking along +x
+  // with a 10 degree field of view: every ray enters through the face. Layer x = 0 is free.
+  // Where y < 0 the rest is occupied: those rays meet a front surface. Where y >= 0, layers 1-2
+  // are unobserved and the rest occupied: those rays register their first unobserved cell,
+  // within D of an occupied one (occplane). So half the rays (to one column) are each:
+  // f(0.5; 0.2) + f(0.5; 0.8) = 1.3671875.
+  GridSpec spec;
+  spec.origin = {0.0, -2.0, -2.0};
+  spec.resolution = 0.1;
+  spec.dims = {10, 40, 40};
+  OccupancyGrid grid(spec);
+  for (int z = 0; z < 40; ++z) {
+    for (int y = 0; y < 40; ++y) {
+      for (int x = 0; x < 10; ++x) {
+        const std::size_t i = spec.linear(Index3(x, y, z));
+        if (x == 0) {
+          grid.set_probability(i, grid.params().p_min);
+        } else if (y < 20 || x > 2) {
+          grid.set_probability(i, grid.params().p_max);
+        }
+      }
+    }
+  }
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.translation() = Eigen::Vector3d(-1.0, 0.0, 0.0);
+  const Frustum view(pose, SensorFov{deg2rad(10), deg2rad(10), 0.0, 10.0});
+  GainConfig config;
+  config.method = GainMethod::kAreaFactor;
+  config.evaluation = GainEvaluation::kExact;
+  config.ray_spacing = 0.05;  // many rays: the odd middle column weighs little
+  const double g = evaluate_views(grid, std::span<const Frustum>(&view, 1), config)[0].gain;
+  EXPECT_NEAR(g, 1.3671875, 0.02);
+  // All of it a front surface: x_o = 1, x_p = 0, and both factors vanish.
+  for (std::size_t i = 0; i < grid.spec().num_cells(); ++i) {
+    if (grid.state(i) == CellState::kUnobserved) grid.set_probability(i, grid.params().p_max);
+  }
+  EXPECT_NEAR(evaluate_views(grid, std::span<const Frustum>(&view, 1), config)[0].gain, 0.0, 1e-12);
+}
+
+TEST(Metrics, FastCastsFewerRaysButReachesTheRowAlike) {
+  // The fast evaluation keeps every third ray along each axis, the middle ones among them.
+  for (const GainMethod m :
+       {GainMethod::kUnobservedVoxel, GainMethod::kProximityCount, GainMethod::kRearSideVoxel}) {
+    EXPECT_DOUBLE_EQ(metric_on_row(m, GainEvaluation::kFast).gain, metric_on_row(m).gain)
+        << to_string(m);
+  }
+}
+
+TEST(Metrics, OccupiedDistanceIsTheEuclideanDistanceWithinTheRadius) {
+  GridSpec spec;
+  spec.origin = Eigen::Vector3d::Zero();
+  spec.resolution = 0.1;
+  spec.dims = {9, 9, 9};
+  OccupancyGrid grid(spec);
+  grid.set_probability(spec.linear(Index3(4, 4, 4)), grid.params().p_max);
+  const std::vector<float> d = occupied_distance(GainMap(grid), 3.0);
+  EXPECT_EQ(d[spec.linear(Index3(4, 4, 4))], 0.0f);
+  EXPECT_FLOAT_EQ(d[spec.linear(Index3(5, 5, 4))], std::sqrt(2.0f));
+  EXPECT_FLOAT_EQ(d[spec.linear(Index3(4, 4, 7))], 3.0f);
+  EXPECT_TRUE(std::isinf(d[spec.linear(Index3(6, 6, 6))]));  // sqrt(12) > 3
+}
+
+TEST(Metrics, SameValuesForAnyThreadCount) {
+  GridSpec spec;
+  spec.origin = {0.0, -0.8, -0.8};
+  spec.resolution = 0.05;
+  spec.dims = {32, 32, 32};
+  OccupancyGrid grid(spec);
+  std::mt19937 rng(7);
+  std::uniform_int_distribution<int> kind(0, 9);
+  for (std::size_t i = 0; i < spec.num_cells(); ++i) {
+    const int k = kind(rng);
+    if (k < 5) grid.set_probability(i, grid.params().p_min);
+    if (k == 9) grid.set_probability(i, grid.params().p_max);
+  }
+  std::vector<Frustum> views;
+  for (int i = 0; i < 6; ++i) {
+    Eigen::Isometry3d pose(Eigen::AngleAxisd(0.1 * (i - 3), Eigen::Vector3d::UnitZ()));
+    pose.translation() = Eigen::Vector3d(-0.5, 0.1 * (i - 3), 0.0);
+    views.emplace_back(pose, SensorFov{deg2rad(50), deg2rad(40), 0.1, 3.0});
+  }
+  for (const GainMethod m : kMetrics) {
+    GainConfig config;
+    config.method = m;
+    config.num_threads = 1;
+    const std::vector<ViewGain> one = evaluate_views(grid, views, config);
+    config.num_threads = 2;
+    const std::vector<ViewGain> two = evaluate_views(grid, views, config);
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      EXPECT_EQ(one[v].gain, two[v].gain) << to_string(m) << " view " << v;
+      EXPECT_EQ(one[v].cells, two[v].cells) << to_string(m) << " view " << v;
+    }
+    EXPECT_GT(one[3].cells, 0.0) << to_string(m);
+  }
+}
+
+TEST(Metrics, NamesParseBack) {
+  for (const GainMethod m : kMetrics) {
+    EXPECT_TRUE(is_volumetric_metric(m));
+    EXPECT_EQ(parse_gain_method(to_string(m)), m);
+  }
+  EXPECT_FALSE(is_volumetric_metric(GainMethod::kProbabilistic));
+  EXPECT_THROW(parse_gain_method("rear-side"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace vantage

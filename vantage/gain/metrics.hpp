@@ -1,0 +1,62 @@
+#pragma once
+/// @file
+/// The field's volumetric information-gain metrics (Delmerico, Isler, Sabzevari & Scaramuzza,
+/// "A comparison of volumetric information gain metrics for active 3D object reconstruction",
+/// Autonomous Robots 42, 2018; docs/model.md "The field's metrics"): occlusion aware, unobserved
+/// voxel, rear side voxel, rear side entropy, proximity count, Kriegel's average entropy and
+/// Vasquez-Gomez's area factor, each a GainMethod behind `evaluate_views`.
+///
+/// Every metric is a sum (or, for two, a ratio) over the cells its view's rays cross: rays cast
+/// from the sensor through a pinhole image of the view's field of view, each walked by the
+/// project's one grid walk (map/traversal.hpp) until it leaves the grid, passes the maximum range
+/// or has crossed its first occupied cell (which it includes, as the paper's ray casts do). A cell
+/// crossed by several rays of one view counts once (a per-view stamp): the paper's sum runs over
+/// the set of cells the view's rays traverse.
+
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "vantage/gain/snapshot.hpp"
+#include "vantage/gain/view_gain.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage {
+
+/// Whether `method` is one of the seven metrics of this file.
+bool is_volumetric_metric(GainMethod method);
+
+/// D, the distance [cells] within which an unobserved cell counts as near an occupied one:
+/// the proximity count's cut-off and the area factor's "occplane" test.
+inline constexpr double kProximityCells = 4.0;
+/// The area factor's desired fractions of rays on occupied cells and on occplane cells
+/// (Vasquez-Gomez et al. 2014; rpg's defaults).
+inline constexpr double kAreaOccupied = 0.2;
+inline constexpr double kAreaOccplane = 0.8;
+/// The fast evaluation casts every kFastSubsample-th ray of the exact one along each image axis,
+/// as rpg subsamples the camera image.
+inline constexpr int kFastSubsample = 3;
+
+/// The metric `config.method` names for every view. kExact casts rays at most
+/// `config.ray_spacing` cells apart at the farthest cell in view (1/sqrt(2) by default: every cell
+/// in view is crossed by a ray), kFast and kAuto every kFastSubsample-th of those rays along each
+/// axis. `ViewGain::gain` is the metric's value; `ViewGain::cells` and `targets` the unobserved
+/// cells the rays reach before their first occupied cell, counted once (the unobserved-voxel
+/// count). Deterministic for any thread count. Throws std::invalid_argument for another method.
+std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config);
+
+/// The same on the grid, which is only read.
+std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
+                                        const GainConfig& config);
+
+/// Vasquez-Gomez's area factor f(x; alpha) of a fraction x in [0, 1] (Vasquez-Gomez, Sucar &
+/// Murrieta-Cid, 2014; Delmerico et al. 2018, §3.2): the cubic that rises from f(0) = 0 to its
+/// peak f(alpha) = 1 and falls back to f(1) = 0, flat at all three.
+double area_factor(double x, double alpha);
+
+/// Per cell, the Euclidean distance [cells] between its centre and the nearest occupied cell's,
+/// where it is at most `radius`; +infinity elsewhere (0 in occupied cells).
+std::vector<float> occupied_distance(const GainMap& map, double radius);
+
+}  // namespace vantage
