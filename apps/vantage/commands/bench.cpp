@@ -110,7 +110,8 @@ void run(const BenchOptions& o) {
   for (const std::string& name : config.scenes) {
     cells = std::max<std::uint64_t>(cells, sim::load_scene(name).grid.num_cells());
   }
-  check_memory({cells, kExploreBytesPerCell, kFixedRunBytes, static_cast<std::uint64_t>(o.jobs)},
+  check_memory({cells, grid_bytes_per_cell(o.planning.threads), kFixedRunBytes,
+                static_cast<std::uint64_t>(o.jobs)},
                o.max_memory, "the sweep's grids");
   const std::size_t total = bench_trials(config).size();
   fmt::print("bench: {} trials in all, shard {}, {} job(s), into {}\n", total, o.shard, o.jobs,

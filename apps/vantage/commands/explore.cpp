@@ -95,8 +95,8 @@ void run(const ExploreOptions& o) {
   const std::string grid_name =
       fmt::format("the grid of scene {} ({} x {} x {} cells)", scene.name, scene.grid.dims.x(),
                   scene.grid.dims.y(), scene.grid.dims.z());
-  check_memory({scene.grid.num_cells(), kExploreBytesPerCell, kFixedRunBytes}, o.max_memory,
-               grid_name);
+  check_memory({scene.grid.num_cells(), grid_bytes_per_cell(o.planning.threads), kFixedRunBytes},
+               o.max_memory, grid_name);
   require_octomap_range(scene.grid, grid_name);
   if (!o.quiet) {
     fmt::print("exploring {} with {} ({} evaluation{}), {} scans from start {}, seed {}\n",

@@ -2,6 +2,9 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <thread>
+
 #include "shell.hpp"
 #include "vantage/experiment/exploration.hpp"
 
@@ -71,6 +74,12 @@ MapperConfig MappingOptions::mapper_config(const sim::Scene& scene) const {
   config.register_scans = icp;
   config.segment_table = config.segment_table && segmentation;
   return config;
+}
+
+double grid_bytes_per_cell(int threads) {
+  const int n =
+      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return kGridBytesPerCell + kThreadBytesPerCell * n;
 }
 
 void add_memory_option(CLI::App& cmd, std::uint64_t& bytes) {

@@ -48,12 +48,17 @@ inline constexpr int kMaxIndex = 1000000;
 /// --threads/-j: 0 (all cores) .. kMaxThreads.
 void add_threads_option(CLI::App& cmd, int& threads, const std::string& description);
 
-/// Bytes a grid cell costs each run kind at its peak, measured (docs/robustness.md, "Memory"):
-/// the grid's log-odds and the snapshots, stamps and tables of gain evaluation, integration and
-/// hole filling over it.
-inline constexpr double kPlanBytesPerCell = 48.0;
-inline constexpr double kExploreBytesPerCell = 48.0;
+/// Bytes a grid cell costs plan and explore at their peak, measured (docs/robustness.md,
+/// "Memory"): the grid's log-odds, the snapshot, stamps and tables of gain evaluation,
+/// integration and hole filling (kGridBytesPerCell), and each thread's own stamps
+/// (kThreadBytesPerCell), rounded up.
+inline constexpr double kGridBytesPerCell = 16.0;
+inline constexpr double kThreadBytesPerCell = 5.0;
+/// The ground truth's: a byte of occupancy a cell and the surface lists, with room to spare.
 inline constexpr double kGroundTruthBytesPerCell = 8.0;
+
+/// Bytes a cell costs a run of `threads` threads (0 = all cores).
+double grid_bytes_per_cell(int threads);
 /// What a run holds besides its grid: code, scene meshes, the sensor's images [bytes].
 inline constexpr double kFixedRunBytes = 200.0 * 1024 * 1024;
 

@@ -212,7 +212,8 @@ void run(const PlanOptions& o) {
 
   // Refused before any work: a grid too large for memory, or one whose map cannot be written.
   auto check_grid = [&](const GridSpec& spec, const std::string& source) {
-    check_memory({spec.num_cells(), kPlanBytesPerCell, kFixedRunBytes}, o.max_memory,
+    check_memory({spec.num_cells(), grid_bytes_per_cell(o.planning.threads), kFixedRunBytes},
+                 o.max_memory,
                  fmt::format("the grid of {} ({} x {} x {} cells)", source, spec.dims.x(),
                              spec.dims.y(), spec.dims.z()));
     require_octomap_range(spec, source);
