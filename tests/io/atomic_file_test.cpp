@@ -64,5 +64,26 @@ TEST(WriteFolderAtomically, NeverReplacesAFolderWithFiles) {
   EXPECT_EQ(std::distance(fs::directory_iterator(tmp.path()), fs::directory_iterator()), 1);
 }
 
+// Issue 15: messages name the folder being written, never its `*.partial-PID` sibling, and a
+// filesystem error is said as "<path>: <reason>", not as the C++ library's text.
+TEST(WriteFolderAtomically, FailureNamesTheFolderNotItsTemporary) {
+  const test::TempDir tmp;
+  const fs::path dir = tmp / "run";
+  try {
+    write_folder_atomically(dir, [](const fs::path& partial) {
+      // A file where a folder should be: writing below it fails with a filesystem error.
+      write_atomically(partial / "map", "x");
+      fs::create_directories(partial / "map" / "sub");
+    });
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find("partial"), std::string::npos) << message;
+    EXPECT_EQ(message.find("filesystem error"), std::string::npos) << message;
+    EXPECT_NE(message.find((dir / "map" / "sub").string()), std::string::npos) << message;
+  }
+  EXPECT_TRUE(fs::is_empty(tmp.path()));
+}
+
 }  // namespace
 }  // namespace vantage

@@ -1,6 +1,7 @@
 #include "vantage/io/cloud_io.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <bit>
 #include <cmath>
@@ -289,7 +290,16 @@ TEST_F(CloudIo, EmptyCloudsAreErrors) {
 TEST_F(CloudIo, MissingFilesAndOtherFormats) {
   EXPECT_NE(read_error(dir_ / "missing.pcd").find("missing.pcd: no such file"), std::string::npos);
   fs::create_directories(dir_ / "folder.pcd");
-  EXPECT_NE(read_error(dir_ / "folder.pcd").find("folder.pcd: not a regular file"),
+  EXPECT_NE(read_error(dir_ / "folder.pcd").find("folder.pcd: is a directory, not a file"),
+            std::string::npos);
+  // Issue 15: a FIFO, a symlink loop and a device are said as what they are, not "no such file".
+  ASSERT_EQ(mkfifo((dir_ / "fifo.pcd").c_str(), 0600), 0);
+  EXPECT_NE(read_error(dir_ / "fifo.pcd").find("fifo.pcd: is a FIFO, not a regular file"),
+            std::string::npos);
+  fs::create_symlink("loop.pcd", dir_ / "loop.pcd");
+  EXPECT_NE(read_error(dir_ / "loop.pcd").find("loop.pcd: is a symlink loop"), std::string::npos);
+  fs::create_symlink("/dev/zero", dir_ / "zero.pcd");
+  EXPECT_NE(read_error(dir_ / "zero.pcd").find("zero.pcd: is a character device"),
             std::string::npos);
   const std::string message =
       error_of<std::invalid_argument>([&] { read_point_cloud(dir_ / "cloud.xyz"); });

@@ -21,7 +21,8 @@ void write_atomically(const std::filesystem::path& path, std::string_view conten
 /// Writes the folder `dir` by calling `fill` on a temporary sibling folder, then renaming it into
 /// place, so the folder appears whole or not at all. `dir` must not exist or be an empty folder
 /// (it is replaced). On any error the temporary folder is removed, `dir` is left as it was, and
-/// the exception propagates.
+/// the exception propagates as std::invalid_argument or std::runtime_error whose message names
+/// `dir`, not the temporary folder.
 void write_folder_atomically(const std::filesystem::path& dir,
                              const std::function<void(const std::filesystem::path&)>& fill);
 

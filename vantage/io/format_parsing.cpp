@@ -13,11 +13,37 @@
 namespace vantage {
 namespace fs = std::filesystem;
 
-std::string read_file_bytes(const fs::path& path, std::size_t max_bytes) {
+std::string not_a_readable_file(const fs::path& path) {
   std::error_code error;
-  if (!fs::is_regular_file(path, error)) {
-    throw FormatError(fs::exists(path, error) ? "not a regular file" : "no such file");
+  const fs::file_status status = fs::status(path, error);
+  if (error) {
+    if (error == std::errc::no_such_file_or_directory) return "no such file";
+    if (error == std::errc::too_many_symbolic_link_levels) return "is a symlink loop";
+    if (error == std::errc::not_a_directory) return "no such file (a part of the path is a file)";
+    return error.message();  // permission denied, name too long...
   }
+  switch (status.type()) {
+    case fs::file_type::regular:
+      return {};
+    case fs::file_type::not_found:
+      return "no such file";
+    case fs::file_type::directory:
+      return "is a directory, not a file";
+    case fs::file_type::fifo:
+      return "is a FIFO, not a regular file";
+    case fs::file_type::character:
+      return "is a character device, not a regular file";
+    case fs::file_type::block:
+      return "is a block device, not a regular file";
+    case fs::file_type::socket:
+      return "is a socket, not a regular file";
+    default:
+      return "is not a regular file";
+  }
+}
+
+std::string read_file_bytes(const fs::path& path, std::size_t max_bytes) {
+  if (const std::string why = not_a_readable_file(path); !why.empty()) throw FormatError(why);
   std::ifstream in(path, std::ios::binary);
   if (!in) throw FormatError("cannot open for reading");
   std::string bytes;
@@ -77,13 +103,16 @@ std::optional<std::uint64_t> parse_count(std::string_view token) {
 
 double number_at(std::string_view token, int line) {
   const auto value = parse_number(token);
-  if (!value) throw FormatError(cat("line ", line, ": '", token, "' is not a number"));
+  if (!value)
+    throw FormatError(cat("line ", line, ": '", printable(token, 40), "' is not a number"));
   return *value;
 }
 
 std::uint64_t count_at(std::string_view token, int line, std::string_view what) {
   const auto value = parse_count(token);
-  if (!value) throw FormatError(cat("line ", line, ": ", what, " '", token, "' is not a count"));
+  if (!value)
+    throw FormatError(
+        cat("line ", line, ": ", what, " '", printable(token, 40), "' is not a count"));
   return *value;
 }
 

@@ -20,8 +20,13 @@ struct FormatError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// The bytes of a regular file, or its first `max_bytes` (a header). Throws FormatError ("no such
-/// file", "not a regular file", "cannot open for reading", "read failed").
+/// Why `path` cannot be read as a regular file, said as what it is: "no such file", "is a
+/// directory, not a file", "is a FIFO, not a regular file", "is a character device, not a regular
+/// file", "is a symlink loop", "permission denied"...; empty when it is a regular file.
+std::string not_a_readable_file(const std::filesystem::path& path);
+
+/// The bytes of a regular file, or its first `max_bytes` (a header). Throws FormatError (what
+/// not_a_readable_file says, "cannot open for reading", "read failed").
 std::string read_file_bytes(const std::filesystem::path& path,
                             std::size_t max_bytes = std::string::npos);
 

@@ -15,6 +15,7 @@
 
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/cloud_io.hpp"
+#include "vantage/io/format_parsing.hpp"
 #include "vantage/io/trajectory.hpp"
 #include "vantage/io/yaml_reader.hpp"
 #include "vantage/util/text.hpp"
@@ -162,8 +163,9 @@ Manifest read_manifest(const fs::path& path) {
   Manifest manifest;
   std::error_code error;
   manifest.file = fs::is_directory(path, error) ? path / "manifest.yaml" : path;
-  if (!fs::is_regular_file(manifest.file, error)) {
-    throw std::runtime_error(cat(manifest.file.string(), ": no such manifest"));
+  if (const std::string why = not_a_readable_file(manifest.file); !why.empty()) {
+    throw std::runtime_error(
+        cat(manifest.file.string(), ": ", why == "no such file" ? "no such manifest" : why));
   }
   const fs::path folder = manifest.file.parent_path();
   const YamlField root = read_yaml_file(manifest.file);
@@ -264,8 +266,8 @@ Manifest read_manifest(const fs::path& path) {
       if (!is_cloud_file(cloud.file)) {
         file.fail(cat("'", cloud.file.string(), "' is not a .pcd or .ply file"));
       }
-      if (!fs::is_regular_file(cloud.file, error)) {
-        file.fail(cat("no such file: ", cloud.file.string()));
+      if (const std::string why = not_a_readable_file(cloud.file); !why.empty()) {
+        file.fail(cat(cloud.file.string(), ": ", why));
       }
       if (const auto stamp = entry.get("stamp")) cloud.stamp = stamp->number();
       manifest.clouds.push_back(cloud);
@@ -314,8 +316,8 @@ Manifest read_manifest(const fs::path& path) {
     if (const auto dt = trajectory->get("max_time_difference")) {
       manifest.max_time_difference = dt->positive();
     }
-    if (!fs::is_regular_file(*manifest.trajectory, error)) {
-      file.fail(cat("no such file: ", manifest.trajectory->string()));
+    if (const std::string why = not_a_readable_file(*manifest.trajectory); !why.empty()) {
+      file.fail(cat(manifest.trajectory->string(), ": ", why));
     }
     const std::vector<StampedPose> poses = read_tum_trajectory(*manifest.trajectory);
     const std::string traj = manifest.trajectory->filename().string();

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/format_parsing.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -33,6 +34,9 @@ constexpr std::int64_t kKeyCenter = 32768;     // key of the voxel whose min cor
 constexpr std::int64_t kKeyCount = 65536;      // keys per axis
 constexpr double kAlignmentTolerance = 1e-6;   // [cells]
 constexpr double kResolutionTolerance = 1e-5;  // relative; OctoMap prints 6 digits
+// A map's resolution [m]: finer than a micrometre or coarser than 10 m is a corrupt header.
+constexpr double kMinResolution = 1e-6;
+constexpr double kMaxResolution = 10.0;
 
 using Voxel = std::array<std::int64_t, 3>;
 
@@ -49,6 +53,7 @@ Voxel voxel_offset(const GridSpec& spec) {
 }
 
 void require_key_range(const GridSpec& spec, const Voxel& n, const std::string& where) {
+  static_assert(kKeyCount == 2 * kKeyCenter);
   for (int a = 0; a < 3; ++a) {
     const std::int64_t lo = n[static_cast<std::size_t>(a)] + kKeyCenter;
     const std::int64_t hi = lo + spec.dims[a] - 1;
@@ -115,13 +120,17 @@ TreeHeader parse_header(const std::string& bytes, const fs::path& path) {
       const auto [ptr, ec] =
           std::from_chars(value.data(), value.data() + value.size(), header.size);
       if (ec != std::errc() || ptr != value.data() + value.size() || value.empty()) {
-        fail(path, cat("header: 'size' is not a node count: '", value, "'"));
+        fail(path, cat("header: 'size' is not a node count: '", printable(value, 40), "'"));
       }
       have_size = true;
     } else if (keyword == "res") {
       if (!(line >> header.resolution) || !std::isfinite(header.resolution) ||
           header.resolution <= 0.0) {
         fail(path, "header: 'res' is not a positive resolution");
+      }
+      if (header.resolution < kMinResolution || header.resolution > kMaxResolution) {
+        fail(path, cat("header: 'res' ", header.resolution, " m is not a map's resolution (",
+                       kMinResolution, " .. ", kMaxResolution, " m)"));
       }
       have_res = true;
     }
@@ -131,6 +140,13 @@ TreeHeader parse_header(const std::string& bytes, const fs::path& path) {
   if (!have_id) fail(path, "header: no tree 'id'");
   if (!have_res) fail(path, "header: no 'res'");
   if (!have_size) fail(path, "header: no 'size'");
+  // NOTE: a .bt holds occupancy bits whatever the tree's type; OctoMap writes its own type's name
+  // (OcTree, or ColorOcTree for a coloured tree's bits), and any other name is not its writer's.
+  if (header.format == OctomapFormat::kBinary && header.id != "OcTree" &&
+      header.id != "ColorOcTree") {
+    fail(path,
+         cat("tree type '", printable(header.id, 40), "' is not supported (OcTree, ColorOcTree)"));
+  }
   header.data_offset = pos;
   return header;
 }
@@ -256,8 +272,7 @@ std::vector<Leaf> decode(const std::string& bytes, const TreeHeader& header) {
 }
 
 std::string read_bytes(const fs::path& path) {
-  std::error_code error;
-  if (!fs::is_regular_file(path, error)) fail(path, "no such file");
+  if (const std::string why = not_a_readable_file(path); !why.empty()) fail(path, why);
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, "cannot open for reading");
   std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -308,6 +323,10 @@ OctomapFormat octomap_format_of(const fs::path& path) {
   if (ext == ".ot") return OctomapFormat::kFull;
   throw std::invalid_argument(
       cat(path.string(), ": an OctoMap file must end in .bt or .ot, not '", ext, "'"));
+}
+
+void require_octomap_range(const GridSpec& spec, const std::string& what) {
+  require_key_range(spec, voxel_offset(spec), what);
 }
 
 bool octomap_aligned(const GridSpec& spec) {
@@ -427,7 +446,8 @@ OctomapImport read_octomap(const fs::path& path, const OctomapImportConfig& conf
     } else if (header.id == "ColorOcTree") {
       payload = sizeof(float) + 3;
     } else {
-      fail(path, cat("tree type '", header.id, "' is not supported (OcTree, ColorOcTree)"));
+      fail(path, cat("tree type '", printable(header.id, 40),
+                     "' is not supported (OcTree, ColorOcTree)"));
     }
   }
 

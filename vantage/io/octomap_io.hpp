@@ -57,6 +57,11 @@ OctomapFormat octomap_format_of(const std::filesystem::path& path);
 /// resolution on every axis (within 1e-6 of a cell).
 bool octomap_aligned(const GridSpec& spec);
 
+/// Throws std::invalid_argument, naming `what` (the grid's source), when the grid's cells lie
+/// outside OctoMap's key range (±32768 voxels around the origin), so its map could not be
+/// written; a run that ends in map files checks it before its work.
+void require_octomap_range(const GridSpec& spec, const std::string& what);
+
 /// What an export wrote.
 struct OctomapExport {
   OctomapFormat format = OctomapFormat::kBinary;

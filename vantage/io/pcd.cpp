@@ -131,8 +131,8 @@ PcdHeader parse_header(Lines& lines) {
       for (const std::string_view v : values) {
         const auto value = parse_count(v);
         if (!value || *value < 1 || *value > std::numeric_limits<int>::max()) {
-          throw FormatError(
-              cat("line ", n, ": ", key, " value '", v, "' is not a positive integer"));
+          throw FormatError(cat("line ", n, ": ", key, " value '", printable(v, 40),
+                                "' is not a positive integer"));
         }
         out.push_back(static_cast<int>(*value));
       }
@@ -152,7 +152,7 @@ PcdHeader parse_header(Lines& lines) {
       h.kinds.clear();
       for (const std::string_view v : values) {
         if (v != "F" && v != "I" && v != "U") {
-          throw FormatError(cat("line ", n, ": TYPE '", v, "' is not F, I or U"));
+          throw FormatError(cat("line ", n, ": TYPE '", printable(v, 40), "' is not F, I or U"));
         }
         h.kinds.push_back(v.front());
       }
@@ -165,11 +165,11 @@ PcdHeader parse_header(Lines& lines) {
     } else if (key == "DATA") {
       h.data = one();
       if (h.data != "ascii" && h.data != "binary" && h.data != "binary_compressed") {
-        throw FormatError(
-            cat("line ", n, ": DATA '", h.data, "' is not ascii, binary or binary_compressed"));
+        throw FormatError(cat("line ", n, ": DATA '", printable(h.data, 40),
+                              "' is not ascii, binary or binary_compressed"));
       }
     } else {
-      throw FormatError(cat("line ", n, ": unknown PCD header key '", key, "'"));
+      throw FormatError(cat("line ", n, ": unknown PCD header key '", printable(key, 40), "'"));
     }
   }
   return h;

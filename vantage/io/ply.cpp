@@ -47,13 +47,14 @@ PlyProperty parse_property(const std::vector<std::string_view>& t, int n) {
     const auto count_type = type_of(t[2]);
     const auto item_type = type_of(t[3]);
     if (!count_type || !item_type || !count_type->integral()) {
-      throw FormatError(cat("line ", n, ": unsupported list types '", t[2], " ", t[3], "'"));
+      throw FormatError(cat("line ", n, ": unsupported list types '", printable(t[2], 40), " ",
+                            printable(t[3], 40), "'"));
     }
     return {std::string(t[4]), *item_type, true, *count_type};
   }
   if (t.size() == 3) {
     const auto type = type_of(t[1]);
-    if (!type) throw FormatError(cat("line ", n, ": unknown PLY type '", t[1], "'"));
+    if (!type) throw FormatError(cat("line ", n, ": unknown PLY type '", printable(t[1], 40), "'"));
     return {std::string(t[2]), *type, false, {}};
   }
   throw FormatError(cat("line ", n, ": malformed property line"));
@@ -85,7 +86,7 @@ PlyReader::PlyReader(std::string_view bytes) : bytes_(bytes) {
       const auto* it = std::find(std::begin(kFormatNames), std::end(kFormatNames),
                                  t.size() == 3 ? t[1] : std::string_view());
       if (it == std::end(kFormatNames)) {
-        throw FormatError(cat("line ", n, ": unsupported PLY format '", *line, "'"));
+        throw FormatError(cat("line ", n, ": unsupported PLY format '", printable(*line, 60), "'"));
       }
       format_ = static_cast<PlyFormat>(it - std::begin(kFormatNames));
       have_format = true;
@@ -96,7 +97,8 @@ PlyReader::PlyReader(std::string_view bytes) : bytes_(bytes) {
       if (elements_.empty()) throw FormatError(cat("line ", n, ": property before any element"));
       elements_.back().properties.push_back(parse_property(t, n));
     } else {
-      throw FormatError(cat("line ", n, ": unknown PLY header keyword '", t[0], "'"));
+      throw FormatError(
+          cat("line ", n, ": unknown PLY header keyword '", printable(t[0], 40), "'"));
     }
   }
   if (!have_format) throw FormatError("the PLY header has no format line");
@@ -163,7 +165,8 @@ void PlyReader::read_ascii(std::size_t last, const Visitor& visit) const {
         if (t >= tokens.size()) throw FormatError(cat("line ", n, ": too few values"));
         const double v = number_at(tokens[t], n);
         if (type.integral() && v != std::floor(v)) {
-          throw FormatError(cat("line ", n, ": '", tokens[t], "' is not a whole number"));
+          throw FormatError(
+              cat("line ", n, ": '", printable(tokens[t], 40), "' is not a whole number"));
         }
         ++t;
         return v;

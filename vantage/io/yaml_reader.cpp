@@ -194,8 +194,9 @@ void YamlField::allow_keys(std::initializer_list<std::string_view> allowed) cons
     if (std::find(allowed.begin(), allowed.end(), entry.key) == allowed.end()) {
       std::string list;
       for (const std::string_view a : allowed) list += cat(list.empty() ? "" : ", ", a);
-      throw_error(*source_, entry.key_line, child_key(key_, entry.key),
-                  cat("unknown key '", entry.key, "' (expected one of: ", list, ")"));
+      throw_error(
+          *source_, entry.key_line, child_key(key_, entry.key),
+          cat("unknown key '", printable(entry.key, 40), "' (expected one of: ", list, ")"));
     }
   }
 }
@@ -241,7 +242,7 @@ double YamlField::number() const {
   if (l == ".nan") fail("is NaN");
   if (l == ".inf" || l == "+.inf" || l == "-.inf") fail("is infinite");
   const std::optional<double> value = parse_number(text);
-  if (!value) fail(cat("'", text, "' is not a number"));
+  if (!value) fail(cat("'", printable(text, 40), "' is not a number"));
   if (std::isnan(*value)) fail("is NaN");
   if (std::isinf(*value)) fail("is infinite");
   return *value;

@@ -27,6 +27,12 @@ void GridSpec::validate() const {
     throw std::invalid_argument(
         cat("grid.dims must be positive, got ", dims.x(), " x ", dims.y(), " x ", dims.z()));
   }
+  if (!(origin.array().abs() <= kMaxWorldCoordinate).all() ||
+      !(max_corner().array().abs() <= kMaxWorldCoordinate).all()) {
+    throw std::invalid_argument(cat("grid lies beyond ", kMaxWorldCoordinate,
+                                    " m of the origin (from (", origin.x(), ", ", origin.y(), ", ",
+                                    origin.z(), ") m, ", resolution, " m cells)"));
+  }
   const auto cells = static_cast<std::int64_t>(dims.x()) * dims.y() * dims.z();
   if (cells > kMaxGridCells) {
     throw std::invalid_argument(cat("grid.dims ", dims.x(), " x ", dims.y(), " x ", dims.z(), " = ",

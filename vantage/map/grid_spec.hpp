@@ -15,6 +15,10 @@ using Index3 = Eigen::Vector3i;
 /// Largest grid we allocate: 2^30 cells (4 GiB of float log-odds).
 inline constexpr std::int64_t kMaxGridCells = std::int64_t{1} << 30;
 
+/// The largest coordinate, distance or size any input may name [m]: beyond it a float position
+/// is meaningless at the scale of a cell, and Embree's ray checks abort (about 1.8e18 m).
+inline constexpr double kMaxWorldCoordinate = 1e5;
+
 /// Where a grid lies in the world and how it is cut into cells.
 ///
 /// Cell (i, j, k) spans [origin + (i, j, k) * resolution, origin + (i + 1, j + 1, k + 1) *

@@ -180,7 +180,7 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
     } else {
       update.integration = std::move(integration);
     }
-    objects_.insert(objects_.end(), objects.begin(), objects.end());
+    if (config_.keep_object_cloud) objects_.insert(objects_.end(), objects.begin(), objects.end());
     if (config_.register_scans && trusted) {
       registered.insert(registered.end(), objects.begin(), objects.end());
     }

@@ -42,6 +42,10 @@ struct MapperConfig {
   bool register_overlap_only = false;
   bool segment_table = false;  ///< integrate (and register) only the points above the table
   perception::TableConfig table;
+  /// Keep every integrated point (object_cloud()). Off, memory stays bounded by the grid however
+  /// many clouds come (vantage plan over a long recording); the registration's reference is
+  /// thinned to one point per voxel either way.
+  bool keep_object_cloud = true;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -97,7 +101,8 @@ class Mapper {
   const MapperConfig& config() const { return config_; }
   /// The reference of the next registration: the registered objects, one point per voxel.
   const perception::VoxelMap& reference() const { return reference_; }
-  /// The registered points that went into the grid (world frame): the objects.
+  /// The registered points that went into the grid (world frame): the objects; empty when
+  /// MapperConfig::keep_object_cloud is off.
   const PointCloud& object_cloud() const { return objects_; }
   std::size_t scans() const { return scans_; }
 

@@ -80,12 +80,12 @@ Scene load_scene(const std::string& name_or_yaml_path) {
     }
   }
   const std::filesystem::path path(name_or_yaml_path);
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
+  if (const std::string why = not_a_readable_file(path); !why.empty()) {
+    if (why != "no such file") throw std::runtime_error(cat(path.string(), ": ", why));
     std::string known;
     for (const std::string& n : builtin_scene_names()) known += cat(known.empty() ? "" : ", ", n);
-    throw std::runtime_error(cat("scene '", name_or_yaml_path, "' is neither a built-in scene (",
-                                 known, ") nor a file"));
+    throw std::runtime_error(cat("scene '", printable(name_or_yaml_path),
+                                 "' is neither a built-in scene (", known, ") nor a file"));
   }
   return parse_scene(read_file(path), path.string(), path.parent_path());
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -31,8 +32,28 @@ double non_negative_or(const YamlField& map, std::string_view key, double fallba
 }
 
 /// [x, y, z] or [x, y, z, roll, pitch, yaw] with angles in degrees.
+/// Refuses coordinates beyond kMaxWorldCoordinate (docs/robustness.md): a scene that reaches
+/// them would be refused by the simulated world mid-run.
+void require_in_world(const YamlField& f, std::span<const double> v) {
+  for (const double x : v) {
+    if (!(std::abs(x) <= kMaxWorldCoordinate)) {
+      f.fail(cat("coordinate ", x, " m lies beyond ", kMaxWorldCoordinate, " m of the origin"));
+    }
+  }
+}
+
+/// A length: a number in (0, kMaxWorldCoordinate] m.
+double length(const YamlField& f) {
+  const double value = f.positive();
+  if (value > kMaxWorldCoordinate) {
+    f.fail(cat("must be at most ", kMaxWorldCoordinate, " m, got ", value));
+  }
+  return value;
+}
+
 Eigen::Isometry3d parse_pose(const YamlField& f) {
   const std::vector<double> v = f.numbers(3, 6);
+  require_in_world(f, std::span(v).first(std::min<std::size_t>(v.size(), 3)));
   if (v.size() != 3 && v.size() != 6) {
     f.fail("must be [x, y, z] or [x, y, z, roll_deg, pitch_deg, yaw_deg]");
   }
@@ -347,7 +368,7 @@ struct Parser {
 
   void parse_mount(const YamlField& f) {
     f.allow_keys({"height", "target", "pitch_deg"});
-    scene.mount.height = f.at("height").positive();
+    scene.mount.height = length(f.at("height"));
     const auto target = f.get("target");
     const auto pitch = f.get("pitch_deg");
     if (target.has_value() == pitch.has_value())
@@ -355,6 +376,7 @@ struct Parser {
     if (target) {
       scene.mount.aims_at_target = true;
       scene.mount.target = target->vec3();
+      require_in_world(*target, std::span<const double>(scene.mount.target.data(), 3));
     } else {
       const double p = pitch->number();
       if (!(p > -90.0 && p < 90.0)) pitch->fail(cat("must lie in (-90, 90) degrees, got ", p));
@@ -386,7 +408,7 @@ struct Parser {
       RingConfig& ring = scene.ring;
       ring.center = scene.mount.target;
       ring.height = scene.mount.height;
-      ring.radius = f.at("radius").positive();
+      ring.radius = length(f.at("radius"));
       ring.positions = f.at("positions").integer(1, 10000);
       ring.start_angle = deg2rad(number_or(f, "start_angle_deg", 0.0));
       if (auto y = f.get("yaw_offsets_deg")) {
@@ -427,6 +449,7 @@ struct Parser {
         item.fail("must be [x, y]: the mount aims at its target, so there is no yaw");
       }
       if (!scene.mount.aims_at_target && v.size() != 3) item.fail("must be [x, y, yaw_deg]");
+      require_in_world(item, std::span(v).first(2));
       const Eigen::Vector2d xy(v[0], v[1]);
       if (!scene.floor_area.isEmpty() && !scene.floor_area.contains(xy)) {
         item.fail("lies outside the floor");

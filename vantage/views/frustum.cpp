@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "vantage/map/grid_spec.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -18,9 +19,9 @@ void SensorFov::validate() const {
   if (!(min_range >= 0.0 && std::isfinite(min_range))) {
     throw std::invalid_argument(cat("sensor.min_range must be >= 0 m, got ", min_range));
   }
-  if (!(max_range > min_range && std::isfinite(max_range))) {
-    throw std::invalid_argument(cat("sensor.max_range (", max_range,
-                                    " m) must be finite and exceed min_range (", min_range, " m)"));
+  if (!(max_range > min_range && max_range <= kMaxWorldCoordinate)) {
+    throw std::invalid_argument(cat("sensor.max_range (", max_range, " m) must exceed min_range (",
+                                    min_range, " m) and be at most ", kMaxWorldCoordinate, " m"));
   }
 }
 

@@ -3,16 +3,24 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "vantage/map/grid_spec.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
 
 void RingConfig::validate() const {
-  if (!center.allFinite()) throw std::invalid_argument("ring.center must be finite");
-  if (!(radius > 0.0 && std::isfinite(radius))) {
-    throw std::invalid_argument(cat("ring.radius must be positive, got ", radius));
+  if (!(center.array().abs() <= kMaxWorldCoordinate).all()) {
+    throw std::invalid_argument(
+        cat("ring.center must be finite, within ", kMaxWorldCoordinate, " m of the origin"));
   }
-  if (!std::isfinite(height)) throw std::invalid_argument("ring.height must be finite");
+  if (!(radius > 0.0 && radius <= kMaxWorldCoordinate)) {
+    throw std::invalid_argument(
+        cat("ring.radius must lie in (0, ", kMaxWorldCoordinate, "] m, got ", radius));
+  }
+  if (!(std::abs(height) <= kMaxWorldCoordinate)) {
+    throw std::invalid_argument(cat("ring.height must lie in [-", kMaxWorldCoordinate, ", ",
+                                    kMaxWorldCoordinate, "] m, got ", height));
+  }
   if (positions < 1) {
     throw std::invalid_argument(cat("ring.positions must be >= 1, got ", positions));
   }

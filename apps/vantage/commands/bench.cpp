@@ -14,6 +14,8 @@
 #include "commands/options.hpp"
 #include "shell.hpp"
 #include "vantage/gain/ray_model.hpp"
+#include "vantage/sim/scene.hpp"
+#include "vantage/util/memory.hpp"
 
 namespace vantage::cli {
 namespace {
@@ -37,6 +39,7 @@ struct BenchOptions {
   bool project_stops = true;  ///< office: unreachable frontier centroids move into their region
   PlanningOptions planning;
   MappingOptions mapping;
+  std::uint64_t max_memory = 0;  // 0: what the machine has available
 };
 
 /// The comma-separated items of a list option.
@@ -65,7 +68,7 @@ void parse_shard(const std::string& text, BenchConfig& config) {
   }
 }
 
-void run(const BenchOptions& o) {
+BenchConfig bench_config(const BenchOptions& o) {
   BenchConfig config;
   config.scenes = o.scenes;
   config.methods.clear();
@@ -98,7 +101,20 @@ void run(const BenchOptions& o) {
   config.jobs = o.jobs;
   parse_shard(o.shard, config);
   config.validate();
+  return config;
+}
 
+void run(const BenchOptions& o) {
+  const BenchConfig config = from_options([&] { return bench_config(o); });
+
+  // NOTE: --jobs trials at once, each with its own grid; the largest scene decides.
+  std::uint64_t cells = 0;
+  for (const std::string& name : config.scenes) {
+    cells = std::max<std::uint64_t>(cells, sim::load_scene(name).grid.num_cells());
+  }
+  check_memory({cells, grid_bytes_per_cell(o.planning.threads), kFixedRunBytes,
+                static_cast<std::uint64_t>(o.jobs)},
+               o.max_memory, "the sweep's grids");
   const std::size_t total = bench_trials(config).size();
   fmt::print("bench: {} trials in all, shard {}, {} job(s), into {}\n", total, o.shard, o.jobs,
              o.out);
@@ -127,17 +143,23 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   cmd->add_option("--objectives", o->objectives,
                   "what the probabilistic method ranks by, one trial set each: bits,cells")
       ->capture_default_str();
-  cmd->add_option("--trials", o->trials, trials_help)->capture_default_str();
+  cmd->add_option("--trials", o->trials, trials_help)
+      ->check(whole_in(1, kMaxScans))
+      ->capture_default_str();
   cmd->add_option(
          "--scans,-n", o->scans,
          o->kind == "office" ? "stops per trial (a 360-degree sweep each)" : "scans per trial")
+      ->check(whole_in(1, kMaxScans))
       ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "base seed")->capture_default_str();
-  cmd->add_option("--jobs", o->jobs, "trials run in parallel")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "base seed")->check(seed_value())->capture_default_str();
+  cmd->add_option("--jobs", o->jobs, "trials run in parallel")
+      ->check(whole_in(1, kMaxThreads))
+      ->capture_default_str();
   cmd->add_option("--shard", o->shard, "run slice I of N (0-based), e.g. 2/8")
       ->capture_default_str();
   cmd->add_option("--out,-o", o->out, "sweep folder; rerunning resumes it")->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "skip plots and summary");
+  add_memory_option(*cmd, o->max_memory);
   if (o->kind == "tabletop") {
     cmd->add_flag("--revisit", o->revisit,
                   "views already taken stay candidates (the paper's loop taken literally)");

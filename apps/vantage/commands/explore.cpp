@@ -16,7 +16,9 @@
 #include "vantage/experiment/results.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/octomap_io.hpp"
 #include "vantage/sim/scene.hpp"
+#include "vantage/util/memory.hpp"
 
 namespace vantage::cli {
 namespace {
@@ -36,6 +38,7 @@ struct ExploreOptions {
   std::string out;
   bool plots = true;
   bool quiet = false;
+  std::uint64_t max_memory = 0;  // 0: what the machine has available
 };
 
 fs::path default_out(const ExploreOptions& o) {
@@ -84,12 +87,19 @@ void run(const ExploreOptions& o) {
   config.office.project_stops = o.project_stops;
   config.start = o.start;
   config.seed = o.seed;
-  config.validate();
+  from_options([&] { config.validate(); });
 
   const fs::path out = o.out.empty() ? default_out(o) : fs::path(o.out);
   if (fs::exists(out) && !fs::is_empty(out)) {
     throw std::invalid_argument(fmt::format("--out {} exists and is not empty", out.string()));
   }
+  // Refused before any work: a grid too large for memory, or one whose map cannot be written.
+  const std::string grid_name =
+      fmt::format("the grid of scene {} ({} x {} x {} cells)", scene.name, scene.grid.dims.x(),
+                  scene.grid.dims.y(), scene.grid.dims.z());
+  check_memory({scene.grid.num_cells(), grid_bytes_per_cell(o.planning.threads), kFixedRunBytes},
+               o.max_memory, grid_name);
+  require_octomap_range(scene.grid, grid_name);
   if (!o.quiet) {
     fmt::print("exploring {} with {} ({} evaluation{}), {} scans from start {}, seed {}\n",
                scene.name, o.planning.method, o.planning.evaluation,
@@ -129,22 +139,28 @@ void add_explore_command(CLI::App& app) {
       kTableTopAlpha, kOfficeAlpha));
   o->mapping.add_to(*cmd);
   cmd->add_option("--scans,-n", o->scans, "number of scans to take (office: stops, a sweep each)")
+      ->check(whole_in(1, kMaxScans))
       ->capture_default_str();
   cmd->add_option("--min-gain", o->min_gain,
                   "stop early when the best predicted gain falls below this [bits for "
                   "probabilistic, cells for the others]")
+      ->check(number_in(0.0, 1e12))
       ->capture_default_str();
   cmd->add_flag(
       "--revisit", o->revisit,
       "table top: views already taken stay candidates (the paper's loop taken literally)");
   cmd->add_flag("!--no-stop-projection", o->project_stops,
                 fmt::format("office: {}", kNoStopProjectionHelp));
-  cmd->add_option("--start", o->start, "start pose index of the scene")->capture_default_str();
+  cmd->add_option("--start", o->start, "start pose index of the scene")
+      ->check(whole_in(0, kMaxIndex))
+      ->capture_default_str();
   cmd->add_option("--seed", o->seed, "seed of sensor noise, pose noise and random choice")
+      ->check(seed_value())
       ->capture_default_str();
   cmd->add_option("--out,-o", o->out, "results folder (default: a fresh folder under results/)");
   cmd->add_flag("!--no-plots", o->plots, "skip the pictures");
   cmd->add_flag("--quiet,-q", o->quiet, "no per-scan progress");
+  add_memory_option(*cmd, o->max_memory);
   cmd->callback([o] { run(*o); });
 }
 

@@ -2,6 +2,10 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
+#include <thread>
+
+#include "shell.hpp"
 #include "vantage/experiment/exploration.hpp"
 
 namespace vantage::cli {
@@ -24,10 +28,12 @@ void PlanningOptions::add_to(CLI::App& cmd) {
                  "gain evaluation: auto (the cheaper of the two on each map state), fast or exact")
       ->capture_default_str();
   cmd.add_option("--epsilon", epsilon, "early stop of a ray's model, in [0, 0.5)")
+      ->check(number_in(0.0, 0.5))
       ->capture_default_str();
-  cmd.add_option("--lambda", lambda, "latombe's travel penalty [1/m]")->capture_default_str();
-  cmd.add_option("--threads,-j", threads, "threads (0 = all cores); results do not depend on it")
+  cmd.add_option("--lambda", lambda, "latombe's travel penalty [1/m]")
+      ->check(number_in(0.0, 1e3))
       ->capture_default_str();
+  add_threads_option(cmd, threads, "threads (0 = all cores); results do not depend on it");
 }
 
 AlphaSetting PlanningOptions::alpha_setting(double literal) const {
@@ -35,11 +41,15 @@ AlphaSetting PlanningOptions::alpha_setting(double literal) const {
   try {
     return parse_alpha_setting(alpha, literal);
   } catch (const std::invalid_argument& e) {
-    throw std::invalid_argument(fmt::format("--alpha: {}", e.what()));
+    throw UsageError(fmt::format("--alpha: {}", e.what()));
   }
 }
 
 PlannerConfig PlanningOptions::planner_config(double literal_alpha) const {
+  return from_options([&] { return make_planner_config(literal_alpha); });
+}
+
+PlannerConfig PlanningOptions::make_planner_config(double literal_alpha) const {
   PlannerConfig config;
   config.method = parse_planner_method(method);
   config.objective = parse_gain_objective(objective);
@@ -62,11 +72,31 @@ void MappingOptions::add_to(CLI::App& cmd) {
 
 MapperConfig MappingOptions::mapper_config(const sim::Scene& scene) const {
   MapperConfig config = default_mapper_config(scene);
-  config.integration.mode = parse_integration_mode(integration);
+  config.integration.mode = from_options([&] { return parse_integration_mode(integration); });
   config.integration.hole_filling.enabled = hole_filling;
   config.register_scans = icp;
   config.segment_table = config.segment_table && segmentation;
   return config;
+}
+
+double grid_bytes_per_cell(int threads) {
+  const int n =
+      threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  return kGridBytesPerCell + kThreadBytesPerCell * n;
+}
+
+void add_memory_option(CLI::App& cmd, std::uint64_t& bytes) {
+  cmd.add_option("--max-memory", bytes,
+                 "refuse a run whose grid needs more than this (bytes, or 512M, 4G; 0: what the "
+                 "machine has available)")
+      ->transform(memory_size())
+      ->capture_default_str();
+}
+
+void add_threads_option(CLI::App& cmd, int& threads, const std::string& description) {
+  cmd.add_option("--threads,-j", threads, description)
+      ->check(whole_in(0, kMaxThreads))
+      ->capture_default_str();
 }
 
 }  // namespace vantage::cli

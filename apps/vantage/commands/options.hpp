@@ -36,7 +36,40 @@ struct PlanningOptions {
   /// Throws std::invalid_argument naming the bad option. Under --alpha auto, gain.alpha is the
   /// fit's prior.
   PlannerConfig planner_config(double literal_alpha = kTableTopAlpha) const;
+
+ private:
+  PlannerConfig make_planner_config(double literal_alpha) const;
 };
+
+/// The most threads an option asks for; more is a typo, not a machine.
+inline constexpr int kMaxThreads = 1024;
+
+/// The most scans (or trials) an option asks for.
+inline constexpr int kMaxScans = 100000;
+
+/// The largest index of a start pose or candidate view an option names.
+inline constexpr int kMaxIndex = 1000000;
+
+/// --threads/-j: 0 (all cores) .. kMaxThreads.
+void add_threads_option(CLI::App& cmd, int& threads, const std::string& description);
+
+/// Bytes a grid cell costs plan and explore at their peak, measured (docs/robustness.md,
+/// "Memory"): the grid's log-odds, the snapshot, stamps and tables of gain evaluation,
+/// integration and hole filling (kGridBytesPerCell), and each thread's own stamps
+/// (kThreadBytesPerCell), rounded up.
+inline constexpr double kGridBytesPerCell = 16.0;
+inline constexpr double kThreadBytesPerCell = 5.0;
+/// The ground truth's: a byte of occupancy a cell and the surface lists, with room to spare.
+inline constexpr double kGroundTruthBytesPerCell = 8.0;
+
+/// Bytes a cell costs a run of `threads` threads (0 = all cores).
+double grid_bytes_per_cell(int threads);
+/// What a run holds besides its grid: code, scene meshes, the sensor's images [bytes].
+inline constexpr double kFixedRunBytes = 200.0 * 1024 * 1024;
+
+/// --max-memory SIZE (bytes, or with K, M, G, T: 512M, 4G); 0, the default, is the memory the
+/// machine has available when the run starts.
+void add_memory_option(CLI::App& cmd, std::uint64_t& bytes);
 
 /// --integration, --no-icp, --no-segmentation, --no-hole-filling.
 struct MappingOptions {

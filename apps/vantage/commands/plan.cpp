@@ -25,6 +25,7 @@
 #include "vantage/io/map_files.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/io/ply_export.hpp"
+#include "vantage/util/memory.hpp"
 #include "vantage/views/frontier.hpp"
 #include "vantage/views/ring.hpp"
 #include "vantage/views/sphere.hpp"
@@ -50,6 +51,7 @@ struct PlanOptions {
   bool json_only = false;
   bool plots = true;
   int top = 10;
+  std::uint64_t max_memory = 0;  // 0: what the machine has available
 };
 
 /// plan.json's format: 2 added version, units, the robot's pose, travel and yaw.
@@ -111,10 +113,14 @@ json pose_json(const Eigen::Isometry3d& T) {
 SensorFov fov_from_options(const PlanOptions& o) {
   const auto fov = parse_numbers(o.fov_deg, "--fov-deg");
   const auto range = parse_numbers(o.range, "--range");
-  if (fov.size() != 2) throw std::invalid_argument("--fov-deg takes two numbers: h,v");
-  if (range.size() != 2) throw std::invalid_argument("--range takes two numbers: min,max");
+  if (fov.size() != 2) throw UsageError("--fov-deg takes two numbers: h,v");
+  if (range.size() != 2) throw UsageError("--range takes two numbers: min,max");
   SensorFov result{deg2rad(fov[0]), deg2rad(fov[1]), range[0], range[1]};
-  result.validate();
+  try {
+    result.validate();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(fmt::format("--fov-deg/--range: {}", e.what()));
+  }
   return result;
 }
 
@@ -204,13 +210,27 @@ void run(const PlanOptions& o) {
 
   MapperConfig mapper_config = manifest ? mapper_config_for(*manifest) : MapperConfig{};
   mapper_config.integration.num_threads = o.planning.threads;
+  // NOTE: plan needs no object cloud; without it, memory stays bounded however many clouds come.
+  mapper_config.keep_object_cloud = false;
+
+  // Refused before any work: a grid too large for memory, or one whose map cannot be written.
+  auto check_grid = [&](const GridSpec& spec, const std::string& source) {
+    check_memory({spec.num_cells(), grid_bytes_per_cell(o.planning.threads), kFixedRunBytes},
+                 o.max_memory,
+                 fmt::format("the grid of {} ({} x {} x {} cells)", source, spec.dims.x(),
+                             spec.dims.y(), spec.dims.z()));
+    require_octomap_range(spec, source);
+  };
+  if (manifest) check_grid(manifest->grid, manifest->file.string());
 
   std::optional<Mapper> mapper;
   if (!o.map.empty()) {
     OctomapImportConfig import;
     if (manifest) import.grid = manifest->grid;
     import.crop = manifest.has_value();
-    mapper.emplace(read_octomap(o.map, import).grid, mapper_config);
+    OctomapImport imported = read_octomap(o.map, import);
+    if (!manifest) check_grid(imported.grid.spec(), o.map);
+    mapper.emplace(std::move(imported.grid), mapper_config);
   } else {
     mapper.emplace(manifest->grid, mapper_config);
   }
@@ -226,6 +246,14 @@ void run(const PlanOptions& o) {
       if (o.pose.empty()) {
         robot = u.T_world_sensor;
         robot_source = "the last cloud's pose";
+      }
+      if (u.object_points > 0 && u.integration.points_inside == 0) {
+        // NOTE: a warning, not an error: the frustum's free space was still mapped, and a later
+        // cloud may map the region.
+        warn(fmt::format(
+            "{}: nothing was mapped from its points: none of the {} lies inside the roi (behind "
+            "the sensor, or far from the roi? check the pose, frame and roi)",
+            manifest->clouds[i].file.string(), u.object_points));
       }
       if (!o.json_only) {
         fmt::print("cloud {}/{}  {}  {} points  {} cells seen{}{}\n", i + 1,
@@ -375,9 +403,12 @@ void add_plan_command(CLI::App& app) {
                   "ring, sphere, frontier (4 level views at each frontier region's "
                   "centroid), or a TUM-format file of candidate poses")
       ->capture_default_str();
-  cmd->add_option("--radius", o->radius, "ring/sphere radius [m] (default: from the ROI)");
-  cmd->add_option("--height", o->height, "ring height [m] (default: 0.3 m above the ROI)");
-  cmd->add_option("--views", o->views, "ring positions (x3 yaw offsets) or sphere views");
+  cmd->add_option("--radius", o->radius, "ring/sphere radius [m] (default: from the ROI)")
+      ->check(number_in(0.0, kMaxWorldCoordinate, /*open_low=*/true));
+  cmd->add_option("--height", o->height, "ring height [m] (default: 0.3 m above the ROI)")
+      ->check(number_in(-kMaxWorldCoordinate, kMaxWorldCoordinate));
+  cmd->add_option("--views", o->views, "ring positions (x3 yaw offsets) or sphere views")
+      ->check(whole_in(1, kMaxIndex));
   cmd->add_option("--fov-deg", o->fov_deg, "h,v field of view without a manifest [deg]")
       ->capture_default_str();
   cmd->add_option("--range", o->range, "min,max range without a manifest [m]")
@@ -389,7 +420,10 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("--out,-o", o->out, "results folder (default: a fresh folder under results/)");
   cmd->add_flag("--json", o->json_only, "print only plan.json, for other programs");
   cmd->add_flag("!--no-plots", o->plots, "skip the picture (map.png)");
-  cmd->add_option("--top", o->top, "rows of the ranked table")->capture_default_str();
+  add_memory_option(*cmd, o->max_memory);
+  cmd->add_option("--top", o->top, "rows of the ranked table")
+      ->check(whole_in(1, kMaxIndex))
+      ->capture_default_str();
   cmd->footer(
       "Units: the probabilistic method's predicted gain is information in bits (eq. 4: an "
       "unobserved cell holds 1 bit, a view turning it known is credited less) and its predicted "

@@ -43,7 +43,7 @@ std::vector<double> scenario_cells(int scenario) {
       run(cells, kUnknown, 14);
       break;
     default:
-      throw std::invalid_argument(fmt::format("--scenario must be 1, 2, 3 or 4, got {}", scenario));
+      throw UsageError(fmt::format("--scenario must be 1, 2, 3 or 4, got {}", scenario));
   }
   return cells;
 }
@@ -67,23 +67,21 @@ struct RayOptions {
 };
 
 void run(const RayOptions& options) {
-  const RayModel model(options.alpha);
+  const RayModel model = from_options([&] { return RayModel(options.alpha); });
   const std::vector<double> cells = options.scenario != 0 ? scenario_cells(options.scenario)
                                                           : parse_numbers(options.cells, "--cells");
-  const std::string csv = to_csv(model.trace(cells));
+  const std::string csv = from_options([&] { return to_csv(model.trace(cells)); });
+  if (!options.csv_path.empty()) check_output_file(options.csv_path, "--csv");
+  if (!options.plot_path.empty()) check_output_file(options.plot_path, "--plot");
   fmt::print("{}", csv);
   if (!options.csv_path.empty()) write_atomically(options.csv_path, csv);
   if (!options.plot_path.empty()) {
-    std::string data = options.csv_path;
-    if (data.empty()) {
-      data = options.plot_path + ".csv";
-      write_atomically(data, csv);
-    }
+    const TemporaryFile data(".csv");
+    write_atomically(data.path(), csv);
     const std::string title =
         options.scenario != 0 ? fmt::format("Scenario #{}, a = {}", options.scenario, options.alpha)
                               : fmt::format("a = {}", options.alpha);
-    run_plot_script("plot_ray.py", {data, options.plot_path, title});
-    if (options.csv_path.empty()) std::filesystem::remove(data);
+    run_plot_script("plot_ray.py", {data.path().string(), options.plot_path, title});
     fmt::print(stderr, "picture: {}\n", options.plot_path);
   }
 }
@@ -95,6 +93,7 @@ void add_ray_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "ray", "Visibility and occupancy posterior along one ray (the paper's Figs. 3 and 5)");
   cmd->add_option("--alpha,-a", options->alpha, "observability parameter a, in (0, 1]")
+      ->check(number_in(0.0, 1.0, /*open_low=*/true))
       ->capture_default_str();
   auto* cells = cmd->add_option("--cells", options->cells,
                                 "occupancy probabilities p0,p1,...,pM in ray order from the "
@@ -106,7 +105,7 @@ void add_ray_command(CLI::App& app) {
   cmd->add_option("--plot", options->plot_path, "draw visibility and posterior into this PNG");
   cmd->callback([options, cells, scenario] {
     if (cells->count() == 0 && scenario->count() == 0) {
-      throw std::invalid_argument("give the ray with --cells p0,...,pM or --scenario 1..4");
+      throw UsageError("give the ray with --cells p0,...,pM or --scenario 1..4");
     }
     run(*options);
   });

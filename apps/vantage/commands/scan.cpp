@@ -10,9 +10,11 @@
 #include <vector>
 
 #include "commands/commands.hpp"
+#include "commands/options.hpp"
 #include "shell.hpp"
 #include "vantage/io/cloud_io.hpp"
 #include "vantage/sim/world.hpp"
+#include "vantage/util/text.hpp"
 
 namespace vantage::cli {
 namespace {
@@ -50,9 +52,9 @@ Eigen::Isometry3d chosen_pose(const ScanOptions& o, const sim::Scene& scene) {
 
 void run(const ScanOptions& o) {
   if (o.frame != "sensor" && o.frame != "world") {
-    throw std::invalid_argument(fmt::format("--frame must be sensor or world, got '{}'", o.frame));
+    throw UsageError(
+        fmt::format("--frame must be sensor or world, got '{}'", printable(o.frame, 40)));
   }
-  if (o.repeat < 0) throw std::invalid_argument("--repeat must be >= 0");
   sim::Scene scene = sim::load_scene(o.scene);
   if (!o.sensor.empty()) scene.sensor = sim::builtin_sensor(o.sensor);
   const Eigen::Isometry3d pose = chosen_pose(o, scene);
@@ -114,9 +116,11 @@ void add_scan_command(CLI::App& app) {
   cmd->add_option("--scene,-s", o->scene, "a built-in scene name or a scene YAML file")->required();
   auto* pose = cmd->add_option("--pose", o->pose,
                                "sensor pose x,y,z,roll,pitch,yaw in the world (m, degrees)");
-  auto* start = cmd->add_option("--start", o->start, "the scene's start pose number K instead");
+  auto* start = cmd->add_option("--start", o->start, "the scene's start pose number K instead")
+                    ->check(whole_in(0, kMaxIndex));
   auto* view =
-      cmd->add_option("--view", o->view, "the scene's candidate view number K instead (table top)");
+      cmd->add_option("--view", o->view, "the scene's candidate view number K instead (table top)")
+          ->check(whole_in(0, kMaxIndex));
   pose->excludes(start)->excludes(view);
   start->excludes(view);
   cmd->add_option("--sensor", o->sensor, "replace the scene's sensor: hokuyo or kinect");
@@ -125,18 +129,19 @@ void add_scan_command(CLI::App& app) {
                   "frame of the written points: sensor (a PCD records the believed pose as its "
                   "VIEWPOINT) or world (true pose)")
       ->capture_default_str();
-  cmd->add_option("--seed", o->seed, "seed of the range and pose noise")->capture_default_str();
-  cmd->add_flag("--sweep", o->sweep, "a 360-degree sweep at the pose instead of one scan");
-  cmd->add_option("--threads,-j", o->threads,
-                  "threads (0 = all cores); the scan does not depend on it")
+  cmd->add_option("--seed", o->seed, "seed of the range and pose noise")
+      ->check(seed_value())
       ->capture_default_str();
-  cmd->add_option("--repeat", o->repeat, "also time this many more scans and print the mean");
+  cmd->add_flag("--sweep", o->sweep, "a 360-degree sweep at the pose instead of one scan");
+  add_threads_option(*cmd, o->threads, "threads (0 = all cores); the scan does not depend on it");
+  cmd->add_option("--repeat", o->repeat, "also time this many more scans and print the mean")
+      ->check(whole_in(0, kMaxIndex));
   cmd->callback([o, pose, start, view] {
     if (pose->count() == 0 && start->count() == 0 && view->count() == 0) {
-      throw std::invalid_argument("give the sensor pose with --pose, --start K or --view K");
+      throw UsageError("give the sensor pose with --pose, --start K or --view K");
     }
     if (o->out.empty() && o->repeat == 0) {
-      throw std::invalid_argument("give --out FILE.pcd|.ply (or --repeat N to time scans)");
+      throw UsageError("give --out FILE.pcd|.ply (or --repeat N to time scans)");
     }
     run(*o);
   });

@@ -12,9 +12,11 @@
 #include <string>
 
 #include "commands/commands.hpp"
+#include "commands/options.hpp"
 #include "shell.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/sim/ground_truth.hpp"
+#include "vantage/util/memory.hpp"
 
 namespace vantage::cli {
 namespace {
@@ -25,6 +27,7 @@ struct SceneOptions {
   std::string json;
   bool ground_truth = false;
   int threads = 0;
+  std::uint64_t max_memory = 0;  // 0: what the machine has available
 };
 
 nlohmann::json xy(const Eigen::Vector2d& p) { return {p.x(), p.y()}; }
@@ -77,6 +80,9 @@ nlohmann::json scene_json(const sim::Scene& scene) {
 }
 
 void run(const SceneOptions& o) {
+  // NOTE: outputs that cannot be made are refused before the ground truth's work.
+  if (!o.out.empty()) check_output_file(o.out, "--out");
+  if (!o.json.empty()) check_output_file(o.json, "--json");
   const sim::Scene scene = sim::load_scene(o.scene);
   const GridSpec& g = scene.grid;
   fmt::print("{} ({}, {})\n", scene.name, sim::to_string(scene.kind), scene.source);
@@ -86,6 +92,9 @@ void run(const SceneOptions& o) {
              scene.sensor.name, scene.start_poses.size(), scene.candidate_poses().size());
 
   if (o.ground_truth) {
+    check_memory({g.num_cells(), kGroundTruthBytesPerCell, kFixedRunBytes}, o.max_memory,
+                 fmt::format("the ground truth of scene {} ({} x {} x {} cells)", scene.name,
+                             g.dims.x(), g.dims.y(), g.dims.z()));
     const auto begin = std::chrono::steady_clock::now();
     const sim::World world(scene, sim::WorldConfig{o.threads});
     const sim::GroundTruth gt = sim::compute_ground_truth(world, o.threads);
@@ -100,13 +109,9 @@ void run(const SceneOptions& o) {
   const std::string data = scene_json(scene).dump(1);
   if (!o.json.empty()) write_atomically(o.json, data);
   if (o.out.empty()) return;
-  std::string path = o.json;
-  if (path.empty()) {
-    path = o.out + ".json";
-    write_atomically(path, data);
-  }
-  run_plot_script("plot_scene.py", {path, o.out});
-  if (o.json.empty()) std::filesystem::remove(path);
+  const TemporaryFile drawing(".json");
+  write_atomically(drawing.path(), data);
+  run_plot_script("plot_scene.py", {drawing.path().string(), o.out});
   fmt::print("picture: {}\n", o.out);
 }
 
@@ -121,7 +126,8 @@ void add_scene_command(CLI::App& app) {
   cmd->add_option("--json", o->json, "also write the drawing's data to this JSON file");
   cmd->add_flag("--ground-truth", o->ground_truth,
                 "also count the truly occupied, surface and observable cells");
-  cmd->add_option("--threads,-j", o->threads, "threads (0 = all cores)")->capture_default_str();
+  add_threads_option(*cmd, o->threads, "threads (0 = all cores)");
+  add_memory_option(*cmd, o->max_memory);
   cmd->callback([o] { run(*o); });
 }
 

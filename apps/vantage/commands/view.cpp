@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands/commands.hpp"
+#include "shell.hpp"
 #include "vantage/experiment/viewer.hpp"
 #include "vantage/io/atomic_file.hpp"
 
@@ -40,6 +41,7 @@ void add_view_command(CLI::App& app) {
   cmd->add_option("--out,-o", o->out, "the page to write (default: DIR/view.html)");
   cmd->add_option("--max-cells", o->viewer.max_cells,
                   "cells drawn per layer (occupied, unobserved); more are thinned evenly")
+      ->check(whole_in(1, std::int64_t{1} << 30))
       ->capture_default_str();
   cmd->callback([o] { run(*o); });
 }
