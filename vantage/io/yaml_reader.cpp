@@ -48,22 +48,6 @@ std::string where(const std::string& source, int line) {
   throw YamlError(cat(where(source, line), ": ", key, key.empty() ? "" : ": ", what));
 }
 
-/// `text` with each control character written as \xHH: yaml-cpp's messages quote the offending
-/// character, a line break included (found by fuzz/manifest_fuzzer.cpp).
-std::string printable(std::string_view text) {
-  std::string out;
-  for (const char c : text) {
-    const auto u = static_cast<unsigned char>(c);
-    if (u < 0x20 || u == 0x7f) {
-      constexpr char kHex[] = "0123456789abcdef";
-      out += {'\\', 'x', kHex[u >> 4], kHex[u & 0xf]};
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
-
 std::string child_key(const std::string& parent, std::string_view key) {
   return parent.empty() ? std::string(key) : cat(parent, ".", key);
 }
@@ -338,7 +322,7 @@ YamlField parse_yaml(std::string_view text, const std::string& source) {
     root = YAML::Load(owned);
   } catch (const YAML::Exception& e) {
     throw_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, "",
-                cat("not valid YAML: ", printable(e.msg)));
+                cat("not valid YAML: ", printable(e.msg, 200)));
   }
   Converter converter(*shared_source);
   return YamlField(converter.convert(root, "", 1), "", shared_source);
