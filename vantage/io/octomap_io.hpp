@@ -2,7 +2,7 @@
 /// @file
 /// OctoMap interchange: an OccupancyGrid to and from OctoMap's `.bt` and `.ot` files.
 ///
-/// How MODEL.md's three classes meet OctoMap's nodes:
+/// How docs/model.md's three classes meet OctoMap's nodes:
 ///
 /// | grid cell                        | written to `.bt`          | written to `.ot`             |
 /// |----------------------------------|---------------------------|------------------------------|
