@@ -9,6 +9,8 @@
 #include <random>
 
 #include "row_grid.hpp"
+#include "vantage/gain/exact.hpp"
+#include "vantage/gain/fast.hpp"
 #include "vantage/gain/ray_model.hpp"
 
 namespace vantage {
@@ -216,6 +218,19 @@ TEST(Metrics, NamesParseBack) {
   }
   EXPECT_FALSE(is_volumetric_metric(GainMethod::kProbabilistic));
   EXPECT_THROW(parse_gain_method("rear-side"), std::invalid_argument);
+}
+
+// The paper's evaluations compute its model or greedy's count only: handed a metric directly,
+// they refuse it rather than return the paper's model under the metric's name.
+TEST(Metrics, ThePapersEvaluationsRefuseAMetric) {
+  const Frustum view = looking_along_x({0.05, 0.0, 0.0});
+  const std::span<const Frustum> views(&view, 1);
+  for (const GainMethod method : kMetrics) {
+    GainConfig config;
+    config.method = method;
+    EXPECT_THROW(exact_view_gains(row_grid(), views, config), std::invalid_argument);
+    EXPECT_THROW(fast_view_gains(row_grid(), views, config), std::invalid_argument);
+  }
 }
 
 }  // namespace

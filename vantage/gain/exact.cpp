@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "vantage/gain/metrics.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/traversal.hpp"
@@ -126,6 +127,7 @@ template <typename Model>
 std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
                                        const GainConfig& config) {
   config.validate();
+  require_model_method(config, "exact_view_gains");
   std::vector<ViewGain> gains(views.size());
   if (config.method == GainMethod::kGreedy) {
     run_with_threads(config.num_threads, [&] {

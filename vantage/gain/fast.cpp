@@ -8,6 +8,7 @@
 
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/fast_cast.hpp"
+#include "vantage/gain/metrics.hpp"
 #include "vantage/util/parallel.hpp"
 
 namespace vantage {
@@ -109,6 +110,7 @@ template <typename Model>
 std::vector<ViewGain> fast_view_gains(const GainMap& map, std::span<const Frustum> views,
                                       const GainConfig& config) {
   config.validate();
+  require_model_method(config, "fast_view_gains");
   if (config.method == GainMethod::kGreedy) return exact_view_gains<Model>(map, views, config);
   std::vector<ViewGain> gains;
   run_with_threads(config.num_threads, [&] {

@@ -283,7 +283,15 @@ bool is_volumetric_metric(GainMethod method) {
     case GainMethod::kGreedy:
       return false;
   }
+
   return false;
+}
+
+void require_model_method(const GainConfig& config, std::string_view who) {
+  if (is_volumetric_metric(config.method)) {
+    throw std::invalid_argument(cat(who, ": ", to_string(config.method),
+                                    " is a volumetric metric; evaluate it with evaluate_views"));
+  }
 }
 
 double area_factor(double x, double alpha) {

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "vantage/gain/snapshot.hpp"
@@ -25,6 +26,11 @@ namespace vantage {
 
 /// Whether `method` is one of the seven metrics of this file.
 bool is_volumetric_metric(GainMethod method);
+
+/// Throws std::invalid_argument, naming `who`, when `config.method` is one of the metrics: the
+/// paper's evaluations (exact, fast) compute the paper's model or greedy's count only, and would
+/// otherwise silently give the paper's model for a metric.
+void require_model_method(const GainConfig& config, std::string_view who);
 
 /// D, the distance [cells] within which an unobserved cell counts as near an occupied one:
 /// the proximity count's cut-off and the area factor's "occplane" test.
