@@ -127,7 +127,10 @@ start_poses: ring
 class SceneFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / "vantage_scene_test";
+    // NOTE: one folder per test, as ctest runs this fixture's tests in parallel processes.
+    dir_ = fs::temp_directory_path() /
+           (std::string("vantage_scene_test_") +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     std::ofstream(dir_ / "tet.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
