@@ -5,18 +5,12 @@
 
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/views/detail/placement.hpp"
 
 namespace vantage {
 
 void RingConfig::validate() const {
-  if (!(center.array().abs() <= kMaxWorldCoordinate).all()) {
-    throw std::invalid_argument(
-        cat("ring.center must be finite, within ", kMaxWorldCoordinate, " m of the origin"));
-  }
-  if (!(radius > 0.0 && radius <= kMaxWorldCoordinate)) {
-    throw std::invalid_argument(
-        cat("ring.radius must lie in (0, ", kMaxWorldCoordinate, "] m, got ", radius));
-  }
+  detail::validate_placement("ring", center, radius);
   if (!(std::abs(height) <= kMaxWorldCoordinate)) {
     throw std::invalid_argument(cat("ring.height must lie in [-", kMaxWorldCoordinate, ", ",
                                     kMaxWorldCoordinate, "] m, got ", height));

@@ -6,19 +6,13 @@
 
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/views/detail/placement.hpp"
 #include "vantage/views/ring.hpp"
 
 namespace vantage {
 
 void SphereConfig::validate() const {
-  if (!(center.array().abs() <= kMaxWorldCoordinate).all()) {
-    throw std::invalid_argument(
-        cat("sphere.center must be finite, within ", kMaxWorldCoordinate, " m of the origin"));
-  }
-  if (!(radius > 0.0 && radius <= kMaxWorldCoordinate)) {
-    throw std::invalid_argument(
-        cat("sphere.radius must lie in (0, ", kMaxWorldCoordinate, "] m, got ", radius));
-  }
+  detail::validate_placement("sphere", center, radius);
   if (views < 1) throw std::invalid_argument(cat("sphere.views must be >= 1, got ", views));
   const double half_pi = std::numbers::pi / 2.0;
   if (!(min_elevation >= -half_pi && min_elevation < max_elevation && max_elevation <= half_pi)) {
