@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <numeric>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bindings.hpp"
 #include "convert.hpp"
@@ -256,7 +258,18 @@ void bind_plan(py::module_& m) {
       .def_readonly("points", &MapperUpdate::points, "Points in the scan.")
       .def_readonly("object_points", &MapperUpdate::object_points,
                     "Points integrated (after table segmentation).")
-      .def_readonly("integration", &MapperUpdate::integration, "The IntegrationResult.");
+      .def_readonly("integration", &MapperUpdate::integration, "The IntegrationResult.")
+      .def_property_readonly(
+          "reregistered",
+          [](const MapperUpdate& u) {
+            std::vector<std::pair<std::size_t, Eigen::Matrix4d>> out;
+            for (const MapperUpdate::Reregistered& r : u.reregistered) {
+              out.emplace_back(r.scan, r.T_world_sensor.matrix());
+            }
+            return out;
+          },
+          "Earlier scans that had fallen back and passed on a second try against the reference "
+          "this scan grew, as (0-based scan index, 4x4 pose); the map was rebuilt with them.");
 
   py::class_<Mapper> mapper_class(
       m, "Mapper",

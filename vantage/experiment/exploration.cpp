@@ -203,6 +203,8 @@ class Explorer {
     record.yaw_error_before = before.rotation;
     record.pose_error_after = after.translation;
     record.yaw_error_after = after.rotation;
+    record.pose_error_final = after.translation;
+    record.yaw_error_final = after.rotation;
     record.points = update.points;
     record.object_points = update.object_points;
     record.actual_gain = update.integration.left_unobserved.size();
@@ -221,7 +223,21 @@ class Explorer {
         k == 1 ? pose : world_.noisy_pose(pose, stream_seed(config_.seed, u, 2));
     record.seconds.scan = seconds_since(start);
 
-    record_update(mapper_.add_scan(scan.points_sensor, believed, scan.fov), pose, record);
+    const MapperUpdate update = mapper_.add_scan(scan.points_sensor, believed, scan.fov);
+    record_update(update, pose, record);
+    record_reregistered(update, record);
+  }
+
+  /// The final pose errors of the earlier scans `update` registered again.
+  void record_reregistered(const MapperUpdate& update, ScanRecord& record) {
+    for (const MapperUpdate::Reregistered& r : update.reregistered) {
+      ScanRecord& earlier = result_.scans.at(r.scan);
+      const perception::PoseError error =
+          perception::pose_error(r.T_world_sensor, earlier.T_world_sensor);
+      earlier.pose_error_final = error.translation;
+      earlier.yaw_error_final = error.rotation;
+      record.reregistered.push_back(earlier.scan);
+    }
   }
 
   /// Office: a 360° sweep at the stop, one scan of many views for the mapper.
@@ -243,6 +259,7 @@ class Explorer {
     }
     const MapperUpdate update = mapper_.add_scan(parts, believed);
     record_update(update, pose, record);
+    record_reregistered(update, record);
     const Eigen::Isometry3d& corrected = update.T_world_sensor;
     stops_.push_back(corrected.translation().head<2>());
     position_ = corrected.translation().head<2>();

@@ -122,6 +122,13 @@ struct ScanRecord {
   double pose_error_after = 0.0;   ///< ... after registration [m]
   double yaw_error_before = 0.0;   ///< rotation error of the believed pose [rad]
   double yaw_error_after = 0.0;    ///< ... after registration [rad]
+  /// ... of the pose the map holds at the end of the run: after registration, or after a later
+  /// scan pinned a scan that had fallen back (MapperConfig::reregister_window) [m], [rad]
+  double pose_error_final = 0.0;
+  double yaw_error_final = 0.0;
+  /// Earlier scans (1-based) that this scan's registration let pass on a second try; the map was
+  /// rebuilt with them at their registered poses before this scan was integrated.
+  std::vector<int> reregistered;
   std::size_t points = 0;
   std::size_t object_points = 0;  ///< points integrated (office: thinned to one per cell)
   /// Distance travelled to this view from the previous one [m]: on the table top the walk along

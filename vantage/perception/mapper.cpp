@@ -88,6 +88,9 @@ void MapperConfig::validate() const {
     map.validate();
   }
   if (segment_table) table.validate();
+  if (reregister_window < 0) {
+    throw std::invalid_argument(cat("reregister_window must be >= 0, got ", reregister_window));
+  }
 }
 
 Mapper::Mapper(const GridSpec& grid, const MapperConfig& config)
@@ -128,70 +131,145 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
   // What each view contributes (its sensor frame): thinned, then the objects found at the guess.
   // NOTE: segmentation looks at the scan alone (the table and the objects on it move together),
   // so the guess serves as well as the corrected pose, and registration sees the objects only.
-  std::vector<PointCloud> kept(parts.size());
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    const ScanPart& part = parts[k];
+  HeldScan scan{.index = scans_, .parts = {}, .T_world_sensor_guess = T_world_sensor_guess};
+  for (const ScanPart& part : parts) {
     auto start = std::chrono::steady_clock::now();
     const Eigen::Isometry3d T_guess_part = compose(T_world_sensor_guess, part.T_scan_sensor);
-    kept[k] = config_.thin_to_cells ? thin_to_cells(part.points_sensor, T_guess_part, grid_.spec())
-                                    : part.points_sensor;
+    PointCloud kept = config_.thin_to_cells
+                          ? thin_to_cells(part.points_sensor, T_guess_part, grid_.spec())
+                          : part.points_sensor;
     update.points += part.points_sensor.size();
     update.seconds_integrate += seconds_since(start);
     start = std::chrono::steady_clock::now();
     if (config_.segment_table) {
       const perception::TableSegmentation table =
-          perception::segment_table(transform(T_guess_part, kept[k]), config_.table);
+          perception::segment_table(transform(T_guess_part, kept), config_.table);
       PointCloud objects;
       objects.reserve(table.object_indices.size());
-      for (const std::size_t i : table.object_indices) objects.push_back(kept[k][i]);
-      kept[k] = std::move(objects);
+      for (const std::size_t i : table.object_indices) objects.push_back(kept[i]);
+      kept = std::move(objects);
     }
-    update.object_points += kept[k].size();
+    update.object_points += kept.size();
     update.seconds_segment += seconds_since(start);
+    scan.parts.push_back({std::move(kept), part.T_scan_sensor, part.fov});
   }
 
   auto start = std::chrono::steady_clock::now();
-  bool trusted = scans_ == 0;  // the first scan defines the map frame
+  scan.trusted = scans_ == 0;  // the first scan defines the map frame
+  scan.T_world_sensor = T_world_sensor_guess;
   if (config_.register_scans && scans_ > 0 && !reference_.empty()) {
-    PointCloud scan;  // the scan's objects in its own frame
-    for (std::size_t k = 0; k < parts.size(); ++k) {
-      for (const Eigen::Vector3d& p : kept[k]) scan.push_back(parts[k].T_scan_sensor * p);
-    }
-    if (config_.register_overlap_only) scan = known_part(scan, T_world_sensor_guess, grid_);
-    const perception::RegistrationResult r =
-        perception::register_scan(scan, T_world_sensor_guess, reference_, config_.registration);
+    const perception::RegistrationResult r = register_held(scan);
     update.registration = r.outcome;
     update.registered = r.accepted();
-    trusted = r.accepted();
-    update.T_world_sensor = r.T_world_sensor;
+    scan.trusted = r.accepted();
+    scan.T_world_sensor = r.T_world_sensor;
   }
-  update.seconds_register = seconds_since(start);
+  update.T_world_sensor = scan.T_world_sensor;
+  if (config_.register_scans && scan.trusted) {
+    reference_.add(world_points(scan), scan.T_world_sensor.translation());
+    update.seconds_register += seconds_since(start);
+    if (!held_.empty()) {
+      update.reregistered = retry_pending(update.seconds_register, update.seconds_integrate);
+    }
+  } else {
+    update.seconds_register += seconds_since(start);
+  }
 
-  NetChange change(parts.size() > 1 ? grid_.spec().num_cells() : 0);
-  PointCloud registered;  // the scan's objects in the world, for the reference
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    start = std::chrono::steady_clock::now();
-    const Eigen::Isometry3d T_world_part = compose(update.T_world_sensor, parts[k].T_scan_sensor);
-    const PointCloud objects = transform(T_world_part, kept[k]);
-    IntegrationResult integration = integrate_scan(
-        grid_, Scan{objects, Frustum(T_world_part, parts[k].fov)}, config_.integration);
-    if (parts.size() > 1) {
-      change.add(integration);
-    } else {
-      update.integration = std::move(integration);
-    }
-    if (config_.keep_object_cloud) objects_.insert(objects_.end(), objects.begin(), objects.end());
-    if (config_.register_scans && trusted) {
-      registered.insert(registered.end(), objects.begin(), objects.end());
-    }
-    update.seconds_integrate += seconds_since(start);
-  }
-  if (parts.size() > 1) update.integration = change.result();
   start = std::chrono::steady_clock::now();
-  reference_.add(registered, update.T_world_sensor.translation());
-  update.seconds_register += seconds_since(start);
+  if (config_.register_scans && config_.reregister_window > 0 && !scan.trusted && !checkpoint_) {
+    checkpoint_ = grid_;
+    checkpoint_objects_ = objects_.size();
+  }
+  update.integration = integrate(scan);
+  if (checkpoint_) held_.push_back(std::move(scan));
+  // NOTE: the oldest pending scan, once no later scan pinned it within the window, keeps its
+  // guess for good, and so do the pending scans after it (the checkpoint precedes them all).
+  if (!held_.empty() &&
+      scans_ - held_.front().index >= static_cast<std::size_t>(config_.reregister_window)) {
+    checkpoint_.reset();
+    held_.clear();
+  }
+  update.seconds_integrate += seconds_since(start);
   ++scans_;
   return update;
+}
+
+std::size_t Mapper::pending() const {
+  return static_cast<std::size_t>(
+      std::count_if(held_.begin(), held_.end(), [](const HeldScan& s) { return !s.trusted; }));
+}
+
+PointCloud Mapper::world_points(const HeldScan& scan) const {
+  PointCloud out;
+  for (const ScanPart& part : scan.parts) {
+    const PointCloud objects =
+        transform(compose(scan.T_world_sensor, part.T_scan_sensor), part.points_sensor);
+    out.insert(out.end(), objects.begin(), objects.end());
+  }
+  return out;
+}
+
+perception::RegistrationResult Mapper::register_held(const HeldScan& scan) const {
+  PointCloud points;  // the scan's objects in its own frame
+  for (const ScanPart& part : scan.parts) {
+    for (const Eigen::Vector3d& p : part.points_sensor) points.push_back(part.T_scan_sensor * p);
+  }
+  if (config_.register_overlap_only) points = known_part(points, scan.T_world_sensor_guess, grid_);
+  return perception::register_scan(points, scan.T_world_sensor_guess, reference_,
+                                   config_.registration);
+}
+
+IntegrationResult Mapper::integrate(const HeldScan& scan) {
+  NetChange change(scan.parts.size() > 1 ? grid_.spec().num_cells() : 0);
+  IntegrationResult single;
+  for (const ScanPart& part : scan.parts) {
+    const Eigen::Isometry3d T_world_part = compose(scan.T_world_sensor, part.T_scan_sensor);
+    const PointCloud objects = transform(T_world_part, part.points_sensor);
+    IntegrationResult integration =
+        integrate_scan(grid_, Scan{objects, Frustum(T_world_part, part.fov)}, config_.integration);
+    if (scan.parts.size() > 1) {
+      change.add(integration);
+    } else {
+      single = std::move(integration);
+    }
+    if (config_.keep_object_cloud) objects_.insert(objects_.end(), objects.begin(), objects.end());
+  }
+  return scan.parts.size() > 1 ? change.result() : single;
+}
+
+std::vector<MapperUpdate::Reregistered> Mapper::retry_pending(double& seconds_register,
+                                                              double& seconds_integrate) {
+  auto start = std::chrono::steady_clock::now();
+  std::vector<MapperUpdate::Reregistered> passed;
+  for (HeldScan& held : held_) {
+    if (held.trusted) continue;
+    const perception::RegistrationResult r = register_held(held);
+    if (!r.accepted()) continue;
+    held.trusted = true;
+    held.T_world_sensor = r.T_world_sensor;
+    reference_.add(world_points(held), held.T_world_sensor.translation());
+    passed.push_back({held.index, held.T_world_sensor});
+  }
+  seconds_register += seconds_since(start);
+  if (passed.empty()) return passed;
+
+  // The map as if every scan since the checkpoint had been registered when it came; the new
+  // checkpoint is the grid just before the oldest scan still pending.
+  start = std::chrono::steady_clock::now();
+  grid_ = *std::exchange(checkpoint_, std::nullopt);
+  objects_.resize(checkpoint_objects_);
+  std::vector<HeldScan> still_held;
+  for (HeldScan& held : held_) {
+    if (!held.trusted && !checkpoint_) {
+      checkpoint_ = grid_;
+      checkpoint_objects_ = objects_.size();
+    }
+    integrate(held);
+    if (checkpoint_) still_held.push_back(std::move(held));
+  }
+  held_ = std::move(still_held);
+  seconds_integrate += seconds_since(start);
+  return passed;
 }
 
 }  // namespace vantage

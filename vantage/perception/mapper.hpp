@@ -8,7 +8,9 @@
 
 #include <Eigen/Geometry>
 #include <cstddef>
+#include <optional>
 #include <span>
+#include <vector>
 
 #include "vantage/map/integrate.hpp"
 #include "vantage/map/occupancy_grid.hpp"
@@ -46,6 +48,13 @@ struct MapperConfig {
   /// many clouds come (vantage plan over a long recording); the registration's reference is
   /// thinned to one point per voxel either way.
   bool keep_object_cloud = true;
+  /// A scan whose registration fell back to its guess is registered again each time a later
+  /// scan joins the reference, for this many later scans. When it then passes the check, the
+  /// grid is rebuilt from a checkpoint taken before it, with it and every scan since integrated
+  /// at their registered poses: the far side of a table, which shares almost nothing with the
+  /// near side, is pinned once a view from in between has been mapped. 0: a fallback is final.
+  /// The checkpoint is a copy of the grid, held while a scan is pending.
+  int reregister_window = 3;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -71,9 +80,16 @@ struct MapperUpdate {
   /// Cells that left or re-entered the unobserved set; over the parts of a scan, each cell
   /// counts once, by its net change.
   IntegrationResult integration;
-  double seconds_register = 0.0;
+  /// Earlier scans that fell back and now passed the check against the reference this scan
+  /// grew; the grid was rebuilt with them at these poses before this scan was integrated.
+  struct Reregistered {
+    std::size_t scan = 0;  ///< 0-based, in the order add_scan took them
+    Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+  };
+  std::vector<Reregistered> reregistered;
+  double seconds_register = 0.0;  ///< registration, and the retries of earlier scans
   double seconds_segment = 0.0;
-  double seconds_integrate = 0.0;
+  double seconds_integrate = 0.0;  ///< integration, and the grid's rebuild after a retry
 };
 
 /// Builds the map scan by scan. The first scan's pose defines the map frame as given; every later
@@ -105,13 +121,40 @@ class Mapper {
   /// MapperConfig::keep_object_cloud is off.
   const PointCloud& object_cloud() const { return objects_; }
   std::size_t scans() const { return scans_; }
+  /// Scans still left at their guess that a later scan may yet pin (reregister_window).
+  std::size_t pending() const;
 
  private:
+  /// A scan since the checkpoint, as it was integrated.
+  struct HeldScan {
+    std::size_t index = 0;
+    std::vector<ScanPart> parts;  ///< what was integrated of each view, in its sensor frame
+    Eigen::Isometry3d T_world_sensor_guess = Eigen::Isometry3d::Identity();
+    Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
+    bool trusted = false;
+  };
+
+  /// Registers `scan`'s objects to the reference, starting from its guess.
+  perception::RegistrationResult register_held(const HeldScan& scan) const;
+  /// `scan`'s objects in the world, at its pose.
+  PointCloud world_points(const HeldScan& scan) const;
+  /// Integrates `scan`'s views at its pose; each cell's change counts once, by its net.
+  IntegrationResult integrate(const HeldScan& scan);
+  /// Registers the held scans that fell back against the reference again; rebuilds the grid
+  /// from the checkpoint when one passes. Returns those that passed; adds the time taken.
+  std::vector<MapperUpdate::Reregistered> retry_pending(double& seconds_register,
+                                                        double& seconds_integrate);
+
   MapperConfig config_;
   OccupancyGrid grid_;
   perception::VoxelMap reference_;
   PointCloud objects_;
   std::size_t scans_ = 0;
+  /// The grid (and the object cloud's size) before the oldest scan still pending, and every scan
+  /// since; empty while no scan is pending.
+  std::optional<OccupancyGrid> checkpoint_;
+  std::size_t checkpoint_objects_ = 0;
+  std::vector<HeldScan> held_;
 };
 
 }  // namespace vantage

@@ -3,6 +3,7 @@
 
 #include <fmt/chrono.h>
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <filesystem>
@@ -60,9 +61,12 @@ void print_scan(const ScanRecord& r, int total) {
           : std::string();
   fmt::print(
       "scan {:2}/{}  view {:2}  predicted {}  actual {:7}  unobserved {:8}  "
-      "coverage {:5.1f}%  icp {:4.1f}->{:4.1f} mm{}  {:5.2f} s\n",
+      "coverage {:5.1f}%  icp {:4.1f}->{:4.1f} mm{}  {:5.2f} s{}\n",
       r.scan, total, r.view, predicted, r.actual_gain, r.unobserved, 100.0 * r.coverage,
-      1e3 * r.pose_error_before, 1e3 * r.pose_error_after, travel, seconds);
+      1e3 * r.pose_error_before, 1e3 * r.pose_error_after, travel, seconds,
+      r.reregistered.empty()
+          ? std::string()
+          : fmt::format("  (registered scan {} again)", fmt::join(r.reregistered, ", ")));
   std::fflush(stdout);
 }
 

@@ -55,9 +55,10 @@ void add_threads_option(CLI::App& cmd, int& threads, const std::string& descript
 
 /// Bytes a grid cell costs plan and explore at their peak, measured (docs/robustness.md,
 /// "Memory"): the grid's log-odds, the snapshot, stamps and tables of gain evaluation,
-/// integration and hole filling (kGridBytesPerCell), and each thread's own stamps
-/// (kThreadBytesPerCell), rounded up.
-inline constexpr double kGridBytesPerCell = 16.0;
+/// integration and hole filling, with the registration's checkpoint (a second copy of the
+/// log-odds, 4 B, held while a scan is pending; MapperConfig::reregister_window) on top
+/// (kGridBytesPerCell), and each thread's own stamps (kThreadBytesPerCell), rounded up.
+inline constexpr double kGridBytesPerCell = 20.0;
 inline constexpr double kThreadBytesPerCell = 5.0;
 /// The ground truth's: a byte of occupancy a cell and the surface lists, with room to spare.
 inline constexpr double kGroundTruthBytesPerCell = 8.0;
