@@ -122,6 +122,35 @@ TEST(Exploration, TakesEachViewOnceUnlessRevisitsAreAllowed) {
   EXPECT_EQ(revisits.scans.size(), views + 3);  // the ring never runs out
 }
 
+// --alpha auto calibrates with the method's own model: the first scan's calibration (on the empty
+// map) is that model's expected cells seen of the first view under each of the fit's a values.
+TEST(Exploration, AutoAlphaCalibratesWithTheMethodsOwnModel) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  for (const PlannerMethod method : {PlannerMethod::kProbabilistic, PlannerMethod::kSurvival}) {
+    ExplorationConfig config;
+    config.planner.method = method;
+    config.auto_alpha = true;
+    if (method == PlannerMethod::kSurvival) config.observability = survival_fit_config();
+    config.scans = 1;
+    config.mapper = default_mapper_config(scene);
+    Mapper mapper(scene.grid, config.mapper);
+    const ExplorationResult run = explore(scene, config, mapper);
+    ASSERT_EQ(run.scans.size(), 1u);
+    const std::vector<double>& calibration = run.scans[0].calibration;
+    ASSERT_EQ(calibration.size(), config.observability.alphas.size());
+
+    const OccupancyGrid empty(scene.grid, config.mapper.occupancy);
+    const Frustum view(run.scans[0].T_world_sensor, scene.fov());
+    GainConfig gain = config.planner.gain;
+    gain.method = gain_method_of(method);
+    for (std::size_t j = 0; j < calibration.size(); ++j) {
+      gain.alpha = config.observability.alphas[j];
+      EXPECT_DOUBLE_EQ(calibration[j], evaluate_views(empty, {&view, 1}, gain)[0].cells)
+          << to_string(method) << " a = " << gain.alpha;
+    }
+  }
+}
+
 TEST(Exploration, RejectsBadSettings) {
   const sim::Scene scene = sim::load_scene(testing::small_scene_path());
   ExplorationConfig config;

@@ -104,6 +104,11 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
   exploration.planner.gain.alpha = spec.alpha.value;
   exploration.auto_alpha = spec.alpha.automatic;
   exploration.observability.prior = spec.alpha.value;
+  if (spec.method == PlannerMethod::kSurvival && spec.alpha.automatic) {
+    // NOTE: its a is a chance per unobserved cell, with a grid and a prior of its own.
+    exploration.observability = survival_fit_config();
+    exploration.planner.gain.alpha = exploration.observability.prior;
+  }
   exploration.planner.objective = spec.objective;
   exploration.start = spec.trial % static_cast<int>(scene.start_poses.size());
   // NOTE: the seed depends on scene and trial only, so every method of a trial meets the same
@@ -127,10 +132,9 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
 std::string TrialSpec::key() const {
   // NOTE: the bits objective adds nothing to the key, so sweeps from before objectives resume.
   const std::string alpha_part =
-      method == PlannerMethod::kProbabilistic
-          ? fmt::format("__a{}{}", alpha.label(),
-                        objective == GainObjective::kCells ? "__cells" : "")
-          : std::string();
+      has_observability(method) ? fmt::format("__a{}{}", alpha.label(),
+                                              objective == GainObjective::kCells ? "__cells" : "")
+                                : std::string();
   return fmt::format("{}__{}{}__t{}", scene, to_string(method), alpha_part, trial);
 }
 
@@ -171,7 +175,7 @@ std::vector<TrialSpec> bench_trials(const BenchConfig& config) {
   for (const std::string& source : config.scenes) {
     const std::string scene = sim::load_scene(source).name;
     for (const PlannerMethod method : config.methods) {
-      const bool probabilistic = method == PlannerMethod::kProbabilistic;
+      const bool probabilistic = has_observability(method);
       const std::vector<AlphaSetting> alphas =
           probabilistic ? config.alphas : std::vector<AlphaSetting>{config.alphas.front()};
       const std::vector<GainObjective> objectives =

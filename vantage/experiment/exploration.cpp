@@ -80,7 +80,7 @@ class Explorer {
         world_(noisy(scene, config), sim::WorldConfig{config.planner.gain.num_threads}) {
     planner_ = config.planner;
     planner_.greedy_reference = true;  // Fig. 11: both predictions on the same poses
-    if (config.auto_alpha && planner_.method == PlannerMethod::kProbabilistic) {
+    if (config.auto_alpha && has_observability(planner_.method)) {
       fit_.emplace(config.observability);
       planner_.gain.alpha = fit_->alpha();
     }
@@ -150,8 +150,9 @@ class Explorer {
       if (fit_) {
         const auto start = Clock::now();
         const std::vector<Frustum> views = views_at(record.T_world_sensor);
-        record.calibration =
-            expected_cells_by_alpha(mapper_.grid(), views, planner_.gain, fit_->alphas());
+        GainConfig gain = planner_.gain;
+        gain.method = gain_method_of(planner_.method);
+        record.calibration = expected_cells_by_alpha(mapper_.grid(), views, gain, fit_->alphas());
         record.seconds.calibrate = seconds_since(start);
       }
       if (office_) {
@@ -276,7 +277,7 @@ class Explorer {
     d.predicted = plan.gains[best].gain;
     d.predicted_cells = plan.gains[best].cells;
     d.greedy_predicted = plan.greedy_gains[best];
-    if (planner_.method == PlannerMethod::kProbabilistic) d.alpha = planner_.gain.alpha;
+    if (has_observability(planner_.method)) d.alpha = planner_.gain.alpha;
   }
 
   /// Table top: every ring view, scored by the method; the robot walks around the table.

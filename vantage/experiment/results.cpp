@@ -188,7 +188,7 @@ RunLabel run_label(std::string scene, const ExplorationConfig& config) {
 }
 
 std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>& scans) {
-  const bool probabilistic = label.method == PlannerMethod::kProbabilistic;
+  const bool probabilistic = has_observability(label.method);
   const std::string alpha = probabilistic ? label.alpha.label() : std::string();
   const std::string objective = probabilistic ? std::string(to_string(label.objective)) : "";
   std::string rows;
@@ -246,7 +246,7 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
   // NOTE: docs/model.md, "Bits are not cells": the probabilistic gain is information, greedy's
   // (which every other method decides by) a count of cells.
   run["gain_units"] = {
-      {"predicted_gain", config.planner.method == PlannerMethod::kProbabilistic ? "bits" : "cells"},
+      {"predicted_gain", has_observability(config.planner.method) ? "bits" : "cells"},
       {"greedy_predicted_gain", "cells"},
       {"predicted_cells", "cells"}};
   write_atomically(dir / "run.json", run.dump(2) + "\n");

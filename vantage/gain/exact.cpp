@@ -8,6 +8,7 @@
 
 #include "vantage/gain/metrics.hpp"
 #include "vantage/gain/ray_model.hpp"
+#include "vantage/gain/survival.hpp"
 #include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/parallel.hpp"
@@ -57,6 +58,36 @@ TargetPrediction ray_gain(const Cells& map, const RayTables<Model>& tables,
     }
     // The fast mode's early stop: a ray stops once it is hidden.
     return !state.hidden(epsilon);
+  });
+  return prediction;
+}
+
+/// Gain and visibility of the target under the survival reading (survival.hpp); 0 once the ray
+/// is stopped (visibility below `epsilon`) before it.
+template <typename Cells>
+TargetPrediction survival_ray_gain(const Cells& map, const SurvivalModel& model,
+                                   const Eigen::Vector3d& origin, const Index3& target,
+                                   double epsilon) {
+  const GridSpec& spec = map.spec();
+  const std::size_t target_linear = spec.linear(target);
+  SurvivalModel::State state;
+  GainMap::Value prev;
+  TargetPrediction prediction;
+  bool first = true;
+  traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int m) {
+    const GainMap::Value cell = map.value(linear);
+    if (first) {
+      state = model.enter(m, cell);
+      first = false;
+    } else {
+      model.step(state, prev, cell);
+    }
+    prev = cell;
+    if (linear == target_linear) {
+      prediction = SurvivalModel::predict(state, cell);
+      return false;
+    }
+    return state.visibility >= epsilon && state.visibility > 0.0;
   });
   return prediction;
 }
@@ -139,6 +170,22 @@ std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frust
     });
     return gains;
   }
+  if (config.method == GainMethod::kSurvival) {
+    int cells = 1;
+    for (const Frustum& view : views) {
+      cells = std::max(cells, max_ray_cells(map.spec(), view.origin()));
+    }
+    const SurvivalModel model(config.alpha, map.params().p_min, cells);
+    run_with_threads(config.num_threads, [&] {
+      tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t i) {
+        const Eigen::Vector3d origin = views[i].origin();
+        gains[i] = sum_over_targets(map, views[i], [&](const Index3& target) {
+          return survival_ray_gain(map, model, origin, target, config.epsilon);
+        });
+      });
+    });
+    return gains;
+  }
   const RayTables<Model> tables = tables_for<Model>(map.spec(), views, map.params(), config.alpha);
   run_with_threads(config.num_threads, [&] {
     tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t i) {
@@ -177,6 +224,11 @@ double exact_cell_gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
   }
   const GridCells cells{grid};
   if (config.method == GainMethod::kGreedy) return greedy_gain(cells, origin, target).gain;
+  if (config.method == GainMethod::kSurvival) {
+    const SurvivalModel model(config.alpha, grid.params().p_min,
+                              max_ray_cells(grid.spec(), origin));
+    return survival_ray_gain(cells, model, origin, target, 0.0).gain;
+  }
   const RayTables<PaperModel> tables(config.alpha, grid.params().p_min,
                                      max_ray_cells(grid.spec(), origin));
   return ray_gain(cells, tables, origin, target, 0.0).gain;

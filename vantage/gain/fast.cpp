@@ -111,7 +111,10 @@ std::vector<ViewGain> fast_view_gains(const GainMap& map, std::span<const Frustu
                                       const GainConfig& config) {
   config.validate();
   require_model_method(config, "fast_view_gains");
-  if (config.method == GainMethod::kGreedy) return exact_view_gains<Model>(map, views, config);
+  // NOTE: greedy and the survival reading have only the exact evaluation.
+  if (config.method == GainMethod::kGreedy || config.method == GainMethod::kSurvival) {
+    return exact_view_gains<Model>(map, views, config);
+  }
   std::vector<ViewGain> gains;
   run_with_threads(config.num_threads, [&] {
     const detail::FastPlan plan = detail::plan_rays(map, views, config);

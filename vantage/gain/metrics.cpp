@@ -280,6 +280,7 @@ bool is_volumetric_metric(GainMethod method) {
     case GainMethod::kAreaFactor:
       return true;
     case GainMethod::kProbabilistic:
+    case GainMethod::kSurvival:
     case GainMethod::kGreedy:
       return false;
   }
@@ -368,6 +369,7 @@ std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frus
     case GainMethod::kAreaFactor:
       return all_views<AreaFactor>(ctx, views, config.num_threads);
     case GainMethod::kProbabilistic:
+    case GainMethod::kSurvival:
     case GainMethod::kGreedy:
       break;
   }

@@ -58,7 +58,9 @@ double exact_steps(const GainMap& map, std::span<const Frustum> views) {
 /// The cheaper of the two evaluations on one snapshot.
 std::vector<ViewGain> cheapest_view_gains(const GainMap& map, std::span<const Frustum> views,
                                           const GainConfig& config) {
-  if (config.method == GainMethod::kGreedy) return exact_view_gains(map, views, config);
+  if (config.method == GainMethod::kGreedy || config.method == GainMethod::kSurvival) {
+    return exact_view_gains(map, views, config);
+  }
   std::vector<ViewGain> gains;
   run_with_threads(config.num_threads, [&] {
     const detail::FastPlan plan = detail::plan_rays(map, views, config);
@@ -73,8 +75,9 @@ std::vector<ViewGain> cheapest_view_gains(const GainMap& map, std::span<const Fr
 
 }  // namespace
 
-constexpr EnumNames<GainMethod, 9> kMethodNames = {
+constexpr EnumNames<GainMethod, 10> kMethodNames = {
     {{GainMethod::kProbabilistic, "probabilistic"},
+     {GainMethod::kSurvival, "survival"},
      {GainMethod::kGreedy, "greedy"},
      {GainMethod::kOcclusionAware, "occlusion-aware"},
      {GainMethod::kUnobservedVoxel, "unobserved-voxel"},

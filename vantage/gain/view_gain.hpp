@@ -22,6 +22,10 @@ namespace vantage {
 enum class GainMethod {
   kProbabilistic,  ///< the paper's visibility HMM and occupancy filter, parameter alpha
   kGreedy,  ///< simple greedy: 1 if nothing occupied lies before the cell (infinite visibility)
+  /// The survival reading of the visibility (survival.hpp, docs/model.md): a ray survives each
+  /// unobserved cell with probability alpha, free cells always, occupied cells never; the
+  /// paper's occupancy filter on top. Exact evaluation only (kFast and kAuto take it).
+  kSurvival,
   // The field's volumetric metrics (vantage/gain/metrics.hpp, docs/model.md "The field's
   // metrics"): sums over the cells the view's rays cross, not per-target predictions.
   kOcclusionAware,   ///< entropy weighted by visibility, eq. M1
@@ -34,9 +38,9 @@ enum class GainMethod {
 };
 
 std::string_view to_string(GainMethod method);
-/// Parses "probabilistic", "greedy" or a metric's name (occlusion-aware, unobserved-voxel,
-/// rear-side-voxel, rear-side-entropy, proximity-count, average-entropy, area-factor); throws
-/// std::invalid_argument naming the value.
+/// Parses "probabilistic", "survival", "greedy" or a metric's name (occlusion-aware,
+/// unobserved-voxel, rear-side-voxel, rear-side-entropy, proximity-count, average-entropy,
+/// area-factor); throws std::invalid_argument naming the value.
 GainMethod parse_gain_method(std::string_view name);
 
 /// How a view's gain is computed from the per-cell model.

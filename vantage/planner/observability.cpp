@@ -33,7 +33,7 @@ AlphaSetting parse_alpha_setting(std::string_view text, double prior) {
 std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
                                             std::span<const Frustum> views, GainConfig config,
                                             std::span<const double> alphas) {
-  config.method = GainMethod::kProbabilistic;
+  if (config.method != GainMethod::kSurvival) config.method = GainMethod::kProbabilistic;
   std::vector<double> cells;
   cells.reserve(alphas.size());
   for (const double alpha : alphas) {
@@ -43,6 +43,17 @@ std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
     cells.push_back(sum);
   }
   return cells;
+}
+
+ObservabilityFitConfig survival_fit_config() {
+  ObservabilityFitConfig config;
+  config.alphas = {0.9, 0.95, 0.98, 0.99, 0.995, 0.998, 0.9995};
+  config.prior = kSurvivalAlpha;
+  return config;
+}
+
+double default_alpha(PlannerMethod method, double literal) {
+  return method == PlannerMethod::kSurvival ? kSurvivalAlpha : literal;
 }
 
 void ObservabilityFitConfig::validate() const {

@@ -19,6 +19,7 @@
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/map/occupancy_grid.hpp"
+#include "vantage/planner/planner.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
@@ -39,7 +40,8 @@ struct AlphaSetting {
 AlphaSetting parse_alpha_setting(std::string_view text, double prior = kTableTopAlpha);
 
 /// The expected number of cells seen (ViewGain::cells) of `views` together, under each of
-/// `alphas` in turn, with the rest of `config` (its method is taken as probabilistic) [cells]:
+/// `alphas` in turn, with the rest of `config` (its method is kept when it is survival, else taken
+/// as probabilistic) [cells]:
 /// the predictions ObservabilityFit::record takes for the views a scan is about to be taken from.
 std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
                                             std::span<const Frustum> views, GainConfig config,
@@ -61,6 +63,20 @@ struct ObservabilityFitConfig {
   /// Throws std::invalid_argument naming the field.
   void validate() const;
 };
+
+/// The survival reading's a (gain/survival.hpp): the chance that one unobserved cell is empty
+/// air. The default and the prior of its fit; chosen, like the paper's 0.997, by measurement
+/// (RESULTS.md, "The survival reading").
+inline constexpr double kSurvivalAlpha = 0.99;
+
+/// The fit for the survival reading: its a is a chance per unobserved cell, not per cell from
+/// the sensor, so its values span clutter (0.9: one cell in ten hides a surface) to greedy's
+/// clear air (0.9995), starting from kSurvivalAlpha.
+ObservabilityFitConfig survival_fit_config();
+
+/// The a a method uses when none is given: the survival reading's kSurvivalAlpha, else the
+/// paper's for the scene (`literal`: 0.997 on a table top, 0.9999 in an office).
+double default_alpha(PlannerMethod method, double literal);
 
 /// Fits a to the predictions and outcomes of the scans taken so far. Deterministic: the same
 /// outcomes give the same a.

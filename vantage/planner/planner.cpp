@@ -52,7 +52,8 @@ std::vector<double> gains_of(const OccupancyGrid& grid, const Views& views, Gain
   std::vector<double> values;
   values.reserve(gains.size());
   // NOTE: greedy's gain is its count of cells; only the probabilistic method's differ.
-  const bool cells = objective == GainObjective::kCells && method == GainMethod::kProbabilistic;
+  const bool cells = objective == GainObjective::kCells &&
+                     (method == GainMethod::kProbabilistic || method == GainMethod::kSurvival);
   for (const ViewGain& g : gains) values.push_back(cells ? g.cells : g.gain);
   if (per_candidate != nullptr) {
     per_candidate->assign(views.first.size() - 1, ViewGain{});
@@ -72,6 +73,8 @@ std::string_view to_string(PlannerMethod method) {
   switch (method) {
     case PlannerMethod::kProbabilistic:
       return "probabilistic";
+    case PlannerMethod::kSurvival:
+      return "survival";
     case PlannerMethod::kGreedy:
       return "greedy";
     case PlannerMethod::kRandom:
@@ -89,6 +92,8 @@ GainMethod gain_method_of(PlannerMethod method) {
   switch (method) {
     case PlannerMethod::kProbabilistic:
       return GainMethod::kProbabilistic;
+    case PlannerMethod::kSurvival:
+      return GainMethod::kSurvival;
     case PlannerMethod::kOcclusionAware:
       return GainMethod::kOcclusionAware;
     case PlannerMethod::kUnobservedVoxel:
@@ -114,18 +119,19 @@ GainMethod gain_method_of(PlannerMethod method) {
 
 PlannerMethod parse_planner_method(std::string_view name) {
   for (const PlannerMethod m :
-       {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy, PlannerMethod::kRandom,
-        PlannerMethod::kLatombe, PlannerMethod::kYamauchi, PlannerMethod::kOcclusionAware,
-        PlannerMethod::kUnobservedVoxel, PlannerMethod::kRearSideVoxel,
-        PlannerMethod::kRearSideEntropy, PlannerMethod::kProximityCount,
-        PlannerMethod::kAverageEntropy, PlannerMethod::kAreaFactor}) {
+       {PlannerMethod::kProbabilistic, PlannerMethod::kSurvival, PlannerMethod::kGreedy,
+        PlannerMethod::kRandom, PlannerMethod::kLatombe, PlannerMethod::kYamauchi,
+        PlannerMethod::kOcclusionAware, PlannerMethod::kUnobservedVoxel,
+        PlannerMethod::kRearSideVoxel, PlannerMethod::kRearSideEntropy,
+        PlannerMethod::kProximityCount, PlannerMethod::kAverageEntropy,
+        PlannerMethod::kAreaFactor}) {
     if (name == to_string(m)) return m;
   }
-  throw std::invalid_argument(
-      cat("unknown method '", name,
-          "' (expected probabilistic, greedy, random, latombe, yamauchi, occlusion-aware, "
-          "unobserved-voxel, rear-side-voxel, rear-side-entropy, proximity-count, "
-          "average-entropy or area-factor)"));
+  throw std::invalid_argument(cat(
+      "unknown method '", name,
+      "' (expected probabilistic, survival, greedy, random, latombe, yamauchi, occlusion-aware, "
+      "unobserved-voxel, rear-side-voxel, rear-side-entropy, proximity-count, "
+      "average-entropy or area-factor)"));
 }
 
 std::string_view to_string(GainObjective objective) {
@@ -136,6 +142,10 @@ GainObjective parse_gain_objective(std::string_view name) {
   if (name == "bits") return GainObjective::kBits;
   if (name == "cells") return GainObjective::kCells;
   throw std::invalid_argument(cat("unknown objective '", name, "' (expected bits or cells)"));
+}
+
+bool has_observability(PlannerMethod method) {
+  return method == PlannerMethod::kProbabilistic || method == PlannerMethod::kSurvival;
 }
 
 void PlannerConfig::validate() const {
@@ -152,7 +162,7 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   const auto start = std::chrono::steady_clock::now();
   Plan plan;
   const Views views(candidates);
-  const bool probabilistic = config.method == PlannerMethod::kProbabilistic;
+  const bool probabilistic = has_observability(config.method);
   // NOTE: the paper's model and the metrics score by something other than greedy's count, so
   // greedy's prediction on the same poses is the reference of their predictions (Fig. 11).
   const GainMethod scored_by = gain_method_of(config.method);

@@ -18,6 +18,7 @@ namespace vantage {
 /// How the next view is chosen.
 enum class PlannerMethod {
   kProbabilistic,  ///< highest expected gain under the paper's visibility model
+  kSurvival,       ///< the same under the survival reading of it (gain/survival.hpp)
   kGreedy,         ///< highest simple-greedy gain (infinite visibility)
   kRandom,         ///< a uniformly random candidate, seeded
   kLatombe,        ///< González-Baños & Latombe: greedy gain * exp(-lambda * travel)
@@ -36,8 +37,12 @@ std::string_view to_string(PlannerMethod method);
 /// Parses probabilistic, greedy, random, latombe, yamauchi or a metric's name (as GainMethod's);
 /// throws std::invalid_argument.
 PlannerMethod parse_planner_method(std::string_view name);
-/// The gain method a planner method scores by: probabilistic, a metric, or greedy for the rest.
+/// The gain method a planner method scores by: probabilistic, survival, a metric, or greedy for
+/// the rest.
 GainMethod gain_method_of(PlannerMethod method);
+/// Whether the method predicts with a visibility model of parameter a (probabilistic, survival):
+/// it takes --alpha (auto too) and --objective, and reports its expected cells seen.
+bool has_observability(PlannerMethod method);
 
 /// What the probabilistic method maximises over the candidates.
 enum class GainObjective {
@@ -52,7 +57,8 @@ GainObjective parse_gain_objective(std::string_view name);
 /// Settings of the decision.
 struct PlannerConfig {
   PlannerMethod method = PlannerMethod::kProbabilistic;
-  /// What the probabilistic method ranks by; the other methods count cells whatever it says.
+  /// What the probabilistic and survival methods rank by; the others count cells whatever it
+  /// says.
   GainObjective objective = GainObjective::kBits;
   /// Gain evaluation settings; `gain.method` is set from `method` (gain_method_of).
   GainConfig gain;

@@ -75,11 +75,15 @@ void run(const ExploreOptions& o) {
   const bool office = scene.kind == sim::SceneKind::kOffice;
   // The paper's a for the scene's kind (§5.1, §5.2) when --alpha is not given, and the prior
   // of --alpha auto.
-  const double literal = office ? kOfficeAlpha : kTableTopAlpha;
-  const AlphaSetting alpha = o.planning.alpha_setting(literal);
   ExplorationConfig config;
-  config.planner = o.planning.planner_config(literal);
+  config.planner = o.planning.planner_config(office ? kOfficeAlpha : kTableTopAlpha);
+  const double literal =
+      default_alpha(config.planner.method, office ? kOfficeAlpha : kTableTopAlpha);
+  const AlphaSetting alpha = o.planning.alpha_setting(literal);
   config.auto_alpha = alpha.automatic;
+  if (config.planner.method == PlannerMethod::kSurvival) {
+    config.observability = survival_fit_config();
+  }
   config.observability.prior = alpha.value;
   config.mapper = o.mapping.mapper_config(scene);
   config.mapper.integration.num_threads = o.planning.threads;

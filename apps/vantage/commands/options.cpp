@@ -12,7 +12,9 @@ namespace vantage::cli {
 
 void PlanningOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--method,-m", method,
-                 "probabilistic, greedy, random, latombe, yamauchi, or one of the field's metrics: "
+                 "probabilistic, survival (the paper's model under the survival reading of its "
+                 "visibility, docs/model.md), greedy, random, latombe, yamauchi, or one of the "
+                 "field's metrics: "
                  "occlusion-aware, unobserved-voxel, rear-side-voxel, rear-side-entropy, "
                  "proximity-count, average-entropy, area-factor (docs/model.md)")
       ->capture_default_str();
@@ -53,7 +55,7 @@ PlannerConfig PlanningOptions::make_planner_config(double literal_alpha) const {
   PlannerConfig config;
   config.method = parse_planner_method(method);
   config.objective = parse_gain_objective(objective);
-  config.gain.alpha = alpha_setting(literal_alpha).value;
+  config.gain.alpha = alpha_setting(default_alpha(config.method, literal_alpha)).value;
   config.gain.evaluation = parse_gain_evaluation(evaluation);
   config.gain.epsilon = epsilon;
   config.gain.num_threads = threads;

@@ -70,6 +70,7 @@ PlanUnits units_of(PlannerMethod method) {
   if (is_volumetric_metric(gain_method_of(method))) return {"metric", "metric"};
   switch (method) {
     case PlannerMethod::kProbabilistic:
+    case PlannerMethod::kSurvival:
       return {"bits", "bits"};
     case PlannerMethod::kYamauchi:
       return {"cells", "-m"};
@@ -358,7 +359,7 @@ void run(const PlanOptions& o) {
       planner.method == PlannerMethod::kLatombe || planner.method == PlannerMethod::kYamauchi;
   // NOTE: the probabilistic method also predicts in cells (E, docs/model.md), the number its
   // prediction error is measured in; greedy's gain already is a count of cells.
-  const bool show_cells = planner.method == PlannerMethod::kProbabilistic;
+  const bool show_cells = has_observability(planner.method);
   const std::string gain_header = fmt::format("predicted gain [{}]", units.predicted_gain);
   const std::string cells_header = "predicted seen [cells]";
   const std::string score_header = fmt::format("score [{}]", units.score);
@@ -382,8 +383,7 @@ void run(const PlanOptions& o) {
       "\nnext best view: candidate {} ({} method{}), decided in {:.3f} s\n"
       "  at {}\n  as --pose: {}\n",
       plan.best, to_string(planner.method),
-      planner.method == PlannerMethod::kProbabilistic ? fmt::format(", a = {}", planner.gain.alpha)
-                                                      : "",
+      has_observability(planner.method) ? fmt::format(", a = {}", planner.gain.alpha) : "",
       plan.seconds, describe_pose(poses[plan.best]), pose_argument(poses[plan.best]));
   if (robot) fmt::print("robot at {} ({})\n", describe_pose(*robot), robot_source);
   fmt::print("map: {} unobserved, {} free, {} occupied cells\nresults: {}/plan.json, map.ot{}\n",
