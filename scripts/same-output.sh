@@ -6,7 +6,7 @@
 #   diff -r before/ after/ && echo identical
 #
 # Runs `make demo`'s exploration and short runs of every method, evaluation and scene kind, and
-# keeps each scans.csv without its wall-clock column (plan_seconds) and each run.json without its
+# keeps each scans.csv without its wall-clock columns (plan_seconds, the stage times) and each run.json without its
 # timings and version. Everything else (views, predictions, actual gains, unobserved cells,
 # coverage, poses, ICP errors) must match to the last digit.
 set -euo pipefail
@@ -21,8 +21,8 @@ run() {
   local name=$1
   shift
   "$bin" explore --quiet --no-plots --threads 2 --out "$work/$name" "$@" >/dev/null
-  # Column 12 of scans.csv is plan_seconds, the one wall-clock column.
-  cut -d, -f1-11,13- "$work/$name/scans.csv" >"$out/$name.csv"
+  # Column 12 of scans.csv is plan_seconds, and 21 on are the stage times: the wall-clock columns.
+  cut -d, -f1-11,13-20 "$work/$name/scans.csv" >"$out/$name.csv"
   /usr/bin/python3 - "$work/$name/run.json" >"$out/$name.json" <<'PY'
 import json, sys
 def strip(x):

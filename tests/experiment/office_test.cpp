@@ -99,7 +99,7 @@ TEST(Office, TwoStopsMeetTheTableTopInvariants) {
   EXPECT_EQ(csv.substr(0, kScansCsvHeader.size()), kScansCsvHeader);
   const auto rows = parse_csv(csv);
   ASSERT_EQ(rows.size(), 3u);
-  ASSERT_EQ(rows[0].size(), 17u);
+  ASSERT_EQ(rows[0].size(), 24u);
   EXPECT_EQ(rows[0][12], "travel_m");
   EXPECT_EQ(rows[0][13], "fallback");
   EXPECT_EQ(rows[0][14], "predicted_cells");
@@ -111,6 +111,8 @@ TEST(Office, TwoStopsMeetTheTableTopInvariants) {
   EXPECT_DOUBLE_EQ(std::stod(rows[2][12]), scans[1].travel);
   EXPECT_EQ(rows[2][13], scans[1].fallback ? "1" : "0");
   EXPECT_EQ(rows[2][8], std::to_string(scans[1].actual_gain));
+  EXPECT_EQ(rows[0][19], "pose_error_final_m");
+  EXPECT_NEAR(std::stod(rows[2][19]), scans[1].pose_error_final, 1e-6 * scans[1].pose_error_final);
   const auto json = nlohmann::json::parse(read_text(dir / "run.json"));
   EXPECT_EQ(json["scene"]["kind"], "office");
   EXPECT_EQ(json["scans"].size(), 2u);

@@ -46,11 +46,13 @@ inline std::vector<std::vector<std::string>> parse_csv(const std::string& text) 
   return rows;
 }
 
-/// The CSV with its plan_seconds column (the 12th, the only wall-clock figure in it) emptied.
+/// The CSV with its wall-clock columns (plan_seconds, the 12th, and the stage times from the
+/// 21st on) emptied.
 inline std::string without_timing(const std::string& csv) {
   std::string out;
   for (std::vector<std::string> fields : parse_csv(csv)) {
     if (fields.size() > 11) fields[11].clear();
+    for (std::size_t k = 20; k < fields.size(); ++k) fields[k].clear();
     for (std::size_t k = 0; k < fields.size(); ++k) out += (k > 0 ? "," : "") + fields[k];
     out += "\n";
   }

@@ -193,12 +193,15 @@ std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>&
   const std::string objective = probabilistic ? std::string(to_string(label.objective)) : "";
   std::string rows;
   for (const ScanRecord& r : scans) {
-    rows += fmt::format("{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g},{:.15g},{:d},{},{},{}\n",
-                        label.scene, to_string(label.method), alpha, label.trial, r.scan, r.view,
-                        optional_number(r.predicted_gain), optional_number(r.greedy_predicted_gain),
-                        r.actual_gain, r.unobserved, r.coverage, r.seconds.plan, r.travel,
-                        r.fallback ? 1 : 0, optional_number(r.predicted_cells),
-                        optional_number(r.alpha), objective);
+    rows += fmt::format(
+        "{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g},{:.15g},{:d},{},{},{},{:.6g},{:.6g},{:.6g},"
+        "{:.6g},{:.6g},{:.6g},{:.6g}\n",
+        label.scene, to_string(label.method), alpha, label.trial, r.scan, r.view,
+        optional_number(r.predicted_gain), optional_number(r.greedy_predicted_gain), r.actual_gain,
+        r.unobserved, r.coverage, r.seconds.plan, r.travel, r.fallback ? 1 : 0,
+        optional_number(r.predicted_cells), optional_number(r.alpha), objective,
+        r.pose_error_before, r.pose_error_after, r.pose_error_final, r.seconds.register_scan,
+        r.seconds.segment, r.seconds.integrate, r.seconds.reference);
   }
   return rows;
 }

@@ -22,7 +22,9 @@ namespace vantage {
 /// actual_gain; `objective` is what the probabilistic method ranked by (bits or cells).
 inline constexpr std::string_view kScansCsvHeader =
     "scene,method,alpha,trial,scan,view,predicted_gain,greedy_predicted_gain,actual_gain,"
-    "unobserved,coverage,plan_seconds,travel_m,fallback,predicted_cells,alpha_used,objective";
+    "unobserved,coverage,plan_seconds,travel_m,fallback,predicted_cells,alpha_used,objective,"
+    "pose_error_before_m,pose_error_after_m,pose_error_final_m,register_seconds,segment_seconds,"
+    "integrate_seconds,reference_seconds";
 
 /// Which run a row belongs to.
 struct RunLabel {
