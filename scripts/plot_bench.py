@@ -26,7 +26,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-COLOURS = {"probabilistic": "#d32f2f", "greedy": "#1976d2", "random": "#388e3c",
+COLOURS = {"probabilistic": "#d32f2f", "survival": "#ad1457", "greedy": "#1976d2",
+           "random": "#388e3c",
            "latombe": "#7b1fa2", "yamauchi": "#f57c00",
            # The field's metrics (docs/model.md "The field's metrics").
            "occlusion-aware": "#00838f", "unobserved-voxel": "#6d4c41",
@@ -34,7 +35,7 @@ COLOURS = {"probabilistic": "#d32f2f", "greedy": "#1976d2", "random": "#388e3c",
            "proximity-count": "#5e35b1", "average-entropy": "#546e7a", "area-factor": "#ef6c00"}
 # Methods whose prediction in cells is their own (the paper's model's expected cells seen, each
 # metric's unobserved-voxel count on its poses), plotted against the actual cells seen.
-PREDICTING = {"probabilistic", "occlusion-aware", "unobserved-voxel", "rear-side-voxel",
+PREDICTING = {"probabilistic", "survival", "occlusion-aware", "unobserved-voxel", "rear-side-voxel",
               "rear-side-entropy", "proximity-count", "average-entropy", "area-factor"}
 
 
@@ -69,7 +70,7 @@ def colour(g, method, setting):
 
 
 def label(method, setting):
-    if method != "probabilistic":
+    if method not in ("probabilistic", "survival"):
         return method
     alpha, objective = setting
     return f"{method} (a={alpha}, {objective})" if objective else f"{method} (a={alpha})"
@@ -218,7 +219,7 @@ def plot_prediction_error(out, scenes, g):
             ax.errorbar(scans, [x[0] for x in own], yerr=[x[1] for x in own], fmt="o-", ms=3,
                         capsize=2, color=colour(g, method, alpha),
                         label=f"{label(method, alpha)}: expected cells seen")
-            if method != "probabilistic":
+            if method not in ("probabilistic", "survival"):
                 continue  # greedy's reference once per panel is enough to read it by
             ax.errorbar(scans, [x[0] for x in greedy], yerr=[x[1] for x in greedy], fmt="s--",
                         ms=3, capsize=2, color=COLOURS["greedy"], alpha=0.6,
