@@ -143,9 +143,14 @@ TEST(Exploration, AutoAlphaCalibratesWithTheMethodsOwnModel) {
     const Frustum view(run.scans[0].T_world_sensor, scene.fov());
     GainConfig gain = config.planner.gain;
     gain.method = gain_method_of(method);
+    // NOTE: survival's calibration adds a^n over a histogram of n in one pass: the same sum in
+    // another order, and without the early stop.
+    const bool survival = method == PlannerMethod::kSurvival;
+    if (survival) gain.epsilon = 0.0;
     for (std::size_t j = 0; j < calibration.size(); ++j) {
       gain.alpha = config.observability.alphas[j];
-      EXPECT_DOUBLE_EQ(calibration[j], evaluate_views(empty, {&view, 1}, gain)[0].cells)
+      const double expected = evaluate_views(empty, {&view, 1}, gain)[0].cells;
+      EXPECT_NEAR(calibration[j], expected, survival ? 1e-9 * expected : 0.0)
           << to_string(method) << " a = " << gain.alpha;
     }
   }

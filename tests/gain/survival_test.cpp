@@ -102,5 +102,21 @@ TEST(Survival, FastAndAutoTakeTheExactEvaluation) {
   }
 }
 
+TEST(Survival, OnePassGivesEveryAsExpectedCellsForAnyThreadCount) {
+  const OccupancyGrid grid = row_grid();
+  const std::vector<Frustum> views = {looking_along_x({0.05, 0.0, 0.0}),
+                                      looking_along_x({-0.95, 0.0, 0.0})};
+  const std::vector<double> alphas = {0.5, 0.9, 0.99, 1.0};
+  const std::vector<double> one = survival_cells_by_alpha(grid, views, alphas, 1);
+  ASSERT_EQ(one.size(), alphas.size());
+  EXPECT_EQ(survival_cells_by_alpha(grid, views, alphas, 2), one);
+  for (std::size_t j = 0; j < alphas.size(); ++j) {
+    double expected = 0.0;
+    for (const ViewGain& g : exact_view_gains(grid, views, survival(alphas[j])))
+      expected += g.cells;
+    EXPECT_NEAR(one[j], expected, 1e-12) << alphas[j];
+  }
+}
+
 }  // namespace
 }  // namespace vantage

@@ -1,9 +1,11 @@
 #include "vantage/gain/exact.hpp"
 
 #include <tbb/blocked_range.h>
+#include <tbb/combinable.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <stdexcept>
 
 #include "vantage/gain/metrics.hpp"
@@ -152,7 +154,81 @@ RayTables<Model> tables_for(const GridSpec& spec, std::span<const Frustum> views
   return RayTables<Model>(alpha, params.p_min, cells);
 }
 
+/// Unobserved cells before the target on its ray, or -1 when an occupied cell lies before it.
+int unobserved_before(const GainMap& map, const Eigen::Vector3d& origin, const Index3& target) {
+  const GridSpec& spec = map.spec();
+  const std::size_t target_linear = spec.linear(target);
+  int unobserved = 0;
+  traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int) {
+    if (linear == target_linear) return false;
+    switch (map.value(linear).state) {
+      case CellState::kOccupied:
+        unobserved = -1;
+        return false;
+      case CellState::kUnobserved:
+        ++unobserved;
+        break;
+      case CellState::kFree:
+        break;
+    }
+    return true;
+  });
+  return unobserved;
+}
+
 }  // namespace
+
+std::vector<double> survival_cells_by_alpha(const OccupancyGrid& grid,
+                                            std::span<const Frustum> views,
+                                            std::span<const double> alphas, int num_threads) {
+  const GainMap map(grid, num_threads);
+  const GridSpec& spec = map.spec();
+  int cells = 1;
+  for (const Frustum& view : views) cells = std::max(cells, max_ray_cells(spec, view.origin()));
+  // NOTE: counts, not sums of powers: integers add up the same in any order, so the histogram,
+  // and every E(a) from it, is the same for any thread count.
+  std::vector<std::uint64_t> histogram(static_cast<std::size_t>(cells) + 1, 0);
+  run_with_threads(num_threads, [&] {
+    for (const Frustum& view : views) {
+      const CellBox box = cells_under(spec, view);
+      if (box.empty()) continue;
+      const Eigen::Vector3d origin = view.origin();
+      const int ny = box.hi.y() - box.lo.y() + 1;
+      const int nz = box.hi.z() - box.lo.z() + 1;
+      const auto rows = static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
+      tbb::combinable<std::vector<std::uint64_t>> partial(
+          [&] { return std::vector<std::uint64_t>(histogram.size(), 0); });
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows), [&](const auto& range) {
+        std::vector<std::uint64_t>& counts = partial.local();
+        for (std::size_t row = range.begin(); row != range.end(); ++row) {
+          Index3 cell(0, box.lo.y() + static_cast<int>(row % static_cast<std::size_t>(ny)),
+                      box.lo.z() + static_cast<int>(row / static_cast<std::size_t>(ny)));
+          for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
+            if (map.value(spec.linear(cell)).state != CellState::kUnobserved ||
+                !view.contains(spec.center(cell))) {
+              continue;
+            }
+            const int n = unobserved_before(map, origin, cell);
+            if (n >= 0) ++counts[static_cast<std::size_t>(n)];
+          }
+        }
+      });
+      partial.combine_each([&](const std::vector<std::uint64_t>& counts) {
+        for (std::size_t n = 0; n < counts.size(); ++n) histogram[n] += counts[n];
+      });
+    }
+  });
+  std::vector<double> expected;
+  for (const double alpha : alphas) {
+    double sum = 0.0, power = 1.0;  // eq. (9)-(10), the survival reading: v_M = a^n
+    for (const std::uint64_t count : histogram) {
+      sum += static_cast<double>(count) * power;
+      power *= alpha;
+    }
+    expected.push_back(sum);
+  }
+  return expected;
+}
 
 template <typename Model>
 std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,

@@ -28,6 +28,14 @@ std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<cons
 /// Exact gain of one view.
 ViewGain exact_view_gain(const OccupancyGrid& grid, const Frustum& view, const GainConfig& config);
 
+/// The survival reading's expected cells seen (ViewGain::cells) of `views` together under each
+/// of `alphas`, in one pass: each unobserved target in view with no occupied cell before it adds
+/// a^n, n the unobserved cells before it, so a histogram of n serves every a [cells]. Equal to
+/// the sum of exact_view_gains' cells at each a up to the order of the additions.
+std::vector<double> survival_cells_by_alpha(const OccupancyGrid& grid,
+                                            std::span<const Frustum> views,
+                                            std::span<const double> alphas, int num_threads = 0);
+
 /// Predicted gain of one target cell seen from `origin`, whatever its state (known cells are
 /// evaluated too; the view sums skip them). Follows the literal model whatever `config.epsilon`
 /// says.

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "vantage/gain/exact.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -33,7 +34,10 @@ AlphaSetting parse_alpha_setting(std::string_view text, double prior) {
 std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
                                             std::span<const Frustum> views, GainConfig config,
                                             std::span<const double> alphas) {
-  if (config.method != GainMethod::kSurvival) config.method = GainMethod::kProbabilistic;
+  if (config.method == GainMethod::kSurvival) {
+    return survival_cells_by_alpha(grid, views, alphas, config.num_threads);
+  }
+  config.method = GainMethod::kProbabilistic;
   std::vector<double> cells;
   cells.reserve(alphas.size());
   for (const double alpha : alphas) {
