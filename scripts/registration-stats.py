@@ -2,7 +2,9 @@
 """Registration figures over a set of `vantage explore` run folders (issue 14's bar).
 
     scripts/registration-stats.py RUN_DIR [RUN_DIR ...]     # folders holding run.json
-    scripts/registration-stats.py /tmp/runs/*                # e.g. every run of a sweep
+    scripts/registration-stats.py /tmp/runs/*                # e.g. every run of an explore loop
+    scripts/registration-stats.py SWEEP_DIR                  # a `vantage bench` folder: every
+                                                             # trial's rows in scans.csv/trials/
 
 Over every scan after each run's first (the first defines the map frame and is exact): the
 translation error of the pose used after registration (median, 95th percentile, worst), the
@@ -12,6 +14,7 @@ is the pose the map holds at the end of the run: a scan that fell back and was r
 after a later scan (MapperConfig::reregister_window) counts there at its second registration. Run
 folders whose scene is an office are reported apart from table tops.
 """
+import csv
 import json
 import math
 import sys
@@ -28,14 +31,45 @@ def percentile(values, q):
     return s[lo] + (s[hi] - s[lo]) * (k - lo)
 
 
+SCANS_CSV_HEADER = (
+    "scene,method,alpha,trial,scan,view,predicted_gain,greedy_predicted_gain,actual_gain,"
+    "unobserved,coverage,plan_seconds,travel_m,fallback,predicted_cells,alpha_used,objective,"
+    "pose_error_before_m,pose_error_after_m,pose_error_final_m,register_seconds,segment_seconds,"
+    "integrate_seconds,reference_seconds").split(",")
+
+
+def add_sweep(folder, groups):
+    """Adds the rows of a `vantage bench` folder (its scans.csv, or its trials/*.csv), which keep
+    the pose errors and registration times in their columns; False if it is no sweep folder."""
+    files = [folder / "scans.csv"] if (folder / "scans.csv").is_file() else \
+        sorted((folder / "trials").glob("*.csv")) if (folder / "trials").is_dir() else []
+    if not files:
+        return False
+    rows = groups.setdefault(f"sweep {folder.name}", [])
+    for f in files:
+        with open(f, newline="") as handle:
+            # NOTE: a trial's file is rows only, under scans.csv's header (README, vantage explore)
+            first = handle.readline()
+            handle.seek(0)
+            names = None if first.startswith("scene,") else SCANS_CSV_HEADER
+            for r in csv.DictReader(handle, fieldnames=names):
+                if int(r["scan"]) < 2 or "pose_error_final_m" not in r:
+                    continue
+                rows.append((float(r["pose_error_before_m"]), float(r["pose_error_after_m"]),
+                             float(r["register_seconds"]), float(r["pose_error_final_m"])))
+    return True
+
+
 def main(argv):
     if len(argv) < 2:
         sys.exit(__doc__)
     groups = {}
     for arg in argv[1:]:
+        if add_sweep(Path(arg), groups):
+            continue
         path = Path(arg) / "run.json"
         if not path.is_file():
-            sys.exit(f"registration-stats: {path}: no such file (expected a run folder)")
+            sys.exit(f"registration-stats: {path}: no such file (expected a run or sweep folder)")
         try:
             run = json.loads(path.read_text())
             kind = run["scene"]["kind"]
