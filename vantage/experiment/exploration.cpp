@@ -205,6 +205,7 @@ class Explorer {
     record.pose_error_after = after.translation;
     record.yaw_error_after = after.rotation;
     record.pose_error_final = after.translation;
+    record.registration = update.registration;
     record.yaw_error_final = after.rotation;
     record.points = update.points;
     record.object_points = update.object_points;

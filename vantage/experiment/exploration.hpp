@@ -126,6 +126,8 @@ struct ScanRecord {
   /// scan pinned a scan that had fallen back (MapperConfig::reregister_window) [m], [rad]
   double pose_error_final = 0.0;
   double yaw_error_final = 0.0;
+  /// What registration made of this scan: accepted, or why the guess was kept.
+  perception::RegistrationOutcome registration = perception::RegistrationOutcome::kEmptyMap;
   /// Earlier scans (1-based) that this scan's registration let pass on a second try; the map was
   /// rebuilt with them at their registered poses before this scan was integrated.
   std::vector<int> reregistered;

@@ -109,6 +109,7 @@ json scan_json(const ScanRecord& r) {
               {"after_rad", r.yaw_error_after},
               {"final_m", r.pose_error_final},
               {"final_rad", r.yaw_error_final}}},
+            {"registration", perception::to_string(r.registration)},
             {"reregistered", r.reregistered},
             {"seconds",
              {{"scan", r.seconds.scan},
