@@ -50,9 +50,10 @@ void check_scene(const std::string& name) {
     // The exact mode's own early stop (a ray hidden below epsilon) against the
     // literal model.
     const auto exact_default = exact_view_gains(grid, views, exact_defaults());
-    // Auto is one of the two, bit for bit, whatever the thread count: fast on the first, large
-    // unobserved state, exact after 6 scans, when few unobserved cells are left in view
-    // (BENCHMARK.md); after 3 it depends on the scene.
+    // Auto is one of the two, bit for bit, whatever the thread count: exact after 6 scans, when
+    // few unobserved cells are left in view (BENCHMARK.md); before, it depends on the scene (since
+    // the exact mode shares rays between the views of one origin, it is as cheap as the fast one
+    // on the first, large unobserved state).
     const auto same = [](const std::vector<ViewGain>& a, const std::vector<ViewGain>& b) {
       return std::equal(a.begin(), a.end(), b.begin(), b.end(),
                         [](const ViewGain& x, const ViewGain& y) { return x.gain == y.gain; });
@@ -62,9 +63,7 @@ void check_scene(const std::string& name) {
       automatic.num_threads = threads;
       const auto chosen = evaluate_views(grid, views, automatic);
       const std::string with = cat(state, ", ", threads, " threads");
-      if (k == 0) {
-        EXPECT_TRUE(same(chosen, fast)) << with << ": auto is not fast";
-      } else if (k == 5) {
+      if (k == 5) {
         EXPECT_TRUE(same(chosen, exact_default)) << with << ": auto is not exact";
       }
       EXPECT_TRUE(same(chosen, fast) || same(chosen, exact_default)) << with;

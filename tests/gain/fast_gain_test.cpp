@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <numbers>
 #include <random>
@@ -148,6 +149,62 @@ TEST(FastGain, AViewAloneAndInItsGroupAgree) {
     const ViewGain alone = fast_view_gains(grid, std::span(&three[v], 1), GainConfig{}).front();
     EXPECT_NEAR(alone.gain, together[v].gain, 1e-3 * together[v].gain) << "view " << v;
   }
+}
+
+TEST(ExactGain, ViewsFromOneOriginShareRaysBitForBit) {
+  // The exact mode evaluates a cell once for all views from one origin; each view's sums stay
+  // bit for bit those of the view evaluated alone.
+  const OccupancyGrid grid =
+      synthetic::map_after(synthetic::table_top(0), synthetic::grid_spec(), 1, 160, 120);
+  const std::vector<Frustum> ring = synthetic::ring_views();
+  const std::vector<Frustum> views(ring.begin() + 3, ring.begin() + 9);  // two positions
+  const auto groups = views_by_origin(views);
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[0], (std::vector<std::size_t>{0, 1, 2}));
+  for (const GainMethod method : {GainMethod::kProbabilistic, GainMethod::kGreedy}) {
+    GainConfig config;
+    config.method = method;
+    const auto together = exact_view_gains(grid, views, config);
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      const ViewGain alone = exact_view_gains(grid, std::span(&views[v], 1), config).front();
+      EXPECT_GT(alone.targets, 0u);
+      EXPECT_EQ(alone.gain, together[v].gain) << to_string(method) << ", view " << v;
+      EXPECT_EQ(alone.cells, together[v].cells) << to_string(method) << ", view " << v;
+      EXPECT_EQ(alone.targets, together[v].targets) << to_string(method) << ", view " << v;
+    }
+  }
+}
+
+TEST(ExactGain, ASampleOfEveryUnobservedCellIsTheExactEvaluation) {
+  const OccupancyGrid grid =
+      synthetic::map_after(synthetic::table_top(0), synthetic::grid_spec(), 1, 160, 120);
+  const std::vector<Frustum> ring = synthetic::ring_views();
+  const std::vector<Frustum> views(ring.begin(), ring.begin() + 6);
+  const GainMap map(grid);
+  std::vector<std::uint32_t> cells;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    if (map.value(i).state == CellState::kUnobserved)
+      cells.push_back(static_cast<std::uint32_t>(i));
+  }
+  const GainConfig config;
+  const auto exact = exact_view_gains(map, views, config);
+  const auto sampled = sampled_view_gains(map, views, cells, config);
+  // Half of the cells: a sample whose sums are at most the whole's.
+  std::vector<std::uint32_t> half;
+  for (std::size_t i = 0; i < cells.size(); i += 2) half.push_back(cells[i]);
+  const auto halved = sampled_view_gains(map, views, half, config);
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    EXPECT_EQ(sampled[v].targets, exact[v].targets) << "view " << v;
+    EXPECT_NEAR(sampled[v].gain, exact[v].gain, 1e-9 * exact[v].gain) << "view " << v;
+    EXPECT_NEAR(sampled[v].cells, exact[v].cells, 1e-9 * exact[v].cells) << "view " << v;
+    EXPECT_GT(sampled[v].gain_sq, 0.0);
+    EXPECT_LE(sampled[v].gain_sq, sampled[v].gain);  // each g <= 1 bit
+    EXPECT_LT(halved[v].targets, sampled[v].targets);
+    EXPECT_LE(halved[v].gain, sampled[v].gain);
+  }
+  GainConfig greedy;
+  greedy.method = GainMethod::kGreedy;
+  EXPECT_THROW(sampled_view_gains(map, views, cells, greedy), std::invalid_argument);
 }
 
 TEST(FastGain, SameResultForAnyThreadCount) {

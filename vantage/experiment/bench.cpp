@@ -49,6 +49,7 @@ nlohmann::json trial_settings(const BenchConfig& config) {
           {"min_gain", e.min_gain},
           {"revisit", e.revisit},
           {"evaluation", to_string(e.planner.gain.evaluation)},
+          {"search", to_string(e.planner.search)},
           {"epsilon", e.planner.gain.epsilon},
           {"lambda", e.planner.lambda},
           {"integration", to_string(m.integration.mode)},

@@ -79,7 +79,9 @@ class Explorer {
         office_(scene.kind == sim::SceneKind::kOffice),
         world_(noisy(scene, config), sim::WorldConfig{config.planner.gain.num_threads}) {
     planner_ = config.planner;
-    planner_.greedy_reference = true;  // Fig. 11: both predictions on the same poses
+    // NOTE: Fig. 11 compares greedy's prediction with the method's on the view taken; greedy's
+    // is made for that view alone, after the decision (greedy_of), not for every candidate.
+    planner_.greedy_reference = false;
     if (config.auto_alpha && has_observability(planner_.method)) {
       fit_.emplace(config.observability);
       planner_.gain.alpha = fit_->alpha();
@@ -273,12 +275,42 @@ class Explorer {
     return office_ ? sweep_frusta(scene_, pose) : std::vector<Frustum>{Frustum(pose, scene_.fov())};
   }
 
+  /// Greedy's prediction for the chosen candidate (Fig. 11's reference): the plan's own when the
+  /// method scored by greedy's count, else evaluated now for that candidate's views only. Adds
+  /// the time it took to `d.reference_seconds`.
+  double greedy_of(const Plan& plan, const Candidate& chosen, std::size_t best, Decision& d) const {
+    if (!plan.greedy_gains.empty()) return plan.greedy_gains[best];
+    const auto start = Clock::now();
+    std::vector<Frustum> views{chosen.view};
+    views.insert(views.end(), chosen.more_views.begin(), chosen.more_views.end());
+    GainConfig greedy = planner_.gain;
+    greedy.method = GainMethod::kGreedy;
+    double sum = 0.0;
+    for (const ViewGain& g : evaluate_views(mapper_.grid(), views, greedy)) sum += g.gain;
+    d.reference_seconds += seconds_since(start);
+    return sum;
+  }
+
   /// The chosen candidate's predictions: in the method's own units, in cells seen, greedy's.
-  void record_prediction(const Plan& plan, std::size_t best, Decision& d) const {
+  void record_prediction(const Plan& plan, const Candidate& chosen, std::size_t best,
+                         Decision& d) const {
     d.predicted = plan.gains[best].gain;
     d.predicted_cells = plan.gains[best].cells;
-    d.greedy_predicted = plan.greedy_gains[best];
+    d.greedy_predicted = greedy_of(plan, chosen, best, d);
     if (has_observability(planner_.method)) d.alpha = planner_.gain.alpha;
+  }
+
+  /// What the decision recorded of candidate `j`.
+  CandidateRecord considered(const Plan& plan, std::size_t j, int view,
+                             const Eigen::Isometry3d& pose, const Decision& d) const {
+    CandidateRecord r{view, pose, plan.gains[j].gain, std::nullopt, plan.gains[j].cells};
+    if (!plan.greedy_gains.empty()) {
+      r.greedy_predicted_gain = plan.greedy_gains[j];
+    } else if (j == plan.best) {
+      r.greedy_predicted_gain = d.greedy_predicted;
+    }
+    r.estimated = !plan.estimated.empty() && plan.estimated[j];
+    return r;
   }
 
   /// Table top: every ring view, scored by the method; the robot walks around the table.
@@ -300,8 +332,6 @@ class Explorer {
       return d;
     }
     const Plan plan = plan_next_view(mapper_.grid(), open, planner_, seed);
-    d.seconds = plan.seconds;
-    d.reference_seconds = plan.reference_seconds;
     double best_gain = 0.0;  // of any candidate, whichever the method chose
     for (const ViewGain& g : plan.gains) best_gain = std::max(best_gain, g.gain);
     if (best_gain < config_.min_gain) {
@@ -313,11 +343,12 @@ class Explorer {
     taken_[view] = true;
     d.view = static_cast<int>(view);
     d.pose = result_.candidates[view];
-    record_prediction(plan, plan.best, d);
+    record_prediction(plan, open[plan.best], plan.best, d);
+    d.seconds = plan.seconds + d.reference_seconds;  // the whole plan step, reference included
     d.travel = open[plan.best].travel;
     for (std::size_t j = 0; j < open.size(); ++j) {
-      d.considered.push_back({static_cast<int>(index[j]), result_.candidates[index[j]],
-                              plan.gains[j].gain, plan.greedy_gains[j], plan.gains[j].cells});
+      d.considered.push_back(
+          considered(plan, j, static_cast<int>(index[j]), result_.candidates[index[j]], d));
     }
     return d;
   }
@@ -384,7 +415,6 @@ class Explorer {
       candidates.push_back({first, s.travel, s.reachable, std::move(views)});
     }
     const Plan plan = plan_next_view(grid, candidates, planner_, seed);
-    d.reference_seconds = plan.reference_seconds;
     const std::size_t best = plan.best;
     result_.candidates = poses;
     double best_gain = 0.0;  // of any stop, whichever the method chose
@@ -395,11 +425,10 @@ class Explorer {
                           " after stop ", k);
     }
     d.view = static_cast<int>(best);
+    record_prediction(plan, candidates[best], best, d);
     for (std::size_t i = 0; i < stops.size(); ++i) {
-      d.considered.push_back({static_cast<int>(i), poses[i], plan.gains[i].gain,
-                              plan.greedy_gains[i], plan.gains[i].cells});
+      d.considered.push_back(considered(plan, i, static_cast<int>(i), poses[i], d));
     }
-    record_prediction(plan, best, d);
     d.seconds = seconds_since(start);
 
     // The drive happens in the true world: to the goal when the map says it is reachable,

@@ -51,7 +51,9 @@ struct OfficeConfig {
 
 /// Settings of one exploration run.
 struct ExplorationConfig {
-  PlannerConfig planner;  ///< method, alpha, evaluation; greedy_reference is forced on
+  /// Method, alpha, evaluation, search. greedy_reference is not needed: greedy's prediction is
+  /// made for the chosen view only, after the decision (ScanRecord::greedy_predicted_gain).
+  PlannerConfig planner;
   MapperConfig mapper;    ///< registration, table segmentation, integration
   int scans = 10;         ///< N, the number of scans to take (the first included)
   double min_gain = 0.0;  ///< stop early once the best predicted gain falls below this
@@ -94,9 +96,15 @@ struct CandidateRecord {
   int view = -1;  ///< table top: ring index; office: index among that decision's stops
   /// Table top: the ring view; office: the stop's sensor pose, heading along the way there.
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
-  double predicted_gain = 0.0;         ///< under the method (office: summed over the sweep)
-  double greedy_predicted_gain = 0.0;  ///< under greedy, same view [cells]
-  double predicted_cells = 0.0;        ///< the method's expected cells seen [cells]
+  double predicted_gain = 0.0;  ///< under the method (office: summed over the sweep)
+  /// Under greedy, same view [cells]: every candidate's for the methods that score by greedy's
+  /// count; otherwise only the chosen candidate's (greedy's reference prediction is made for the
+  /// view taken, after the decision), none for the rest.
+  std::optional<double> greedy_predicted_gain;
+  double predicted_cells = 0.0;  ///< the method's expected cells seen [cells]
+  /// The screened search (PlannerConfig::search) dropped this candidate: its predicted gain and
+  /// cells are the screen's sampling estimates, not a full evaluation.
+  bool estimated = false;
 };
 
 /// Everything recorded after one scan (office: one stop, all steps of its sweep).

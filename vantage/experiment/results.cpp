@@ -39,6 +39,7 @@ json config_json(const ExplorationConfig& config) {
         {"prior", config.observability.prior},
         {"recency", config.observability.recency}}},
       {"evaluation", to_string(gain.evaluation)},
+      {"search", to_string(config.planner.search)},
       {"epsilon", gain.epsilon},
       {"lambda", config.planner.lambda},
       {"scans", config.scans},
@@ -135,11 +136,14 @@ json scan_json(const ScanRecord& r) {
   if (!r.calibration.empty()) j["calibration_cells"] = r.calibration;
   json considered = json::array();
   for (const CandidateRecord& c : r.considered) {
-    considered.push_back({{"view", c.view},
-                          {"pose", pose_json(c.T_world_sensor)},
-                          {"predicted_gain", c.predicted_gain},
-                          {"greedy_predicted_gain", c.greedy_predicted_gain},
-                          {"predicted_cells", c.predicted_cells}});
+    considered.push_back(
+        {{"view", c.view},
+         {"pose", pose_json(c.T_world_sensor)},
+         {"predicted_gain", c.predicted_gain},
+         {"greedy_predicted_gain",
+          c.greedy_predicted_gain ? json(*c.greedy_predicted_gain) : json(nullptr)},
+         {"predicted_cells", c.predicted_cells},
+         {"estimated", c.estimated}});
   }
   j["considered"] = considered;
   return j;

@@ -204,7 +204,10 @@ json candidate_of(const Field& c, std::string_view pose_key, std::string_view in
   json candidate = pose_of(c[pose_key]);
   candidate["view"] = c[index_key].integer();
   candidate["gain"] = c["predicted_gain"].number();
-  candidate["greedy"] = c[greedy_key].number();
+  // NOTE: run.json records greedy's gain for the chosen candidate only (and every candidate's
+  // where the method scores by it); the page shows the chosen one's.
+  const std::optional<double> greedy = c[greedy_key].optional_number();
+  candidate["greedy"] = greedy ? json(*greedy) : json(nullptr);
   return candidate;
 }
 

@@ -105,44 +105,70 @@ TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin,
   return {seen, seen};
 }
 
-/// Sums a per-target gain over the unobserved cells inside the frustum. The frustum and the
-/// cell's class are tested before any traversal. Rows (fixed y, z) run in parallel; the row sums
-/// are added in row order, so the result does not depend on threads.
+/// Sums a per-target gain over the unobserved cells inside each frustum, for views that share
+/// one origin (`members`, indices into `views`): each unobserved cell in any member's frustum is
+/// evaluated once and added to every member whose frustum holds it. The frustum and the cell's
+/// class are tested before any traversal. Rows (fixed y, z) run in parallel; a member's row sums
+/// are added in row order, so the result does not depend on threads, and it is bit for bit the
+/// member's sum evaluated alone: its cells are added in the same order within a row and its rows
+/// in the same (z, y) order, and the rows and cells it does not hold add nothing.
 template <typename CellGain>
-ViewGain sum_over_targets(const GainMap& map, const Frustum& view, CellGain&& cell_gain) {
+void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
+                             std::span<const std::size_t> members, CellGain&& cell_gain,
+                             std::vector<ViewGain>& gains) {
   const GridSpec& spec = map.spec();
-  const CellBox box = cells_under(spec, view);
-  if (box.empty()) return {};
+  const std::size_t k = members.size();
+  std::vector<CellBox> boxes;
+  CellBox box{spec.dims, Index3(-1, -1, -1)};
+  for (const std::size_t v : members) {
+    boxes.push_back(cells_under(spec, views[v]));
+    if (boxes.back().empty()) continue;
+    box.lo = box.lo.cwiseMin(boxes.back().lo);
+    box.hi = box.hi.cwiseMax(boxes.back().hi);
+  }
+  if (box.empty()) return;
   const int ny = box.hi.y() - box.lo.y() + 1;
   const int nz = box.hi.z() - box.lo.z() + 1;
   const auto rows = static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
-  std::vector<ViewGain> row_sums(rows);
+  std::vector<ViewGain> row_sums(rows * k);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows), [&](const auto& range) {
     for (std::size_t row = range.begin(); row != range.end(); ++row) {
-      ViewGain sum;
+      ViewGain* sums = row_sums.data() + row * k;
       Index3 cell(0, box.lo.y() + static_cast<int>(row % static_cast<std::size_t>(ny)),
                   box.lo.z() + static_cast<int>(row / static_cast<std::size_t>(ny)));
       for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
         const std::size_t linear = spec.linear(cell);
-        if (map.value(linear).state != CellState::kUnobserved ||
-            !view.contains(spec.center(cell))) {
-          continue;
+        if (map.value(linear).state != CellState::kUnobserved) continue;
+        const Eigen::Vector3d center = spec.center(cell);
+        bool evaluated = false;
+        TargetPrediction prediction;
+        for (std::size_t m = 0; m < k; ++m) {
+          const CellBox& b = boxes[m];
+          if ((cell.array() < b.lo.array()).any() || (cell.array() > b.hi.array()).any() ||
+              !views[members[m]].contains(center)) {
+            continue;
+          }
+          if (!evaluated) {
+            prediction = cell_gain(cell);
+            evaluated = true;
+          }
+          sums[m].gain += prediction.gain;
+          sums[m].cells += prediction.seen;
+          ++sums[m].targets;
         }
-        const TargetPrediction prediction = cell_gain(cell);
-        sum.gain += prediction.gain;
-        sum.cells += prediction.seen;
-        ++sum.targets;
       }
-      row_sums[row] = sum;
     }
   });
-  ViewGain total;
-  for (const ViewGain& row : row_sums) {
-    total.gain += row.gain;
-    total.cells += row.cells;
-    total.targets += row.targets;
+  for (std::size_t m = 0; m < k; ++m) {
+    ViewGain total;
+    for (std::size_t row = 0; row < rows; ++row) {
+      const ViewGain& r = row_sums[row * k + m];
+      total.gain += r.gain;
+      total.cells += r.cells;
+      total.targets += r.targets;
+    }
+    gains[members[m]] = total;
   }
-  return total;
 }
 
 /// The tables for rays from every view's origin.
@@ -230,18 +256,37 @@ std::vector<double> survival_cells_by_alpha(const OccupancyGrid& grid,
   return expected;
 }
 
+std::vector<std::vector<std::size_t>> views_by_origin(std::span<const Frustum> views) {
+  std::vector<std::vector<std::size_t>> groups;
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const Eigen::Vector3d origin = views[v].origin();
+    auto it = std::find_if(groups.begin(), groups.end(),
+                           [&](const auto& g) { return views[g.front()].origin() == origin; });
+    if (it == groups.end()) {
+      groups.push_back({v});
+    } else {
+      it->push_back(v);
+    }
+  }
+  return groups;
+}
+
 template <typename Model>
 std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
                                        const GainConfig& config) {
   config.validate();
   require_model_method(config, "exact_view_gains");
   std::vector<ViewGain> gains(views.size());
+  // NOTE: views from one origin (a ring position's yaw offsets) share their targets' rays; each
+  // cell is evaluated once per origin, and every view's sum is bit for bit its own.
+  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
   if (config.method == GainMethod::kGreedy) {
     run_with_threads(config.num_threads, [&] {
-      tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t i) {
-        const Eigen::Vector3d origin = views[i].origin();
-        gains[i] = sum_over_targets(
-            map, views[i], [&](const Index3& target) { return greedy_gain(map, origin, target); });
+      tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
+        const Eigen::Vector3d origin = views[groups[g].front()].origin();
+        sum_over_shared_targets(
+            map, views, groups[g],
+            [&](const Index3& target) { return greedy_gain(map, origin, target); }, gains);
       });
     });
     return gains;
@@ -253,22 +298,28 @@ std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frust
     }
     const SurvivalModel model(config.alpha, map.params().p_min, cells);
     run_with_threads(config.num_threads, [&] {
-      tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t i) {
-        const Eigen::Vector3d origin = views[i].origin();
-        gains[i] = sum_over_targets(map, views[i], [&](const Index3& target) {
-          return survival_ray_gain(map, model, origin, target, config.epsilon);
-        });
+      tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
+        const Eigen::Vector3d origin = views[groups[g].front()].origin();
+        sum_over_shared_targets(
+            map, views, groups[g],
+            [&](const Index3& target) {
+              return survival_ray_gain(map, model, origin, target, config.epsilon);
+            },
+            gains);
       });
     });
     return gains;
   }
   const RayTables<Model> tables = tables_for<Model>(map.spec(), views, map.params(), config.alpha);
   run_with_threads(config.num_threads, [&] {
-    tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t i) {
-      const Eigen::Vector3d origin = views[i].origin();
-      gains[i] = sum_over_targets(map, views[i], [&](const Index3& target) {
-        return ray_gain(map, tables, origin, target, config.epsilon);
-      });
+    tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
+      const Eigen::Vector3d origin = views[groups[g].front()].origin();
+      sum_over_shared_targets(
+          map, views, groups[g],
+          [&](const Index3& target) {
+            return ray_gain(map, tables, origin, target, config.epsilon);
+          },
+          gains);
     });
   });
   return gains;
@@ -285,6 +336,73 @@ std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<cons
                                        const GainConfig& config) {
   config.validate();
   return exact_view_gains(GainMap(grid, config.num_threads), views, config);
+}
+
+std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const Frustum> views,
+                                           std::span<const std::uint32_t> cells,
+                                           const GainConfig& config) {
+  config.validate();
+  if (config.method != GainMethod::kProbabilistic) {
+    throw std::invalid_argument(cat("sampled_view_gains: gain.method must be probabilistic, got ",
+                                    to_string(config.method)));
+  }
+  const GridSpec& spec = map.spec();
+  const RayTables<PaperModel> tables =
+      tables_for<PaperModel>(spec, views, map.params(), config.alpha);
+  // NOTE: as in exact_view_gains, views from one origin share each cell's ray. Work is cut into
+  // (group, chunk of cells) slots that are summed in order afterwards, so a few views still
+  // spread over all threads and the sums do not depend on them.
+  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
+  std::vector<CellBox> boxes;
+  for (const Frustum& view : views) boxes.push_back(cells_under(spec, view));
+  constexpr std::size_t kChunk = 512;
+  const std::size_t chunks = (cells.size() + kChunk - 1) / kChunk;
+  std::vector<SampleSums> slots(views.size() * chunks);  // [view][chunk]
+  run_with_threads(config.num_threads, [&] {
+    tbb::parallel_for(std::size_t{0}, groups.size() * chunks, [&](std::size_t slot) {
+      const std::vector<std::size_t>& members = groups[slot / chunks];
+      const std::size_t chunk = slot % chunks;
+      const std::size_t begin = chunk * kChunk;
+      const std::size_t end = std::min(cells.size(), begin + kChunk);
+      const Eigen::Vector3d origin = views[members.front()].origin();
+      for (std::size_t i = begin; i < end; ++i) {
+        if (map.value(cells[i]).state != CellState::kUnobserved) continue;
+        const Index3 cell = spec.unravel(cells[i]);
+        const Eigen::Vector3d center = spec.center(cell);
+        bool evaluated = false;
+        TargetPrediction p;
+        for (const std::size_t v : members) {
+          const CellBox& box = boxes[v];
+          if ((cell.array() < box.lo.array()).any() || (cell.array() > box.hi.array()).any() ||
+              !views[v].contains(center)) {
+            continue;
+          }
+          if (!evaluated) {
+            p = ray_gain(map, tables, origin, cell, config.epsilon);
+            evaluated = true;
+          }
+          SampleSums& sum = slots[v * chunks + chunk];
+          sum.gain += p.gain;
+          sum.gain_sq += p.gain * p.gain;
+          sum.cells += p.seen;
+          sum.cells_sq += p.seen * p.seen;
+          ++sum.targets;
+        }
+      }
+    });
+  });
+  std::vector<SampleSums> sums(views.size());
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    for (std::size_t c = 0; c < chunks; ++c) {
+      const SampleSums& s = slots[v * chunks + c];
+      sums[v].gain += s.gain;
+      sums[v].gain_sq += s.gain_sq;
+      sums[v].cells += s.cells;
+      sums[v].cells_sq += s.cells_sq;
+      sums[v].targets += s.targets;
+    }
+  }
+  return sums;
 }
 
 ViewGain exact_view_gain(const OccupancyGrid& grid, const Frustum& view, const GainConfig& config) {

@@ -1,10 +1,12 @@
 #pragma once
 /// @file
-/// The exact gain evaluation (docs/model.md "One view"): every unobserved cell inside the frustum on
-/// its own ray from the sensor origin to the cell's centre, summed. The paper's definition and
+/// The exact gain evaluation (docs/model.md "One view"): every unobserved cell inside the frustum
+/// on its own ray from the sensor origin to the cell's centre, summed. The paper's definition and
 /// the reference for every faster evaluation.
 
 #include <Eigen/Core>
+#include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -35,6 +37,29 @@ ViewGain exact_view_gain(const OccupancyGrid& grid, const Frustum& view, const G
 std::vector<double> survival_cells_by_alpha(const OccupancyGrid& grid,
                                             std::span<const Frustum> views,
                                             std::span<const double> alphas, int num_threads = 0);
+
+/// The indices of `views` grouped by origin (exactly equal): each group in view order, the groups
+/// in the order of their first view. Views from one origin share each target's ray.
+std::vector<std::vector<std::size_t>> views_by_origin(std::span<const Frustum> views);
+
+/// One view's exact predictions summed over a sample of its targets (the screened decision,
+/// vantage/planner/screen.hpp): the sums and the sums of squares a sampling estimate and its
+/// variance need.
+struct SampleSums {
+  double gain = 0.0;        ///< sum of g over the sampled targets [bits]
+  double gain_sq = 0.0;     ///< sum of g^2 [bits^2]
+  double cells = 0.0;       ///< sum of v_M [cells]
+  double cells_sq = 0.0;    ///< sum of v_M^2
+  std::size_t targets = 0;  ///< sampled targets inside the frustum
+};
+
+/// The exact evaluation (`config.method` probabilistic) restricted to `cells`: the linear indices
+/// of unobserved cells, each evaluated, for every view whose frustum holds its centre, on its own
+/// ray exactly as exact_view_gains does. Sums run in the order of `cells`, so the result is the
+/// same for any thread count. Throws std::invalid_argument for another method.
+std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const Frustum> views,
+                                           std::span<const std::uint32_t> cells,
+                                           const GainConfig& config);
 
 /// Predicted gain of one target cell seen from `origin`, whatever its state (known cells are
 /// evaluated too; the view sums skip them). Follows the literal model whatever `config.epsilon`

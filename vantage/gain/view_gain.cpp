@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <stdexcept>
 
 #include "vantage/gain/exact.hpp"
@@ -27,31 +28,39 @@ constexpr int kCostStride = 3;
 constexpr double kExactStepPerRay = 2.2e-3;
 
 /// The exact mode's cell steps over all views: per unobserved cell in view, sampled, the L1
-/// lattice distance from the sensor's cell, the length of a 6-connected ray.
+/// lattice distance from the sensor's cell, the length of a 6-connected ray; counted once per
+/// origin, as the exact mode evaluates a cell once for all views from one origin.
 double exact_steps(const GainMap& map, std::span<const Frustum> views) {
   const GridSpec& spec = map.spec();
-  std::vector<double> per_view(views.size(), 0.0);
-  tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
-    const Frustum& view = views[v];
-    const Index3 origin = spec.lattice_index(view.origin());
-    const CellBox box = cells_under(spec, view);
+  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
+  std::vector<double> per_group(groups.size(), 0.0);
+  tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
+    const Index3 origin = spec.lattice_index(views[groups[g].front()].origin());
+    CellBox box{spec.dims, Index3(-1, -1, -1)};
+    for (const std::size_t v : groups[g]) {
+      const CellBox b = cells_under(spec, views[v]);
+      if (b.empty()) continue;
+      box.lo = box.lo.cwiseMin(b.lo);
+      box.hi = box.hi.cwiseMax(b.hi);
+    }
     double steps = 0.0;
     Index3 c;
     for (c.z() = box.lo.z(); c.z() <= box.hi.z(); c.z() += kCostStride) {
       for (c.y() = box.lo.y(); c.y() <= box.hi.y(); c.y() += kCostStride) {
         for (c.x() = box.lo.x(); c.x() <= box.hi.x(); c.x() += kCostStride) {
-          if (map.value(spec.linear(c)).state != CellState::kUnobserved ||
-              !view.contains(spec.center(c))) {
-            continue;
-          }
-          steps += (c - origin).cwiseAbs().sum();  // a 6-connected ray: one cell per step
+          if (map.value(spec.linear(c)).state != CellState::kUnobserved) continue;
+          const Eigen::Vector3d center = spec.center(c);
+          const bool in_view = std::any_of(groups[g].begin(), groups[g].end(), [&](std::size_t v) {
+            return views[v].contains(center);
+          });
+          if (in_view) steps += (c - origin).cwiseAbs().sum();  // a 6-connected ray
         }
       }
     }
-    per_view[v] = steps * kCostStride * kCostStride * kCostStride;
+    per_group[g] = steps * kCostStride * kCostStride * kCostStride;
   });
   double total = 0.0;
-  for (const double steps : per_view) total += steps;
+  for (const double steps : per_group) total += steps;
   return total;
 }
 

@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "vantage/planner/choose.hpp"
+#include "vantage/planner/screen.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -134,6 +136,17 @@ PlannerMethod parse_planner_method(std::string_view name) {
       "average-entropy or area-factor)"));
 }
 
+std::string_view to_string(DecisionSearch search) {
+  return search == DecisionSearch::kScreened ? "screened" : "exhaustive";
+}
+
+DecisionSearch parse_decision_search(std::string_view name) {
+  if (name == "exhaustive") return DecisionSearch::kExhaustive;
+  if (name == "screened") return DecisionSearch::kScreened;
+  throw std::invalid_argument(
+      cat("unknown decision search '", name, "' (expected exhaustive or screened)"));
+}
+
 std::string_view to_string(GainObjective objective) {
   return objective == GainObjective::kCells ? "cells" : "bits";
 }
@@ -166,6 +179,37 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   // NOTE: the paper's model and the metrics score by something other than greedy's count, so
   // greedy's prediction on the same poses is the reference of their predictions (Fig. 11).
   const GainMethod scored_by = gain_method_of(config.method);
+  // NOTE: the screen samples the paper's model only; the survival reading searches exhaustively.
+  if (config.method == PlannerMethod::kProbabilistic &&
+      config.search == DecisionSearch::kScreened) {
+    // NOTE: only the argmax and its prediction are needed; a dropped candidate keeps its
+    // estimate, flagged, and the greedy reference (if asked for) stays every candidate's.
+    GainConfig gain = config.gain;
+    gain.method = GainMethod::kProbabilistic;
+    detail::Screening screening = detail::screen_candidates(
+        grid, views.frusta, views.first, gain, config.objective == GainObjective::kCells);
+    plan.gains = std::move(screening.gains);
+    plan.estimated = std::move(screening.estimated);
+    for (std::size_t c = 0; c < plan.gains.size(); ++c) {
+      const ViewGain& g = plan.gains[c];
+      plan.scores.push_back(config.objective == GainObjective::kCells ? g.cells : g.gain);
+    }
+    // The best of the candidates evaluated in full (a dropped one's estimate never competes).
+    std::vector<double> full = plan.scores;
+    for (std::size_t c = 0; c < full.size(); ++c) {
+      if (plan.estimated[c]) full[c] = -std::numeric_limits<double>::infinity();
+    }
+    plan.best = choose_best(full);
+    if (config.greedy_reference) {
+      const auto reference_start = std::chrono::steady_clock::now();
+      plan.greedy_gains = views.sums(
+          gains_of(grid, views, config.gain, GainMethod::kGreedy, GainObjective::kCells));
+      plan.reference_seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start).count();
+    }
+    plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return plan;
+  }
   std::vector<double> view_scores =
       gains_of(grid, views, config.gain, scored_by,
                probabilistic ? config.objective : GainObjective::kCells, &plan.gains);

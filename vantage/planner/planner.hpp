@@ -54,6 +54,18 @@ std::string_view to_string(GainObjective objective);
 /// Parses "bits" or "cells"; throws std::invalid_argument naming the value.
 GainObjective parse_gain_objective(std::string_view name);
 
+/// How the probabilistic method searches the candidates for the best (docs/decision.md).
+enum class DecisionSearch {
+  kExhaustive,  ///< every candidate evaluated in full (gain.evaluation)
+  /// Sampled estimates drop the candidates that cannot win; the rest are evaluated in full and
+  /// the best of them is chosen. Plan::gains of a dropped candidate is its estimate.
+  kScreened,
+};
+
+std::string_view to_string(DecisionSearch search);
+/// Parses "exhaustive" or "screened"; throws std::invalid_argument naming the value.
+DecisionSearch parse_decision_search(std::string_view name);
+
 /// Settings of the decision.
 struct PlannerConfig {
   PlannerMethod method = PlannerMethod::kProbabilistic;
@@ -63,6 +75,9 @@ struct PlannerConfig {
   /// Gain evaluation settings; `gain.method` is set from `method` (gain_method_of).
   GainConfig gain;
   double lambda = 0.5;  ///< kLatombe's travel penalty [1/m]
+  /// How the probabilistic method searches the candidates; the other methods (survival too)
+  /// evaluate all.
+  DecisionSearch search = DecisionSearch::kExhaustive;
   /// Also predict every candidate's greedy gain when the method uses another, so predictions can
   /// be compared on the same poses (the paper's Fig. 11).
   bool greedy_reference = false;
@@ -83,8 +98,11 @@ struct Candidate {
 
 /// The decision and everything behind it.
 struct Plan {
-  std::size_t best = 0;              ///< index of the chosen candidate
-  std::vector<ViewGain> gains;       ///< each candidate's predicted gain under the method's model
+  std::size_t best = 0;         ///< index of the chosen candidate
+  std::vector<ViewGain> gains;  ///< each candidate's predicted gain under the method's model
+  /// Per candidate: true where `gains` is the screen's sampling estimate, not a full evaluation
+  /// (DecisionSearch::kScreened); empty for an exhaustive search.
+  std::vector<bool> estimated;
   std::vector<double> greedy_gains;  ///< each candidate's greedy gain (when requested or used)
   std::vector<double> scores;        ///< what was maximised
   double seconds = 0.0;              ///< wall time of the decision [s]

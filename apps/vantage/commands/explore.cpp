@@ -109,12 +109,14 @@ void run(const ExploreOptions& o) {
                o.max_memory, grid_name);
   require_octomap_range(scene.grid, grid_name);
   if (!o.quiet) {
-    fmt::print("exploring {} with {} ({} evaluation{}), {} scans from start {}, seed {}\n",
-               scene.name, o.planning.method, o.planning.evaluation,
-               o.planning.method == "probabilistic"
-                   ? fmt::format(", a = {}, ranking by {}", alpha.label(), o.planning.objective)
-                   : "",
-               o.scans, o.start, o.seed);
+    fmt::print(
+        "exploring {} with {} ({} evaluation, {} search{}), {} scans from start {}, "
+        "seed {}\n",
+        scene.name, o.planning.method, o.planning.evaluation, o.planning.search,
+        o.planning.method == "probabilistic"
+            ? fmt::format(", a = {}, ranking by {}", alpha.label(), o.planning.objective)
+            : "",
+        o.scans, o.start, o.seed);
   }
   Mapper mapper(scene.grid, config.mapper);
   const ExplorationResult result =

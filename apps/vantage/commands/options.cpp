@@ -10,7 +10,7 @@
 
 namespace vantage::cli {
 
-void PlanningOptions::add_to(CLI::App& cmd) {
+void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
   cmd.add_option("--method,-m", method,
                  "probabilistic, survival (the paper's model under the survival reading of its "
                  "visibility, docs/model.md), greedy, random, latombe, yamauchi, or one of the "
@@ -29,6 +29,13 @@ void PlanningOptions::add_to(CLI::App& cmd) {
   cmd.add_option("--evaluation", evaluation,
                  "gain evaluation: auto (the cheaper of the two on each map state), fast or exact")
       ->capture_default_str();
+  if (search_option) {
+    cmd.add_option("--search", search,
+                   "how the probabilistic method searches the candidates: screened (sampled "
+                   "estimates drop the views that cannot win, the rest are evaluated in full; "
+                   "docs/decision.md) or exhaustive (every view in full)")
+        ->capture_default_str();
+  }
   cmd.add_option("--epsilon", epsilon, "early stop of a ray's model, in [0, 0.5)")
       ->check(number_in(0.0, 0.5))
       ->capture_default_str();
@@ -57,6 +64,7 @@ PlannerConfig PlanningOptions::make_planner_config(double literal_alpha) const {
   config.objective = parse_gain_objective(objective);
   config.gain.alpha = alpha_setting(default_alpha(config.method, literal_alpha)).value;
   config.gain.evaluation = parse_gain_evaluation(evaluation);
+  config.search = parse_decision_search(search);
   config.gain.epsilon = epsilon;
   config.gain.num_threads = threads;
   config.lambda = lambda;

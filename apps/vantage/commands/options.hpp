@@ -19,17 +19,20 @@ inline constexpr const char* kNoStopProjectionHelp =
     "keep the paper's fallback for a frontier centroid the robot cannot reach (drive as close "
     "as possible, section 5.3.1) instead of moving it to its region's nearest reachable cell";
 
-/// --method, --alpha, --objective, --evaluation, --epsilon, --lambda, --threads.
+/// --method, --alpha, --objective, --evaluation, --search, --epsilon, --lambda, --threads.
 struct PlanningOptions {
   std::string method = "probabilistic";
   std::string alpha;  ///< a number, "auto", or empty: the caller's literal default
   std::string objective = "bits";
   std::string evaluation = "auto";
+  std::string search = "screened";
   double epsilon = GainConfig{}.epsilon;
   double lambda = PlannerConfig{}.lambda;
   int threads = 0;
 
-  void add_to(CLI::App& cmd);
+  /// `search`: offer --search (explore, bench); without it the planner keeps the screened default
+  /// of `search` unless the command sets its own.
+  void add_to(CLI::App& cmd, bool search = true);
   /// --alpha as a setting; without it `literal` (the scene kind's a), which is also auto's prior.
   /// Throws std::invalid_argument naming the bad option.
   AlphaSetting alpha_setting(double literal = kTableTopAlpha) const;

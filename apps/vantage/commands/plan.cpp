@@ -177,6 +177,8 @@ void run(const PlanOptions& o) {
   }
   PlannerConfig planner = o.planning.planner_config();
   planner.greedy_reference = true;
+  // NOTE: plan lists every candidate's gain, so it evaluates every candidate in full.
+  planner.search = DecisionSearch::kExhaustive;
   const PlanUnits units = units_of(planner.method);
   const fs::path dir = out_dir(o);
   if (fs::exists(dir) && !fs::is_empty(dir)) {
@@ -413,7 +415,7 @@ void add_plan_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--range", o->range, "min,max range without a manifest [m]")
       ->capture_default_str();
-  o->planning.add_to(*cmd);
+  o->planning.add_to(*cmd, /*search=*/false);
   cmd->add_option("--pose", o->pose,
                   "the robot's sensor pose now, x,y,z,roll,pitch,yaw [m, deg], for the travel of "
                   "latombe and yamauchi (default: the manifest's last cloud's pose)");

@@ -1,0 +1,198 @@
+// The decision (issue 14, part 2): the probabilistic method's choice among the candidates, ours
+// (the screened search, vantage/planner/screen.hpp) against the exhaustive search with the exact
+// and the auto evaluation, on the built-in table tops after 1, 3 and 6 scans (the 30 ring views
+// less the ones already taken) and on the large office after 2 stops (a sweep at every frontier
+// stop); and against the OctoMap way of evaluating every view on the synthetic table top, whose
+// grid lies on OctoMap's keys. Wall time on the threads asked for (BENCHMARK.md, "The
+// decision").
+#include <benchmark/benchmark.h>
+
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bench/fixtures.hpp"
+#include "bench/octomap_gain.hpp"
+#include "vantage/experiment/exploration.hpp"
+#include "vantage/gain/exact.hpp"
+#include "vantage/map/integrate.hpp"
+#include "vantage/planner/choose.hpp"
+#include "vantage/planner/planner.hpp"
+#include "vantage/sim/world.hpp"
+#include "vantage/views/frontier.hpp"
+#include "vantage/views/ring.hpp"
+
+namespace vantage::bench {
+namespace {
+
+/// Scans from these start poses, in this order (as in the oracle tests).
+constexpr int kScanOrder[] = {0, 5, 2, 7, 3, 8};
+
+struct DecisionState {
+  DecisionState(OccupancyGrid g, double a = kTableTopAlpha) : grid(std::move(g)), alpha(a) {}
+
+  OccupancyGrid grid;
+  std::vector<Candidate> candidates;
+  double alpha;
+  std::unique_ptr<octomap::OcTree> tree;  ///< made on first use
+  std::size_t exact_best = 0;             ///< the exhaustive exact search's choice
+  std::vector<double> exact_scores;       ///< every candidate's exact gain [bits]
+};
+
+/// `tabletop-<scene>` after `scans` scans, without the views scanned from; built once.
+DecisionState& table_top(int scene, int scans) {
+  static std::map<std::pair<int, int>, DecisionState> states;
+  const auto key = std::make_pair(scene, scans);
+  if (const auto it = states.find(key); it != states.end()) return it->second;
+  const sim::World world(sim::load_scene("tabletop-" + std::to_string(scene)));
+  const sim::Scene& spec = world.scene();
+  DecisionState state(OccupancyGrid(spec.grid));
+  std::vector<Eigen::Isometry3d> taken;
+  for (int k = 0; k < scans; ++k) {
+    const Eigen::Isometry3d& pose = spec.start_poses[static_cast<std::size_t>(kScanOrder[k])];
+    const sim::SimulatedScan scan = world.scan(pose, 1000 + k);
+    integrate_scan(state.grid, Scan{scan.points_world(), scan.view()}, IntegrationConfig{});
+    taken.push_back(pose);
+  }
+  for (const Eigen::Isometry3d& pose : spec.candidate_poses()) {
+    bool was_taken = false;
+    for (const Eigen::Isometry3d& t : taken) was_taken = was_taken || t.isApprox(pose, 1e-9);
+    if (!was_taken) state.candidates.push_back({Frustum(pose, spec.fov())});
+  }
+  return states.emplace(key, std::move(state)).first->second;
+}
+
+/// office-large-cluttered after the explorer's first 2 stops (seed 1), and a candidate at every
+/// frontier region's centroid with its sweep's frusta, heading away from the last stop.
+DecisionState& office() {
+  static DecisionState state = [] {
+    const sim::Scene scene = sim::load_scene("office-large-cluttered");
+    ExplorationConfig config;
+    config.scans = 2;
+    config.planner.gain.alpha = kOfficeAlpha;
+    config.planner.search = DecisionSearch::kScreened;
+    Mapper mapper(scene.grid, default_mapper_config(scene));
+    const ExplorationResult run = explore(scene, config, mapper);
+    DecisionState s(mapper.grid(), kOfficeAlpha);
+    FrontierConfig frontier;
+    frontier.min_z = scene.mount.height - config.office.frontier_band;
+    frontier.max_z = scene.mount.height + config.office.frontier_band;
+    frontier.min_cells = config.office.min_frontier_cells;
+    frontier.max_radius = config.office.max_frontier_radius;
+    const Eigen::Vector3d here = run.scans.back().T_world_sensor.translation();
+    for (const FrontierRegion& region : frontier_regions(s.grid, frontier)) {
+      const Eigen::Vector2d way = region.centroid.head<2>() - here.head<2>();
+      const double yaw = std::atan2(way.y(), way.x());
+      std::vector<Frustum> views = sweep_frusta(
+          scene, scene.mount.sensor_pose(region.centroid.x(), region.centroid.y(), yaw));
+      const Frustum first = views.front();
+      views.erase(views.begin());
+      s.candidates.push_back({first, 0.0, true, std::move(views)});
+    }
+    return s;
+  }();
+  return state;
+}
+
+DecisionState& state_of(const benchmark::State& bench) {
+  return bench.range(0) == 0
+             ? office()
+             : table_top(static_cast<int>(bench.range(0)), static_cast<int>(bench.range(1)));
+}
+
+PlannerConfig planner_for(const DecisionState& s, int threads) {
+  PlannerConfig config;
+  config.gain.alpha = s.alpha;
+  config.gain.num_threads = threads;
+  return config;
+}
+
+/// The exhaustive exact search's choice and scores, once per state (not timed).
+void ensure_exact(DecisionState& s) {
+  if (!s.exact_scores.empty()) return;
+  PlannerConfig config = planner_for(s, 0);
+  config.gain.evaluation = GainEvaluation::kExact;
+  const Plan plan = plan_next_view(s.grid, s.candidates, config);
+  s.exact_best = plan.best;
+  s.exact_scores = plan.scores;
+}
+
+/// How the chosen candidate fares against the exact search's.
+void count_choice(benchmark::State& bench, DecisionState& s, std::size_t best) {
+  ensure_exact(s);
+  bench.counters["candidates"] = static_cast<double>(s.candidates.size());
+  bench.counters["chosen"] = static_cast<double>(best);
+  bench.counters["same_choice"] = best == s.exact_best ? 1.0 : 0.0;
+  bench.counters["gain_ratio"] = s.exact_scores[best] / s.exact_scores[s.exact_best];
+}
+
+/// Arguments: scene (1..4 table tops, 0 the large office), scans (table tops: 1, 3, 6), search
+/// (0 exhaustive exact, 1 exhaustive auto, 2 screened, ours), threads.
+void BM_Decision(benchmark::State& bench) {
+  DecisionState& s = state_of(bench);
+  PlannerConfig config = planner_for(s, static_cast<int>(bench.range(3)));
+  const auto mode = bench.range(2);
+  config.gain.evaluation = mode == 0 ? GainEvaluation::kExact : GainEvaluation::kAuto;
+  config.search = mode == 2 ? DecisionSearch::kScreened : DecisionSearch::kExhaustive;
+  Plan plan;
+  for (auto _ : bench) plan = plan_next_view(s.grid, s.candidates, config);
+  std::size_t full = 0;
+  for (std::size_t c = 0; c < plan.gains.size(); ++c) {
+    full += plan.estimated.empty() || !plan.estimated[c] ? 1 : 0;
+  }
+  bench.counters["evaluated"] = static_cast<double>(full);
+  count_choice(bench, s, plan.best);
+}
+BENCHMARK(BM_Decision)
+    ->ArgsProduct({{1, 2, 3, 4}, {1, 3, 6}, {0, 1, 2}, {2}})
+    ->ArgsProduct({{0}, {2}, {0, 1, 2}, {2}})
+    ->ArgNames({"tabletop", "scans", "search", "threads"})
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// The synthetic table top after one scan (bench/fixtures.hpp), whose grid lies on OctoMap's
+/// keys (the built-in scenes' grids do not): the same decision ours, exhaustive, and the OctoMap
+/// way (bench/octomap_gain.hpp: every view's rays through an OcTree, then the best). Arguments:
+/// search (0 exhaustive exact, 1 exhaustive auto, 2 screened, 3 the OctoMap way), threads.
+void BM_Decision_Synthetic(benchmark::State& bench) {
+  static DecisionState s = [] {
+    const World& world = table_top_after_one_scan();
+    DecisionState state(world.grid);
+    for (const Frustum& view : world.views) state.candidates.push_back({view});
+    return state;
+  }();
+  const int threads = static_cast<int>(bench.range(1));
+  std::size_t best = 0;
+  if (bench.range(0) == 3) {
+    if (!s.tree) s.tree = to_octree(s.grid);
+    const PlannerConfig config = planner_for(s, threads);
+    std::vector<Frustum> views;
+    for (const Candidate& c : s.candidates) views.push_back(c.view);
+    for (auto _ : bench) {
+      const OctoMapGains result =
+          octomap_view_gains(*s.tree, s.grid.spec(), s.grid.params(), views, config.gain);
+      std::vector<double> gains;
+      for (const ViewGain& g : result.gains) gains.push_back(g.gain);
+      best = choose_best(gains);
+    }
+  } else {
+    PlannerConfig config = planner_for(s, threads);
+    config.gain.evaluation = bench.range(0) == 0 ? GainEvaluation::kExact : GainEvaluation::kAuto;
+    config.search = bench.range(0) == 2 ? DecisionSearch::kScreened : DecisionSearch::kExhaustive;
+    for (auto _ : bench) best = plan_next_view(s.grid, s.candidates, config).best;
+  }
+  count_choice(bench, s, best);
+}
+BENCHMARK(BM_Decision_Synthetic)
+    ->ArgsProduct({{0, 1, 2, 3}, {2}})
+    ->ArgNames({"search", "threads"})
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace vantage::bench
