@@ -51,7 +51,7 @@ std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
 
 ObservabilityFitConfig survival_fit_config() {
   ObservabilityFitConfig config;
-  config.alphas = {0.9, 0.95, 0.98, 0.99, 0.995, 0.998, 0.9995};
+  config.alphas = {0.9, 0.95, 0.98, 0.99, 0.995, 0.998, 0.9995};  // [a per unobserved cell]
   config.prior = kSurvivalAlpha;
   return config;
 }

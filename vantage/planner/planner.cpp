@@ -157,6 +157,10 @@ GainObjective parse_gain_objective(std::string_view name) {
   throw std::invalid_argument(cat("unknown objective '", name, "' (expected bits or cells)"));
 }
 
+GainObjective natural_objective(PlannerMethod method) {
+  return method == PlannerMethod::kSurvival ? GainObjective::kCells : GainObjective::kBits;
+}
+
 bool has_observability(PlannerMethod method) {
   return method == PlannerMethod::kProbabilistic || method == PlannerMethod::kSurvival;
 }

@@ -53,6 +53,9 @@ enum class GainObjective {
 std::string_view to_string(GainObjective objective);
 /// Parses "bits" or "cells"; throws std::invalid_argument naming the value.
 GainObjective parse_gain_objective(std::string_view name);
+/// What a method ranks by when not told: the survival reading its expected cells seen (what its
+/// a is fitted to), the paper's method the information gain of eq. (1).
+GainObjective natural_objective(PlannerMethod method);
 
 /// How the probabilistic method searches the candidates for the best (docs/decision.md).
 enum class DecisionSearch {

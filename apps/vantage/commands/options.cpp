@@ -19,13 +19,14 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                  "proximity-count, average-entropy, area-factor (docs/model.md)")
       ->capture_default_str();
   cmd.add_option("--alpha,-a", alpha,
-                 "observability parameter a of the probabilistic method, in (0, 1], or 'auto': "
-                 "fitted to the run's own predictions and outcomes")
-      ->default_str(fmt::format("{}", kTableTopAlpha));
+                 "observability parameter a of the probabilistic and survival methods, in (0, 1], "
+                 "or 'auto': fitted to the run's own predictions and outcomes")
+      ->default_str(fmt::format("survival {}, probabilistic the paper's {}", kSurvivalAlpha,
+                                kTableTopAlpha));
   cmd.add_option("--objective", objective,
-                 "what the probabilistic method ranks by: bits (the information gain, eq. 1) or "
-                 "cells (the expected number of unobserved cells seen)")
-      ->capture_default_str();
+                 "what the probabilistic and survival methods rank by: bits (the information "
+                 "gain, eq. 1) or cells (the expected number of unobserved cells seen)")
+      ->default_str("the method's own: cells for survival, bits for probabilistic");
   cmd.add_option("--evaluation", evaluation,
                  "gain evaluation: auto (the cheaper of the two on each map state), fast or exact")
       ->capture_default_str();
@@ -61,7 +62,8 @@ PlannerConfig PlanningOptions::planner_config(double literal_alpha) const {
 PlannerConfig PlanningOptions::make_planner_config(double literal_alpha) const {
   PlannerConfig config;
   config.method = parse_planner_method(method);
-  config.objective = parse_gain_objective(objective);
+  config.objective =
+      objective.empty() ? natural_objective(config.method) : parse_gain_objective(objective);
   config.gain.alpha = alpha_setting(default_alpha(config.method, literal_alpha)).value;
   config.gain.evaluation = parse_gain_evaluation(evaluation);
   config.search = parse_decision_search(search);

@@ -415,6 +415,7 @@ void add_plan_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--range", o->range, "min,max range without a manifest [m]")
       ->capture_default_str();
+  o->planning.method = "survival";
   o->planning.add_to(*cmd, /*search=*/false);
   cmd->add_option("--pose", o->pose,
                   "the robot's sensor pose now, x,y,z,roll,pitch,yaw [m, deg], for the travel of "
