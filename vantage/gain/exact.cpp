@@ -171,13 +171,18 @@ void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
   }
 }
 
+/// The most cells a ray from any view's origin crosses.
+int longest_ray(const GridSpec& spec, std::span<const Frustum> views) {
+  int cells = 1;
+  for (const Frustum& view : views) cells = std::max(cells, max_ray_cells(spec, view.origin()));
+  return cells;
+}
+
 /// The tables for rays from every view's origin.
 template <typename Model>
 RayTables<Model> tables_for(const GridSpec& spec, std::span<const Frustum> views,
                             const OccupancyParams& params, double alpha) {
-  int cells = 1;
-  for (const Frustum& view : views) cells = std::max(cells, max_ray_cells(spec, view.origin()));
-  return RayTables<Model>(alpha, params.p_min, cells);
+  return RayTables<Model>(alpha, params.p_min, longest_ray(spec, views));
 }
 
 /// Unobserved cells before the target on its ray, or -1 when an occupied cell lies before it.
@@ -209,8 +214,7 @@ std::vector<double> survival_cells_by_alpha(const OccupancyGrid& grid,
                                             std::span<const double> alphas, int num_threads) {
   const GainMap map(grid, num_threads);
   const GridSpec& spec = map.spec();
-  int cells = 1;
-  for (const Frustum& view : views) cells = std::max(cells, max_ray_cells(spec, view.origin()));
+  const int cells = longest_ray(spec, views);
   // NOTE: counts, not sums of powers: integers add up the same in any order, so the histogram,
   // and every E(a) from it, is the same for any thread count.
   std::vector<std::uint64_t> histogram(static_cast<std::size_t>(cells) + 1, 0);
@@ -271,58 +275,48 @@ std::vector<std::vector<std::size_t>> views_by_origin(std::span<const Frustum> v
   return groups;
 }
 
+/// Every view's sum of `cell_gain(origin, target)` over its targets; the views of one origin
+/// (a ring position's yaw offsets) share each target's ray, so each cell is evaluated once per
+/// origin and every view's sum is bit for bit its own. Origins run in parallel.
+template <typename CellGain>
+std::vector<ViewGain> sum_by_origin(const GainMap& map, std::span<const Frustum> views,
+                                    int num_threads, CellGain&& cell_gain) {
+  std::vector<ViewGain> gains(views.size());
+  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
+  run_with_threads(num_threads, [&] {
+    tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
+      const Eigen::Vector3d origin = views[groups[g].front()].origin();
+      sum_over_shared_targets(
+          map, views, groups[g], [&](const Index3& target) { return cell_gain(origin, target); },
+          gains);
+    });
+  });
+  return gains;
+}
+
 template <typename Model>
 std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
                                        const GainConfig& config) {
   config.validate();
   require_model_method(config, "exact_view_gains");
-  std::vector<ViewGain> gains(views.size());
-  // NOTE: views from one origin (a ring position's yaw offsets) share their targets' rays; each
-  // cell is evaluated once per origin, and every view's sum is bit for bit its own.
-  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
   if (config.method == GainMethod::kGreedy) {
-    run_with_threads(config.num_threads, [&] {
-      tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
-        const Eigen::Vector3d origin = views[groups[g].front()].origin();
-        sum_over_shared_targets(
-            map, views, groups[g],
-            [&](const Index3& target) { return greedy_gain(map, origin, target); }, gains);
-      });
-    });
-    return gains;
+    return sum_by_origin(map, views, config.num_threads,
+                         [&](const Eigen::Vector3d& origin, const Index3& target) {
+                           return greedy_gain(map, origin, target);
+                         });
   }
   if (config.method == GainMethod::kSurvival) {
-    int cells = 1;
-    for (const Frustum& view : views) {
-      cells = std::max(cells, max_ray_cells(map.spec(), view.origin()));
-    }
-    const SurvivalModel model(config.alpha, map.params().p_min, cells);
-    run_with_threads(config.num_threads, [&] {
-      tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
-        const Eigen::Vector3d origin = views[groups[g].front()].origin();
-        sum_over_shared_targets(
-            map, views, groups[g],
-            [&](const Index3& target) {
-              return survival_ray_gain(map, model, origin, target, config.epsilon);
-            },
-            gains);
-      });
-    });
-    return gains;
+    const SurvivalModel model(config.alpha, map.params().p_min, longest_ray(map.spec(), views));
+    return sum_by_origin(map, views, config.num_threads,
+                         [&](const Eigen::Vector3d& origin, const Index3& target) {
+                           return survival_ray_gain(map, model, origin, target, config.epsilon);
+                         });
   }
   const RayTables<Model> tables = tables_for<Model>(map.spec(), views, map.params(), config.alpha);
-  run_with_threads(config.num_threads, [&] {
-    tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
-      const Eigen::Vector3d origin = views[groups[g].front()].origin();
-      sum_over_shared_targets(
-          map, views, groups[g],
-          [&](const Index3& target) {
-            return ray_gain(map, tables, origin, target, config.epsilon);
-          },
-          gains);
-    });
-  });
-  return gains;
+  return sum_by_origin(map, views, config.num_threads,
+                       [&](const Eigen::Vector3d& origin, const Index3& target) {
+                         return ray_gain(map, tables, origin, target, config.epsilon);
+                       });
 }
 
 template std::vector<ViewGain> exact_view_gains<PaperModel>(const GainMap&,
