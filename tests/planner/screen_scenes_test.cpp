@@ -14,6 +14,7 @@
 #include "vantage/gain/exact.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/choose.hpp"
+#include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/world.hpp"
 #include "vantage/util/text.hpp"
@@ -28,7 +29,12 @@ struct Tally {
   int states = 0, same = 0;
 };
 
-void check_scene(const std::string& name, Tally& tally) {
+/// `method`: probabilistic (both objectives) or survival (its own, cells, at its default a).
+void check_scene(const std::string& name, PlannerMethod method, Tally& tally) {
+  const bool survival = method == PlannerMethod::kSurvival;
+  const std::vector<GainObjective> objectives =
+      survival ? std::vector<GainObjective>{GainObjective::kCells}
+               : std::vector<GainObjective>{GainObjective::kBits, GainObjective::kCells};
   const sim::World world(sim::load_scene(name));
   const sim::Scene& scene = world.scene();
   for (const auto& order : kOrders) {
@@ -51,10 +57,12 @@ void check_scene(const std::string& name, Tally& tally) {
       for (const Candidate& c : candidates) views.push_back(c.view);
       GainConfig exact;
       exact.evaluation = GainEvaluation::kExact;
+      exact.method = gain_method_of(method);
+      if (survival) exact.alpha = kSurvivalAlpha;
       const std::vector<ViewGain> exact_gains = exact_view_gains(grid, views, exact);
-      for (const GainObjective objective : {GainObjective::kBits, GainObjective::kCells}) {
-        const std::string state =
-            cat(name, " after ", k + 1, " scans from ", order[0], ", ", to_string(objective));
+      for (const GainObjective objective : objectives) {
+        const std::string state = cat(name, " after ", k + 1, " scans from ", order[0], ", ",
+                                      to_string(method), ", ", to_string(objective));
         struct {
           std::vector<double> scores;
           std::size_t best = 0;
@@ -64,6 +72,8 @@ void check_scene(const std::string& name, Tally& tally) {
         }
         reference.best = choose_best(reference.scores);
         PlannerConfig ours;
+        ours.method = method;
+        ours.gain.alpha = exact.alpha;
         ours.objective = objective;
         ours.search = DecisionSearch::kScreened;
         ours.gain.num_threads = 1;
@@ -103,10 +113,19 @@ void check_scene(const std::string& name, Tally& tally) {
 TEST(ScreenedDecision, MatchesExactOnBuiltInTableTops) {
   Tally tally;
   for (const char* name : {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"}) {
-    check_scene(name, tally);
+    check_scene(name, PlannerMethod::kProbabilistic, tally);
   }
   ASSERT_EQ(tally.states, 48);
   EXPECT_GE(tally.same, 46) << "the same choice as exact in " << tally.same << " of 48 states";
+}
+
+TEST(ScreenedDecision, SurvivalMatchesExactOnBuiltInTableTops) {
+  Tally tally;
+  for (const char* name : {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"}) {
+    check_scene(name, PlannerMethod::kSurvival, tally);
+  }
+  ASSERT_EQ(tally.states, 24);
+  EXPECT_GE(tally.same, 23) << "the same choice as exact in " << tally.same << " of 24 states";
 }
 
 }  // namespace

@@ -336,13 +336,16 @@ std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const F
                                            std::span<const std::uint32_t> cells,
                                            const GainConfig& config) {
   config.validate();
-  if (config.method != GainMethod::kProbabilistic) {
-    throw std::invalid_argument(cat("sampled_view_gains: gain.method must be probabilistic, got ",
-                                    to_string(config.method)));
+  const bool survival = config.method == GainMethod::kSurvival;
+  if (config.method != GainMethod::kProbabilistic && !survival) {
+    throw std::invalid_argument(
+        cat("sampled_view_gains: gain.method must be probabilistic or survival, got ",
+            to_string(config.method)));
   }
   const GridSpec& spec = map.spec();
   const RayTables<PaperModel> tables =
       tables_for<PaperModel>(spec, views, map.params(), config.alpha);
+  const SurvivalModel survival_model(config.alpha, map.params().p_min, longest_ray(spec, views));
   // NOTE: as in exact_view_gains, views from one origin share each cell's ray. Work is cut into
   // (group, chunk of cells) slots that are summed in order afterwards, so a few views still
   // spread over all threads and the sums do not depend on them.
@@ -372,7 +375,8 @@ std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const F
             continue;
           }
           if (!evaluated) {
-            p = ray_gain(map, tables, origin, cell, config.epsilon);
+            p = survival ? survival_ray_gain(map, survival_model, origin, cell, config.epsilon)
+                         : ray_gain(map, tables, origin, cell, config.epsilon);
             evaluated = true;
           }
           SampleSums& sum = slots[v * chunks + chunk];

@@ -183,13 +183,11 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   // NOTE: the paper's model and the metrics score by something other than greedy's count, so
   // greedy's prediction on the same poses is the reference of their predictions (Fig. 11).
   const GainMethod scored_by = gain_method_of(config.method);
-  // NOTE: the screen samples the paper's model only; the survival reading searches exhaustively.
-  if (config.method == PlannerMethod::kProbabilistic &&
-      config.search == DecisionSearch::kScreened) {
+  if (probabilistic && config.search == DecisionSearch::kScreened) {
     // NOTE: only the argmax and its prediction are needed; a dropped candidate keeps its
     // estimate, flagged, and the greedy reference (if asked for) stays every candidate's.
     GainConfig gain = config.gain;
-    gain.method = GainMethod::kProbabilistic;
+    gain.method = scored_by;
     detail::Screening screening = detail::screen_candidates(
         grid, views.frusta, views.first, gain, config.objective == GainObjective::kCells);
     plan.gains = std::move(screening.gains);

@@ -78,8 +78,7 @@ struct PlannerConfig {
   /// Gain evaluation settings; `gain.method` is set from `method` (gain_method_of).
   GainConfig gain;
   double lambda = 0.5;  ///< kLatombe's travel penalty [1/m]
-  /// How the probabilistic method searches the candidates; the other methods (survival too)
-  /// evaluate all.
+  /// How the probabilistic and survival methods search the candidates; the others evaluate all.
   DecisionSearch search = DecisionSearch::kExhaustive;
   /// Also predict every candidate's greedy gain when the method uses another, so predictions can
   /// be compared on the same poses (the paper's Fig. 11).
