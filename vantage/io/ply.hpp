@@ -74,7 +74,7 @@ class PlyReader {
   /// A temporary string would be gone before the reader reads a byte (read() walks `bytes` again):
   /// refused at compile time. Keep the bytes in a variable that outlives the reader.
   template <typename String>
-    requires std::same_as<String, std::string>
+  requires std::same_as<String, std::string>
   explicit PlyReader(String&& temporary) = delete;
 
   PlyFormat format() const { return format_; }
