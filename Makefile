@@ -2,12 +2,13 @@
 #   make demo   installs what it needs, builds, and runs the main job on the default scene
 #   make test   installs what it needs, builds, and runs the whole test suite
 #   make fuzz   builds the libFuzzer harnesses (clang) and runs each for FUZZ_SECONDS (docs/fuzzing.md)
+#   make tsan   the parallel parts under ThreadSanitizer, against a TBB built with it (docs/fuzzing.md)
 PRESET ?= release
 BUILD_DIR := build/$(PRESET)
 VANTAGE := $(BUILD_DIR)/apps/vantage/vantage
 FUZZ_SECONDS ?= 60
 
-.PHONY: all deps configure build demo test bench fuzz format clean
+.PHONY: all deps configure build demo test bench fuzz tsan format clean
 
 all: build
 
@@ -40,6 +41,13 @@ fuzz:
 	@cmake --preset fuzz >/dev/null
 	@cmake --build --preset fuzz
 	@scripts/run-fuzzers.sh build/fuzz $(FUZZ_SECONDS)
+
+# The tsan preset's tests, with libtbb built with -fsanitize=thread (scripts/build-tsan-tbb.sh).
+tsan:
+	@scripts/build-tsan-tbb.sh >/dev/null
+	@cmake --preset tsan >/dev/null
+	@cmake --build --preset tsan
+	@ctest --preset tsan
 
 format:
 	@git ls-files '*.cpp' '*.hpp' | xargs clang-format -i

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs a command that must fail cleanly: the documented exit code (docs/robustness.md; any non-zero
 # one unless --code says which), no crash (exit < 128), exactly one line on stderr that contains
-# the expected text, printable and short (no raw bytes echoed), and no files left behind.
+# the expected text, printable and short (no raw bytes echoed), no sanitizer report (ASan, LSan,
+# UBSan and TSan exit 1 by default, which is also a refusal's code), and no files left behind.
 # Usage: expect_error.sh [--code N] [--absent PATH]... [--fresh PATH]... EXPECTED_TEXT COMMAND...
 #   --code 0 checks a run that succeeds with exactly one warning line; --fresh removes a path
 #   (the run's output) before the run.
@@ -27,6 +28,8 @@ bytes=$(wc -c <"$err")
 message=$(cat "$err")
 unprintable=$(LC_ALL=C tr -d '\n\t -~\200-\377' <"$err" | wc -c)
 rm -f "$err"
+sanitizer=$(grep -m 1 -E '^(==[0-9]+==ERROR: [A-Za-z]+Sanitizer|WARNING: ThreadSanitizer|SUMMARY: [A-Za-z]+Sanitizer)|: runtime error: ' <<<"$message")
+if [[ -n $sanitizer ]]; then echo "FAIL: sanitizer report (exit $code) for: $*"; echo "$message"; exit 1; fi
 if [[ -z $want_code && $code -eq 0 ]]; then echo "FAIL: exit code 0 for: $*"; exit 1; fi
 if [[ $code -ge 128 ]]; then echo "FAIL: crashed (exit $code) for: $*"; exit 1; fi
 if [[ -n $want_code && $code -ne $want_code ]]; then

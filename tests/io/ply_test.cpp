@@ -151,7 +151,8 @@ TEST(PlyReader, ReadsOnlyUpToTheLastElementAsked) {
   const std::string head =
       "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nelement face 1\n"
       "property list uchar int vertex_indices\nend_header\n1.5\n";
-  const PlyReader ply(head + "3 0 0 oops\n");
+  const std::string bytes = head + "3 0 0 oops\n";  // the reader keeps a view of it
+  const PlyReader ply(bytes);
   const std::vector<Read> vertices = read_all(ply, 0);
   ASSERT_EQ(vertices.size(), 1u);
   EXPECT_EQ(vertices[0].values, std::vector<double>{1.5});

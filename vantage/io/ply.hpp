@@ -3,6 +3,7 @@
 /// The PLY format (Stanford polygon files): one reader for every PLY Vantage reads (point clouds,
 /// meshes) and the header every PLY it writes starts with.
 
+#include <concepts>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -70,6 +71,11 @@ class PlyReader {
   /// `end_header`. Refuses before any allocation counts that cannot fit the bytes that follow
   /// (a binary instance needs the sizes of its scalars and list lengths, an ASCII one a line).
   explicit PlyReader(std::string_view bytes);
+  /// A temporary string would be gone before the reader reads a byte (read() walks `bytes` again):
+  /// refused at compile time. Keep the bytes in a variable that outlives the reader.
+  template <typename String>
+  requires std::same_as<String, std::string>
+  explicit PlyReader(String&& temporary) = delete;
 
   PlyFormat format() const { return format_; }
   const std::vector<PlyElement>& elements() const { return elements_; }
