@@ -5,7 +5,7 @@
 # such hand-over as a race. This builds the same version from Debian's own source tarball
 # (checked against the SHA-256 in Debian's .dsc) into build/tbb-tsan/lib, which the tsan test
 # preset puts first on LD_LIBRARY_PATH; the soname is the same, so no relink is needed.
-# Idempotent: quick when the library is there. Needs curl, cmake and g++ (about a minute with
+# Idempotent: quick when the library is there. Needs apt (as root), cmake and g++ (about a minute with
 # JOBS=2 parallel compiles, the default).
 #
 #   scripts/build-tsan-tbb.sh [DEST]     DEST defaults to build/tbb-tsan
@@ -16,7 +16,6 @@ dest="${1:-$root/build/tbb-tsan}"
 version=2021.8.0
 tarball=onetbb_$version.orig.tar.xz
 sha256=7e9111b8bb59c8800bf6d0b06afe7b0891937443d2dae1ee1101c8e2ede6a7ef
-url=http://deb.debian.org/debian/pool/main/o/onetbb/$tarball
 
 installed=$(dpkg-query -W -f '${Version}' libtbb-dev 2>/dev/null || true)
 if [[ $installed != $version* ]]; then
@@ -32,7 +31,20 @@ fi
 mkdir -p "$dest"
 cd "$dest"
 if ! echo "$sha256  $tarball" | sha256sum -c --status 2>/dev/null; then
-  curl -sSfL -o "$tarball" "$url"
+  # NOTE: Debian's source package through apt, from the archive the system's own packages come
+  # from: a private copy of its lists with each deb entry read as deb-src, so the machine's apt
+  # configuration is left as it was.
+  apt_dir=$(mktemp -d)
+  trap 'rm -rf "$apt_dir"' EXIT
+  mkdir -p "$apt_dir/lists/partial" "$apt_dir/parts"
+  for f in /etc/apt/sources.list.d/*.sources; do
+    [[ -f $f ]] && sed 's/^Types: deb$/Types: deb-src/' "$f" >"$apt_dir/parts/$(basename "$f")"
+  done
+  [[ -f /etc/apt/sources.list ]] && sed -n 's/^deb /deb-src /p' /etc/apt/sources.list >"$apt_dir/parts/main.list"
+  apt_opts=(-o "Dir::Etc::SourceList=/dev/null" -o "Dir::Etc::SourceParts=$apt_dir/parts"
+            -o "Dir::State::Lists=$apt_dir/lists" -o "APT::Sandbox::User=root")
+  apt-get "${apt_opts[@]}" update -qq
+  apt-get "${apt_opts[@]}" source --download-only -qq "onetbb=$installed"
   echo "$sha256  $tarball" | sha256sum -c --status || {
     echo "build-tsan-tbb: $tarball does not match its SHA-256" >&2; exit 1; }
 fi
