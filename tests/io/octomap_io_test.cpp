@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <map>
 #include <random>
 #include <sstream>
@@ -277,6 +278,30 @@ TEST(OctomapImport, CropsOnlyWhenAsked) {
   for (std::size_t i = 0; i < read.grid.size(); ++i) {
     ASSERT_EQ(read.grid.state(i), grid.state(spec.linear(smaller.unravel(i))));
   }
+}
+
+// The fuzzer's 102-byte tree whose two voxels lie far apart derives a grid of hundreds of millions
+// of cells: check_grid sees it before anything is allocated and may refuse it.
+TEST(OctomapImport, ChecksADerivedGridBeforeAllocatingIt) {
+  const char* source = std::getenv("VANTAGE_SOURCE_DIR");
+  const std::filesystem::path tree = std::filesystem::path(source != nullptr ? source : ".") /
+                                     "fuzz/corpus/octomap/open-far-voxels.bt";
+  ASSERT_TRUE(std::filesystem::exists(tree)) << tree;
+  OctomapImportConfig config;
+  std::size_t cells = 0;
+  config.check_grid = [&](const GridSpec& spec) {
+    cells = spec.num_cells();
+    throw std::runtime_error("refused");
+  };
+  EXPECT_THROW(read_octomap(tree, config), std::runtime_error);
+  EXPECT_GT(cells, std::size_t{1} << 24);  // what it would have allocated, at 4 B a cell
+
+  // A small tree passes through the same check to the grid it derives.
+  TempDir dir;
+  write_octomap(dir / "map.bt", mixed_grid(aligned_spec(), 4));
+  config.check_grid = [&](const GridSpec& spec) { cells = spec.num_cells(); };
+  const OctomapImport read = read_octomap(dir / "map.bt", config);
+  EXPECT_EQ(cells, read.grid.size());
 }
 
 // One line that names the file, and a std::runtime_error, for every kind of bad file.

@@ -484,6 +484,7 @@ OctomapImport read_octomap(const fs::path& path, const OctomapImportConfig& conf
   } else {
     spec = derive_spec(leaves, header.resolution, config.padding, path);
   }
+  if (config.check_grid) config.check_grid(spec);
   const Voxel n = voxel_offset(spec);
 
   OctomapImport result{OccupancyGrid(spec, config.occupancy), header.format, header.id,

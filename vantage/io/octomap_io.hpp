@@ -33,6 +33,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -88,6 +89,9 @@ struct OctomapImportConfig {
   /// instead of failing.
   bool crop = false;
   OccupancyParams occupancy;  ///< the new grid's parameters; `.bt` leaves take p_min and p_max
+  /// Called with the grid, given or derived, before it is allocated; may throw to refuse it (a
+  /// memory budget: a tree of a hundred bytes can derive a grid of 2^30 cells).
+  std::function<void(const GridSpec&)> check_grid;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;

@@ -231,169 +231,171 @@ void run(const PlanOptions& o) {
     OctomapImportConfig import;
     if (manifest) import.grid = manifest->grid;
     import.crop = manifest.has_value();
-    OctomapImport imported = read_octomap(o.map, import);
-    if (!manifest) check_grid(imported.grid.spec(), o.map);
-    mapper.emplace(std::move(imported.grid), mapper_config);
-  } else {
-    mapper.emplace(manifest->grid, mapper_config);
-  }
-  if (!o.map.empty() && manifest && mapper_config.register_scans && !o.json_only) {
-    fmt::print(
-        "note: {} holds no points, so ICP registers the manifest's clouds to each other "
-        "only\n",
-        o.map);
-  }
-  if (manifest) {
-    map_recorded(*manifest, *mapper, [&](std::size_t i, const MapperUpdate& u) {
-      // NOTE: the pose the cloud was integrated at (ICP-corrected), wherever it came from.
-      if (o.pose.empty()) {
-        robot = u.T_world_sensor;
-        robot_source = "the last cloud's pose";
-      }
-      if (u.object_points > 0 && u.integration.points_inside == 0) {
-        // NOTE: a warning, not an error: the frustum's free space was still mapped, and a later
-        // cloud may map the region.
-        warn(fmt::format(
-            "{}: nothing was mapped from its points: none of the {} lies inside the roi (behind "
-            "the sensor, or far from the roi? check the pose, frame and roi)",
-            manifest->clouds[i].file.string(), u.object_points));
-      }
-      if (!o.json_only) {
-        fmt::print("cloud {}/{}  {}  {} points  {} cells seen{}{}\n", i + 1,
-                   manifest->clouds.size(), manifest->clouds[i].file.filename().string(), u.points,
-                   u.integration.left_unobserved.size(),
-                   manifest->clouds[i].pose_from_viewpoint ? "  (pose from its VIEWPOINT)" : "",
-                   mapper_config.register_scans
-                       ? (u.registered ? "  (ICP corrected)" : "  (ICP kept the pose)")
-                       : "");
-      }
-    });
-  }
-  const double map_seconds = seconds_since(start);
-  const OccupancyGrid& grid = mapper->grid();
-  const GridSpec& spec = grid.spec();
-  const Eigen::AlignedBox3d roi =
-      manifest ? manifest->roi : Eigen::AlignedBox3d(spec.origin, spec.max_corner());
-
-  if (needs_pose(planner.method) && !robot) {
-    throw std::invalid_argument(
-        fmt::format("--method {} needs the robot's pose: the manifest has no clouds; give --pose",
-                    to_string(planner.method)));
-  }
-
-  const std::vector<Eigen::Isometry3d> poses = candidate_poses(o, roi, frame, grid);
-  std::vector<Candidate> candidates;
-  for (const Eigen::Isometry3d& pose : poses) {
-    // NOTE: plan knows no obstacles between here and there: travel is the straight line.
-    const double travel = robot ? (pose.translation() - robot->translation()).norm() : 0.0;
-    candidates.push_back({Frustum(pose, fov), travel});
-  }
-  const Plan plan = plan_next_view(grid, candidates, planner, /*seed=*/1);
-
-  // Best first (for random, the drawn one), then by score; ties keep the candidates' order.
-  std::vector<std::size_t> ranking(candidates.size());
-  std::iota(ranking.begin(), ranking.end(), std::size_t{0});
-  std::stable_sort(ranking.begin(), ranking.end(),
-                   [&](std::size_t a, std::size_t b) { return plan.scores[a] > plan.scores[b]; });
-  const auto best = std::find(ranking.begin(), ranking.end(), plan.best);
-  std::rotate(ranking.begin(), best, best + 1);
-
-  const CellCounts counts = grid.counts();
-  const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(frame).transpose();
-  auto nbv = [&](std::size_t i) {
-    Eigen::Isometry3d T_world_cloud = poses[i];
-    T_world_cloud.linear() = poses[i].linear() * R_sensor_cloud;
-    json j = {{"index", i},
-              {"sensor", pose_json(poses[i])},
-              {"yaw", yaw_deg(poses[i])},
-              {"cloud_frame", pose_json(T_world_cloud)},
-              {"predicted_gain", plan.gains[i].gain},
-              {"predicted_cells", plan.gains[i].cells},
-              {"greedy_gain", plan.greedy_gains[i]},
-              {"score", plan.scores[i]}};
-    if (robot) j["travel"] = candidates[i].travel;
-    return j;
+    // NOTE: a derived grid is checked before it is allocated (docs/fuzzing.md, the OctoMap
+    // finding); a manifest's was checked above.
+    if (!manifest) import.check_grid = [&](const GridSpec& spec) { check_grid(spec, o.map);
   };
-  json out = {
-      {"version", kPlanJsonVersion},
-      {"vantage_version", VANTAGE_VERSION},
-      {"units",
-       {{"position", "m"},
-        {"yaw", "deg"},
-        {"predicted_gain", units.predicted_gain},
-        {"predicted_cells", "cells"},
-        {"greedy_gain", "cells"},
-        {"score", units.score},
-        {"travel", "m"},
-        {"seconds", "s"}}},
-      {"robot", robot ? json{{"sensor", pose_json(*robot)}, {"from", robot_source}} : json()},
-      {"next_best_view", nbv(plan.best)},
-      {"method", to_string(planner.method)},
-      {"alpha", planner.gain.alpha},
-      {"objective", to_string(planner.objective)},
-      {"evaluation", to_string(planner.gain.evaluation)},
-      {"frames", {{"sensor", "x forward, y left, z up"}, {"cloud_frame", to_string(frame)}}},
-      {"map",
-       {{"grid",
-         {{"origin", {spec.origin.x(), spec.origin.y(), spec.origin.z()}},
-          {"resolution", spec.resolution},
-          {"dims", {spec.dims.x(), spec.dims.y(), spec.dims.z()}}}},
-        {"clouds", manifest ? manifest->clouds.size() : 0},
-        {"unobserved", counts.unobserved},
-        {"free", counts.free},
-        {"occupied", counts.occupied}}},
-      {"candidates", json::array()},
-      {"seconds", {{"map", map_seconds}, {"plan", plan.seconds}}}};
-  for (const std::size_t i : ranking) out["candidates"].push_back(nbv(i));
-
-  write_folder_atomically(dir, [&](const fs::path& partial) {
-    write_atomically(partial / "plan.json", out.dump(2) + "\n");
-    write_map_files(partial, grid);
-    write_cells_ply(partial / "map.ply", grid);
-    if (o.plots) run_plot_script("plot_run.py", {partial.string()});
-  });
-
-  if (o.json_only) {
-    fmt::print("{}\n", out.dump(2));
-    return;
-  }
-  const bool show_score =
-      planner.method == PlannerMethod::kLatombe || planner.method == PlannerMethod::kYamauchi;
-  // NOTE: the probabilistic method also predicts in cells (E, docs/model.md), the number its
-  // prediction error is measured in; greedy's gain already is a count of cells.
-  const bool show_cells = has_observability(planner.method);
-  const std::string gain_header = fmt::format("predicted gain [{}]", units.predicted_gain);
-  const std::string cells_header = "predicted seen [cells]";
-  const std::string score_header = fmt::format("score [{}]", units.score);
-  fmt::print("\n{:>4} {:>5} {:>26} {:>9} {:>{}}{} {:>19}{}{}\n", "rank", "view", "position [m]",
-             "yaw [deg]", gain_header, gain_header.size(),
-             show_cells ? fmt::format(" {}", cells_header) : "", "greedy gain [cells]",
-             robot ? fmt::format(" {:>10}", "travel [m]") : "",
-             show_score ? fmt::format(" {:>{}}", score_header, score_header.size()) : "");
-  for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top); ++r) {
-    const std::size_t i = ranking[r];
-    const Eigen::Vector3d p = poses[i].translation();
-    fmt::print(
-        "{:>4} {:>5} {:>26} {:>9.1f} {:>{}.1f}{} {:>19.1f}{}{}\n", r + 1, i,
-        fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z()), yaw_deg(poses[i]),
-        plan.gains[i].gain, gain_header.size(),
-        show_cells ? fmt::format(" {:>{}.1f}", plan.gains[i].cells, cells_header.size()) : "",
-        plan.greedy_gains[i], robot ? fmt::format(" {:>10.3f}", candidates[i].travel) : "",
-        show_score ? fmt::format(" {:>{}.3f}", plan.scores[i], score_header.size()) : "");
-  }
+  OctomapImport imported = read_octomap(o.map, import);
+  mapper.emplace(std::move(imported.grid), mapper_config);
+}
+else {
+  mapper.emplace(manifest->grid, mapper_config);
+}
+if (!o.map.empty() && manifest && mapper_config.register_scans && !o.json_only) {
   fmt::print(
-      "\nnext best view: candidate {} ({} method{}), decided in {:.3f} s\n"
-      "  at {}\n  as --pose: {}\n",
-      plan.best, to_string(planner.method),
-      has_observability(planner.method) ? fmt::format(", a = {}", planner.gain.alpha) : "",
-      plan.seconds, describe_pose(poses[plan.best]), pose_argument(poses[plan.best]));
-  if (robot) fmt::print("robot at {} ({})\n", describe_pose(*robot), robot_source);
-  fmt::print("map: {} unobserved, {} free, {} occupied cells\nresults: {}/plan.json, map.ot{}\n",
-             counts.unobserved, counts.free, counts.occupied, dir.string(),
-             o.plots ? ", map.png" : "");
+      "note: {} holds no points, so ICP registers the manifest's clouds to each other "
+      "only\n",
+      o.map);
+}
+if (manifest) {
+  map_recorded(*manifest, *mapper, [&](std::size_t i, const MapperUpdate& u) {
+    // NOTE: the pose the cloud was integrated at (ICP-corrected), wherever it came from.
+    if (o.pose.empty()) {
+      robot = u.T_world_sensor;
+      robot_source = "the last cloud's pose";
+    }
+    if (u.object_points > 0 && u.integration.points_inside == 0) {
+      // NOTE: a warning, not an error: the frustum's free space was still mapped, and a later
+      // cloud may map the region.
+      warn(fmt::format(
+          "{}: nothing was mapped from its points: none of the {} lies inside the roi (behind "
+          "the sensor, or far from the roi? check the pose, frame and roi)",
+          manifest->clouds[i].file.string(), u.object_points));
+    }
+    if (!o.json_only) {
+      fmt::print("cloud {}/{}  {}  {} points  {} cells seen{}{}\n", i + 1, manifest->clouds.size(),
+                 manifest->clouds[i].file.filename().string(), u.points,
+                 u.integration.left_unobserved.size(),
+                 manifest->clouds[i].pose_from_viewpoint ? "  (pose from its VIEWPOINT)" : "",
+                 mapper_config.register_scans
+                     ? (u.registered ? "  (ICP corrected)" : "  (ICP kept the pose)")
+                     : "");
+    }
+  });
+}
+const double map_seconds = seconds_since(start);
+const OccupancyGrid& grid = mapper->grid();
+const GridSpec& spec = grid.spec();
+const Eigen::AlignedBox3d roi =
+    manifest ? manifest->roi : Eigen::AlignedBox3d(spec.origin, spec.max_corner());
+
+if (needs_pose(planner.method) && !robot) {
+  throw std::invalid_argument(
+      fmt::format("--method {} needs the robot's pose: the manifest has no clouds; give --pose",
+                  to_string(planner.method)));
 }
 
+const std::vector<Eigen::Isometry3d> poses = candidate_poses(o, roi, frame, grid);
+std::vector<Candidate> candidates;
+for (const Eigen::Isometry3d& pose : poses) {
+  // NOTE: plan knows no obstacles between here and there: travel is the straight line.
+  const double travel = robot ? (pose.translation() - robot->translation()).norm() : 0.0;
+  candidates.push_back({Frustum(pose, fov), travel});
+}
+const Plan plan = plan_next_view(grid, candidates, planner, /*seed=*/1);
+
+// Best first (for random, the drawn one), then by score; ties keep the candidates' order.
+std::vector<std::size_t> ranking(candidates.size());
+std::iota(ranking.begin(), ranking.end(), std::size_t{0});
+std::stable_sort(ranking.begin(), ranking.end(),
+                 [&](std::size_t a, std::size_t b) { return plan.scores[a] > plan.scores[b]; });
+const auto best = std::find(ranking.begin(), ranking.end(), plan.best);
+std::rotate(ranking.begin(), best, best + 1);
+
+const CellCounts counts = grid.counts();
+const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(frame).transpose();
+auto nbv = [&](std::size_t i) {
+  Eigen::Isometry3d T_world_cloud = poses[i];
+  T_world_cloud.linear() = poses[i].linear() * R_sensor_cloud;
+  json j = {{"index", i},
+            {"sensor", pose_json(poses[i])},
+            {"yaw", yaw_deg(poses[i])},
+            {"cloud_frame", pose_json(T_world_cloud)},
+            {"predicted_gain", plan.gains[i].gain},
+            {"predicted_cells", plan.gains[i].cells},
+            {"greedy_gain", plan.greedy_gains[i]},
+            {"score", plan.scores[i]}};
+  if (robot) j["travel"] = candidates[i].travel;
+  return j;
+};
+json out = {{"version", kPlanJsonVersion},
+            {"vantage_version", VANTAGE_VERSION},
+            {"units",
+             {{"position", "m"},
+              {"yaw", "deg"},
+              {"predicted_gain", units.predicted_gain},
+              {"predicted_cells", "cells"},
+              {"greedy_gain", "cells"},
+              {"score", units.score},
+              {"travel", "m"},
+              {"seconds", "s"}}},
+            {"robot", robot ? json{{"sensor", pose_json(*robot)}, {"from", robot_source}} : json()},
+            {"next_best_view", nbv(plan.best)},
+            {"method", to_string(planner.method)},
+            {"alpha", planner.gain.alpha},
+            {"objective", to_string(planner.objective)},
+            {"evaluation", to_string(planner.gain.evaluation)},
+            {"frames", {{"sensor", "x forward, y left, z up"}, {"cloud_frame", to_string(frame)}}},
+            {"map",
+             {{"grid",
+               {{"origin", {spec.origin.x(), spec.origin.y(), spec.origin.z()}},
+                {"resolution", spec.resolution},
+                {"dims", {spec.dims.x(), spec.dims.y(), spec.dims.z()}}}},
+              {"clouds", manifest ? manifest->clouds.size() : 0},
+              {"unobserved", counts.unobserved},
+              {"free", counts.free},
+              {"occupied", counts.occupied}}},
+            {"candidates", json::array()},
+            {"seconds", {{"map", map_seconds}, {"plan", plan.seconds}}}};
+for (const std::size_t i : ranking) out["candidates"].push_back(nbv(i));
+
+write_folder_atomically(dir, [&](const fs::path& partial) {
+  write_atomically(partial / "plan.json", out.dump(2) + "\n");
+  write_map_files(partial, grid);
+  write_cells_ply(partial / "map.ply", grid);
+  if (o.plots) run_plot_script("plot_run.py", {partial.string()});
+});
+
+if (o.json_only) {
+  fmt::print("{}\n", out.dump(2));
+  return;
+}
+const bool show_score =
+    planner.method == PlannerMethod::kLatombe || planner.method == PlannerMethod::kYamauchi;
+// NOTE: the probabilistic method also predicts in cells (E, docs/model.md), the number its
+// prediction error is measured in; greedy's gain already is a count of cells.
+const bool show_cells = has_observability(planner.method);
+const std::string gain_header = fmt::format("predicted gain [{}]", units.predicted_gain);
+const std::string cells_header = "predicted seen [cells]";
+const std::string score_header = fmt::format("score [{}]", units.score);
+fmt::print("\n{:>4} {:>5} {:>26} {:>9} {:>{}}{} {:>19}{}{}\n", "rank", "view", "position [m]",
+           "yaw [deg]", gain_header, gain_header.size(),
+           show_cells ? fmt::format(" {}", cells_header) : "", "greedy gain [cells]",
+           robot ? fmt::format(" {:>10}", "travel [m]") : "",
+           show_score ? fmt::format(" {:>{}}", score_header, score_header.size()) : "");
+for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top); ++r) {
+  const std::size_t i = ranking[r];
+  const Eigen::Vector3d p = poses[i].translation();
+  fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {:>{}.1f}{} {:>19.1f}{}{}\n", r + 1, i,
+             fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z()), yaw_deg(poses[i]),
+             plan.gains[i].gain, gain_header.size(),
+             show_cells ? fmt::format(" {:>{}.1f}", plan.gains[i].cells, cells_header.size()) : "",
+             plan.greedy_gains[i], robot ? fmt::format(" {:>10.3f}", candidates[i].travel) : "",
+             show_score ? fmt::format(" {:>{}.3f}", plan.scores[i], score_header.size()) : "");
+}
+fmt::print(
+    "\nnext best view: candidate {} ({} method{}), decided in {:.3f} s\n"
+    "  at {}\n  as --pose: {}\n",
+    plan.best, to_string(planner.method),
+    has_observability(planner.method) ? fmt::format(", a = {}", planner.gain.alpha) : "",
+    plan.seconds, describe_pose(poses[plan.best]), pose_argument(poses[plan.best]));
+if (robot) fmt::print("robot at {} ({})\n", describe_pose(*robot), robot_source);
+fmt::print("map: {} unobserved, {} free, {} occupied cells\nresults: {}/plan.json, map.ot{}\n",
+           counts.unobserved, counts.free, counts.occupied, dir.string(),
+           o.plots ? ", map.png" : "");
 }  // namespace
+
+}  // namespace vantage::cli
 
 void add_plan_command(CLI::App& app) {
   auto o = std::make_shared<PlanOptions>();
