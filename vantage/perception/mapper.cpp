@@ -158,7 +158,7 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
   scan.trusted = scans_ == 0;  // the first scan defines the map frame
   scan.T_world_sensor = T_world_sensor_guess;
   if (config_.register_scans && scans_ > 0 && !reference_.empty()) {
-    const perception::RegistrationResult r = register_held(scan);
+    const perception::RegistrationResult r = register_held(scan, grid_);
     update.registration = r.outcome;
     update.registered = r.accepted();
     scan.trusted = r.accepted();
@@ -209,12 +209,13 @@ PointCloud Mapper::world_points(const HeldScan& scan) const {
   return out;
 }
 
-perception::RegistrationResult Mapper::register_held(const HeldScan& scan) const {
+perception::RegistrationResult Mapper::register_held(const HeldScan& scan,
+                                                     const OccupancyGrid& known) const {
   PointCloud points;  // the scan's objects in its own frame
   for (const ScanPart& part : scan.parts) {
     for (const Eigen::Vector3d& p : part.points_sensor) points.push_back(part.T_scan_sensor * p);
   }
-  if (config_.register_overlap_only) points = known_part(points, scan.T_world_sensor_guess, grid_);
+  if (config_.register_overlap_only) points = known_part(points, scan.T_world_sensor_guess, known);
   return perception::register_scan(points, scan.T_world_sensor_guess, reference_,
                                    config_.registration);
 }
@@ -243,7 +244,8 @@ std::vector<MapperUpdate::Reregistered> Mapper::retry_pending(double& seconds_re
   std::vector<MapperUpdate::Reregistered> passed;
   for (HeldScan& held : held_) {
     if (held.trusted) continue;
-    const perception::RegistrationResult r = register_held(held);
+    // NOTE: the overlap is judged on the grid before the held scans, not on one they are in.
+    const perception::RegistrationResult r = register_held(held, *checkpoint_);
     if (!r.accepted()) continue;
     held.trusted = true;
     held.T_world_sensor = r.T_world_sensor;

@@ -134,8 +134,10 @@ class Mapper {
     bool trusted = false;
   };
 
-  /// Registers `scan`'s objects to the reference, starting from its guess.
-  perception::RegistrationResult register_held(const HeldScan& scan) const;
+  /// Registers `scan`'s objects to the reference, starting from its guess; with
+  /// register_overlap_only, only those in cells `known` has observed.
+  perception::RegistrationResult register_held(const HeldScan& scan,
+                                               const OccupancyGrid& known) const;
   /// `scan`'s objects in the world, at its pose.
   PointCloud world_points(const HeldScan& scan) const;
   /// Integrates `scan`'s views at its pose; each cell's change counts once, by its net.
