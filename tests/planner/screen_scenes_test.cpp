@@ -110,22 +110,23 @@ void check_scene(const std::string& name, PlannerMethod method, Tally& tally) {
   }
 }
 
-TEST(ScreenedDecision, MatchesExactOnBuiltInTableTops) {
+/// Every built-in table top's states: at least 95 % of `states` choose exact's view.
+void check_all(PlannerMethod method, int states) {
   Tally tally;
   for (const char* name : {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"}) {
-    check_scene(name, PlannerMethod::kProbabilistic, tally);
+    check_scene(name, method, tally);
   }
-  ASSERT_EQ(tally.states, 48);
-  EXPECT_GE(tally.same, 46) << "the same choice as exact in " << tally.same << " of 48 states";
+  ASSERT_EQ(tally.states, states);
+  EXPECT_GE(tally.same, (95 * states + 99) / 100)
+      << "the same choice as exact in " << tally.same << " of " << states << " states";
+}
+
+TEST(ScreenedDecision, MatchesExactOnBuiltInTableTops) {
+  check_all(PlannerMethod::kProbabilistic, 48);  // both objectives
 }
 
 TEST(ScreenedDecision, SurvivalMatchesExactOnBuiltInTableTops) {
-  Tally tally;
-  for (const char* name : {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"}) {
-    check_scene(name, PlannerMethod::kSurvival, tally);
-  }
-  ASSERT_EQ(tally.states, 24);
-  EXPECT_GE(tally.same, 23) << "the same choice as exact in " << tally.same << " of 24 states";
+  check_all(PlannerMethod::kSurvival, 24);  // its own objective, cells
 }
 
 }  // namespace
