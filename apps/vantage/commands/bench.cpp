@@ -138,8 +138,10 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   cmd->add_option("--scenes", o->scenes, "scenes")->delimiter(',')->capture_default_str();
   cmd->add_option("--methods", o->methods, "methods")->delimiter(',')->capture_default_str();
   cmd->add_option("--alphas", o->alphas,
-                  "a settings of the probabilistic and survival methods, a,b,... (a number in "
-                  "(0, 1] or auto; survival's auto starts from its own 0.99)")
+                  fmt::format("a settings of the probabilistic and survival methods, a,b,... (a "
+                              "number in (0, 1] or auto; survival's auto has its own grid and "
+                              "prior, {})",
+                              kSurvivalAlpha))
       ->capture_default_str();
   cmd->add_option("--objectives", o->objectives,
                   "what the probabilistic method ranks by, one trial set each: bits,cells")
