@@ -23,7 +23,8 @@ configure: deps
 build: configure
 	@cmake --build --preset $(PRESET)
 
-# The main job: explore the default table-top scene with the paper's method, 10 scans.
+# The main job: explore the default table-top scene with the default method (the survival reading
+# of the paper's model, a fitted online), 10 scans.
 demo: build
 	@rm -rf results/demo
 	$(VANTAGE) explore --out results/demo
