@@ -42,7 +42,6 @@ class SurvivalModel {
 
  private:
   double alpha_;
-  double p_min_;
   std::vector<double> outside_;  ///< outside_[k]: q after k + 1 free cells at p_min
 };
 
