@@ -53,10 +53,10 @@ struct SampleSums {
   std::size_t targets = 0;  ///< sampled targets inside the frustum
 };
 
-/// The exact evaluation (`config.method` probabilistic or survival) restricted to `cells`: the linear indices
-/// of unobserved cells, each evaluated, for every view whose frustum holds its centre, on its own
-/// ray exactly as exact_view_gains does. Sums run in the order of `cells`, so the result is the
-/// same for any thread count. Throws std::invalid_argument for another method.
+/// The exact evaluation (`config.method` probabilistic or survival) restricted to `cells`: the
+/// linear indices of unobserved cells, each evaluated, for every view whose frustum holds its
+/// centre, on its own ray exactly as exact_view_gains does. Sums run in the order of `cells`, so
+/// the result is the same for any thread count. Throws std::invalid_argument for another method.
 std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const Frustum> views,
                                            std::span<const std::uint32_t> cells,
                                            const GainConfig& config);

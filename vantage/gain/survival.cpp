@@ -20,8 +20,7 @@ double filter(double q, double v, double p) {
 
 }  // namespace
 
-SurvivalModel::SurvivalModel(double alpha, double p_min, int max_cells)
-    : alpha_(alpha) {
+SurvivalModel::SurvivalModel(double alpha, double p_min, int max_cells) : alpha_(alpha) {
   if (!(alpha > 0.0 && alpha <= 1.0)) {
     throw std::invalid_argument(cat("survival alpha must lie in (0, 1], got ", alpha));
   }

@@ -75,12 +75,12 @@ void print_scan(const ScanRecord& r, int total) {
 void run(const ExploreOptions& o) {
   const sim::Scene scene = sim::load_scene(o.scene);
   const bool office = scene.kind == sim::SceneKind::kOffice;
-  // The paper's a for the scene's kind (§5.1, §5.2) when --alpha is not given, and the prior
-  // of --alpha auto.
+  // The paper's a for the scene's kind (§5.1, §5.2); the method's own a (default_alpha) when
+  // --alpha is not given, and the prior of --alpha auto.
+  const double paper = office ? kOfficeAlpha : kTableTopAlpha;
   ExplorationConfig config;
-  config.planner = o.planning.planner_config(office ? kOfficeAlpha : kTableTopAlpha);
-  const double literal =
-      default_alpha(config.planner.method, office ? kOfficeAlpha : kTableTopAlpha);
+  config.planner = o.planning.planner_config(paper);
+  const double literal = default_alpha(config.planner.method, paper);
   const bool survival = config.planner.method == PlannerMethod::kSurvival;
   // NOTE: the survival reading is fitted online unless told an a: the configuration the sweeps
   // show best (RESULTS.md); --method probabilistic is the paper's literal one.

@@ -21,8 +21,8 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
   cmd.add_option("--alpha,-a", alpha,
                  "observability parameter a of the probabilistic and survival methods, in (0, 1], "
                  "or 'auto': fitted to the run's own predictions and outcomes")
-      ->default_str(fmt::format("survival {}, probabilistic the paper's {}", kSurvivalAlpha,
-                                kTableTopAlpha));
+      ->default_str(
+          fmt::format("survival {}, probabilistic the paper's {}", kSurvivalAlpha, kTableTopAlpha));
   cmd.add_option("--objective", objective,
                  "what the probabilistic and survival methods rank by: bits (the information "
                  "gain, eq. 1) or cells (the expected number of unobserved cells seen)")

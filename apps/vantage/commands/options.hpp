@@ -22,7 +22,7 @@ inline constexpr const char* kNoStopProjectionHelp =
 /// --method, --alpha, --objective, --evaluation, --search, --epsilon, --lambda, --threads.
 struct PlanningOptions {
   std::string method = "probabilistic";
-  std::string alpha;  ///< a number, "auto", or empty: the caller's literal default
+  std::string alpha;      ///< a number, "auto", or empty: the caller's literal default
   std::string objective;  ///< bits, cells, or empty: the method's own (natural_objective)
   std::string evaluation = "auto";
   std::string search = "screened";
