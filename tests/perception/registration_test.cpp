@@ -56,7 +56,7 @@ VoxelMap map_of(const PointCloud& points_world) {
   return map;
 }
 
-// A scan from 36° further round the ring is brought to within 3 mm and 0.1° from guesses 2 sigma
+// A scan from 36° further round the ring is brought to within 3 mm and 0.12° from guesses 2 sigma
 // of the default prior off in x, y and yaw at once (3.5 sigma in all). The prior still pulls a
 // little toward the guess where the objects' spread constrains the pose least.
 TEST(Registration, RecoversAKnownTransform) {
@@ -80,7 +80,7 @@ TEST(Registration, RecoversAKnownTransform) {
         EXPECT_EQ(r.outcome, RegistrationOutcome::kAccepted) << to_string(r.outcome);
         const PoseError after = pose_error(r.T_world_sensor, truth);
         EXPECT_LT(after.translation, 0.003);
-        EXPECT_LT(after.rotation, 0.1 * kDeg);
+        EXPECT_LT(after.rotation, 0.12 * kDeg);
         worst = std::max(worst, after.translation);
         worst_rotation = std::max(worst_rotation, after.rotation);
       }
@@ -144,6 +144,89 @@ TEST(Registration, ACorrectionOutsideThePriorFallsBackToTheGuess) {
   EXPECT_TRUE(r.T_world_sensor.isApprox(truth, 0.0));
 }
 
+/// Identical boxes on an arc about the vertical through the sensor at bearing 0, `spacing` apart
+/// as the sensor sees them, each turned to face it: a turn of the sensor by `spacing` shows it
+/// the same row, but for its ends.
+Scene repeated_row(double spacing, int boxes) {
+  Scene row;
+  row.boxes.clear();
+  const Eigen::Vector2d eye = sensor_pose(0.0).translation().head<2>();
+  for (int i = 0; i < boxes; ++i) {
+    const double turn = (i - (boxes - 1) / 2.0) * spacing;
+    const Eigen::Vector2d at = eye + 1.2 * Eigen::Vector2d(-std::cos(turn), -std::sin(turn));
+    row.boxes.push_back({at, {0.04, 0.04, 0.15}, turn + std::numbers::pi / 4.0});
+  }
+  return row;
+}
+
+// A guess turned 60 % of the way to the neighbouring object (4.2°, 2.1 sigma): from the guess
+// alone Gauss-Newton pairs every box with its neighbour and passes the check there, 7° off. The
+// further starts find the true basin, whose cost is lower (all seven boxes pair, not six).
+TEST(Registration, FurtherStartsFindTheBasinANeighbouringObjectHid) {
+  const Scene row = repeated_row(7.0 * kDeg, 7);
+  const Eigen::Isometry3d truth = sensor_pose(0.0);
+  const VoxelMap map =
+      map_of(testing::sample_objects(row, 100000.0, 0.001, 1, truth.translation()));
+  const PointCloud scan = transform(
+      truth.inverse(), testing::sample_objects(row, 100000.0, 0.001, 2, truth.translation()));
+  const Eigen::Isometry3d guess = with_error(truth, 0.0, 0.0, 0.6 * 7.0 * kDeg);
+  RegistrationConfig config;
+  config.start_sigmas = 0.0;
+  const RegistrationResult alone = register_scan(scan, guess, map, config);
+  EXPECT_EQ(alone.outcome, RegistrationOutcome::kAccepted);
+  EXPECT_GT(pose_error(alone.T_world_sensor, truth).rotation, 6.0 * kDeg);  // the trap is real
+
+  const RegistrationResult r = register_scan(scan, guess, map, {});
+  EXPECT_EQ(r.outcome, RegistrationOutcome::kAccepted) << to_string(r.outcome);
+  EXPECT_LT(pose_error(r.T_world_sensor, truth).translation, 0.001);
+  EXPECT_LT(pose_error(r.T_world_sensor, truth).rotation, 0.05 * kDeg);
+  EXPECT_LT(r.cost, alone.cost);
+}
+
+// A row longer than the scan: the map holds 15 boxes, the scan sees the middle 7, so a turn by
+// one box fits the data as well as the truth. Two basins within ambiguity_cost of each other
+// leave the pose uncertain, whichever the prior favours; with no margin, one of them is taken.
+TEST(Registration, TwoBasinsAlikeLeaveThePoseUncertain) {
+  const Eigen::Isometry3d truth = sensor_pose(0.0);
+  const VoxelMap map = map_of(testing::sample_objects(repeated_row(7.0 * kDeg, 15), 100000.0, 0.001,
+                                                      1, truth.translation()));
+  const PointCloud scan =
+      transform(truth.inverse(), testing::sample_objects(repeated_row(7.0 * kDeg, 7), 100000.0,
+                                                         0.001, 2, truth.translation()));
+  const Eigen::Isometry3d guess = with_error(truth, 0.0, 0.0, 0.5 * 7.0 * kDeg);
+  const RegistrationResult r = register_scan(scan, guess, map, {});
+  EXPECT_EQ(r.outcome, RegistrationOutcome::kUncertain) << to_string(r.outcome);
+  EXPECT_TRUE(r.T_world_sensor.isApprox(guess, 0.0));
+
+  RegistrationConfig config;
+  config.ambiguity_cost = 0.0;
+  EXPECT_EQ(register_scan(scan, guess, map, config).outcome, RegistrationOutcome::kAccepted);
+}
+
+// A scan that overlaps the map too little (a fifth of its points, the rest far from anything
+// mapped) is not trusted, though the part that overlaps pins it.
+TEST(Registration, AScanThatBarelyOverlapsTheMapIsNotTrusted) {
+  const VoxelMap map = map_of(objects_seen_from(sensor_pose(0.0).translation(), 1));
+  const Eigen::Isometry3d truth = sensor_pose(36.0 * kDeg);
+  PointCloud seen = objects_seen_from(truth.translation(), 2);
+  const std::size_t overlapping = seen.size();
+  for (const double lift : {0.5, 0.8, 1.1, 1.4, 1.7}) {
+    for (std::size_t i = 0; i < overlapping; ++i)
+      seen.push_back(seen[i] + lift * Eigen::Vector3d::UnitZ());
+  }
+  const Eigen::Isometry3d guess = with_error(truth, 0.02, -0.01, 1.0 * kDeg);
+  RegistrationConfig config;
+  config.max_position_sigma = 0.01;
+  const RegistrationResult r = register_scan(transform(truth.inverse(), seen), guess, map, config);
+  EXPECT_EQ(r.outcome, RegistrationOutcome::kTooFewMatches);
+  EXPECT_LT(static_cast<double>(r.correspondences),
+            config.min_overlap * static_cast<double>(r.points));
+  EXPECT_TRUE(r.T_world_sensor.isApprox(guess, 0.0));
+  config.min_overlap = 0.1;
+  EXPECT_EQ(register_scan(transform(truth.inverse(), seen), guess, map, config).outcome,
+            RegistrationOutcome::kAccepted);
+}
+
 TEST(Registration, IsTheSameForOneAndTwoThreads) {
   const Eigen::Isometry3d truth = sensor_pose(36.0 * kDeg);
   const PointCloud scan = transform(truth.inverse(), objects_seen_from(truth.translation(), 2));
@@ -187,6 +270,10 @@ TEST(Registration, RejectsBadInput) {
       {[](RegistrationConfig& c) { c.max_mahalanobis2 = 0.0; }, "registration.max_mahalanobis2"},
       {[](RegistrationConfig& c) { c.max_position_sigma = 0.0; },
        "registration.max_position_sigma"},
+      {[](RegistrationConfig& c) { c.min_overlap = 1.5; }, "registration.min_overlap"},
+      {[](RegistrationConfig& c) { c.start_sigmas = -1.0; }, "registration.start_sigmas"},
+      {[](RegistrationConfig& c) { c.ambiguity_cost = std::nan(""); },
+       "registration.ambiguity_cost"},
   };
   for (const auto& [spoil, field] : fields) {
     RegistrationConfig config;

@@ -208,6 +208,10 @@ class Explorer {
     record.yaw_error_after = after.rotation;
     record.pose_error_final = after.translation;
     record.registration = update.registration;
+    record.registration_sigma = update.registration_result.position_sigma;
+    record.registration_mahalanobis2 = update.registration_result.mahalanobis2;
+    record.registration_pairs = update.registration_result.correspondences;
+    record.registration_points = update.registration_result.points;
     record.yaw_error_final = after.rotation;
     record.points = update.points;
     record.object_points = update.object_points;
@@ -537,6 +541,8 @@ MapperConfig default_mapper_config(const sim::Scene& scene) {
     // NOTE: a sweep's posterior rarely knows the position better than the prior along one
     // direction (the floor outweighs the walls); 1 cm keeps the sweeps that pin it.
     config.registration.max_position_sigma = 0.01;
+    // NOTE: a retry that passes integrates every sweep since the fallback again (~1 s each).
+    config.reregister_window = 3;
   }
   return config;
 }

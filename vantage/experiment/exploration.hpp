@@ -136,6 +136,12 @@ struct ScanRecord {
   double yaw_error_final = 0.0;
   /// What registration made of this scan: accepted, or why the guess was kept.
   perception::RegistrationOutcome registration = perception::RegistrationOutcome::kEmptyMap;
+  /// Registration's own figures: the posterior's position sigma [m], the correction's squared
+  /// Mahalanobis distance, the scan's points paired at the solution and its (thinned) points.
+  double registration_sigma = 0.0;
+  double registration_mahalanobis2 = 0.0;
+  std::size_t registration_pairs = 0;
+  std::size_t registration_points = 0;
   /// Earlier scans (1-based) that this scan's registration let pass on a second try; the map was
   /// rebuilt with them at their registered poses before this scan was integrated.
   std::vector<int> reregistered;

@@ -161,6 +161,7 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
     const perception::RegistrationResult r = register_held(scan, grid_);
     update.registration = r.outcome;
     update.registered = r.accepted();
+    update.registration_result = r;
     scan.trusted = r.accepted();
     scan.T_world_sensor = r.T_world_sensor;
   }

@@ -53,8 +53,9 @@ struct MapperConfig {
   /// grid is rebuilt from a checkpoint taken before it, with it and every scan since integrated
   /// at their registered poses: the far side of a table, which shares almost nothing with the
   /// near side, is pinned once a view from in between has been mapped. 0: a fallback is final.
-  /// The checkpoint is a copy of the grid, held while a scan is pending.
-  int reregister_window = 3;
+  /// The checkpoint is a copy of the grid, held while a scan is pending; a retry that passes
+  /// integrates again every scan since it. The default covers a table-top run (8 to 10 scans).
+  int reregister_window = 8;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -75,6 +76,9 @@ struct MapperUpdate {
   bool registered = false;  ///< registration ran and its correction passed the check
   /// Registration's outcome (kEmptyMap also when it is off or had no points).
   perception::RegistrationOutcome registration = perception::RegistrationOutcome::kEmptyMap;
+  /// What registration found: the solved pose whether or not it passed, the posterior's sigma,
+  /// the pairs; default (kEmptyMap) when it did not run.
+  perception::RegistrationResult registration_result;
   std::size_t points = 0;         ///< points in the scan
   std::size_t object_points = 0;  ///< points integrated (after thinning and table segmentation)
   /// Cells that left or re-entered the unobserved set; over the parts of a scan, each cell

@@ -57,10 +57,21 @@ struct RegistrationConfig {
   double max_mahalanobis2 = 22.46;
   /// ... the last stage must pair at least this many points, ...
   std::size_t min_correspondences = 50;
+  /// ... and at least this share of the scan's (thinned) points: a scan that overlaps the map
+  /// less (the far side of a table, seen for the first time) rests on too few surfaces to tell a
+  /// slide along its view from the truth, ...
+  double min_overlap = 0.2;
   /// ... and the posterior must know the sensor's position to this (its largest standard
   /// deviation): a scan that pins its pose no better (the far side of a table, seen after the
   /// near side) is left at the guess [m].
   double max_position_sigma = 0.0025;
+  /// Gauss-Newton also starts from the guess turned about the vertical through the sensor by
+  /// plus and minus this many yaw sigmas; the solution of lowest posterior cost wins. 0: the
+  /// guess alone.
+  double start_sigmas = 2.0;
+  /// ... and a solution elsewhere (further than 2 x max_position_sigma) whose cost is within this
+  /// of the winner's makes the pose uncertain: the data cannot tell the two apart.
+  double ambiguity_cost = 3.0;
   int num_threads = 0;  ///< 0 = all cores; the result is the same for any count
 
   /// Throws std::invalid_argument naming the field (e.g. "registration.min_distance").
@@ -71,7 +82,7 @@ struct RegistrationConfig {
 enum class RegistrationOutcome {
   kAccepted,        ///< the corrected pose passed the check
   kEmptyMap,        ///< nothing to register against (the first scan)
-  kTooFewMatches,   ///< the last stage paired fewer than min_correspondences points
+  kTooFewMatches,   ///< the last stage paired fewer than min_correspondences points or min_overlap
   kOutsidePrior,    ///< the correction is implausible under the odometry noise model
   kUncertain,       ///< the posterior does not know the position to max_position_sigma
   kWorseThanPrior,  ///< the posterior's cost is no lower at the solution than at the guess
@@ -88,6 +99,7 @@ struct RegistrationResult {
   RegistrationOutcome outcome = RegistrationOutcome::kEmptyMap;
   double mahalanobis2 = 0.0;              ///< of the solved correction under the prior
   std::size_t correspondences = 0;        ///< pairs in the last stage at the solved pose
+  std::size_t points = 0;                 ///< ... of this many scan points (thinned)
   std::size_t guess_correspondences = 0;  ///< ... at the guess
   double first_distance = 0.0;            ///< [m] the first stage's correspondence distance
   int iterations = 0;                     ///< over all stages
