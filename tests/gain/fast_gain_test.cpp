@@ -202,9 +202,59 @@ TEST(ExactGain, ASampleOfEveryUnobservedCellIsTheExactEvaluation) {
     EXPECT_LT(halved[v].targets, sampled[v].targets);
     EXPECT_LE(halved[v].gain, sampled[v].gain);
   }
+  // `shared` by brute force: the targets another view from the same origin also holds (a ring
+  // position's yaw offsets overlap; the screen adds variances only where nothing is shared).
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    std::size_t shared = 0;
+    for (const std::uint32_t i : cells) {
+      const Eigen::Vector3d c = grid.spec().center(grid.spec().unravel(i));
+      if (!views[v].contains(c)) continue;
+      for (std::size_t w = 0; w < views.size(); ++w) {
+        if (w != v && views[w].origin() == views[v].origin() && views[w].contains(c)) {
+          ++shared;
+          break;
+        }
+      }
+    }
+    EXPECT_EQ(sampled[v].shared, shared) << "view " << v;
+    EXPECT_GT(shared, 0u);
+  }
   GainConfig greedy;
   greedy.method = GainMethod::kGreedy;
   EXPECT_THROW(sampled_view_gains(map, views, cells, greedy), std::invalid_argument);
+}
+
+// The screen's full evaluation: a sample's exact sums plus the exact evaluation outside it is
+// the exact evaluation, under both readings, for each sample rate it uses.
+TEST(ExactGain, OutsideASamplePlusTheSampleIsTheExactEvaluation) {
+  const OccupancyGrid grid =
+      synthetic::map_after(synthetic::table_top(0), synthetic::grid_spec(), 1, 160, 120);
+  const std::vector<Frustum> ring = synthetic::ring_views();
+  const std::vector<Frustum> views(ring.begin(), ring.begin() + 6);
+  const GainMap map(grid);
+  for (const GainMethod method : {GainMethod::kProbabilistic, GainMethod::kSurvival}) {
+    GainConfig config;
+    config.method = method;
+    config.alpha = method == GainMethod::kSurvival ? 0.995 : config.alpha;
+    const auto exact = exact_view_gains(map, views, config);
+    for (const int bits : {6, 4, 2}) {
+      std::vector<std::uint32_t> sample;
+      for (std::size_t i = 0; i < map.size(); ++i) {
+        if (map.value(i).state == CellState::kUnobserved && in_cell_sample(i, bits)) {
+          sample.push_back(static_cast<std::uint32_t>(i));
+        }
+      }
+      const auto in = sampled_view_gains(map, views, sample, config);
+      const auto out = exact_view_gains(map, views, config, bits);
+      for (std::size_t v = 0; v < views.size(); ++v) {
+        EXPECT_GT(in[v].targets, 0u);
+        EXPECT_LT(in[v].targets, exact[v].targets);
+        EXPECT_EQ(in[v].targets + out[v].targets, exact[v].targets) << "view " << v;
+        EXPECT_NEAR(in[v].gain + out[v].gain, exact[v].gain, 1e-9 * exact[v].gain);
+        EXPECT_NEAR(in[v].cells + out[v].cells, exact[v].cells, 1e-9 * exact[v].cells);
+      }
+    }
+  }
 }
 
 TEST(FastGain, SameResultForAnyThreadCount) {

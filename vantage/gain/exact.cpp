@@ -114,8 +114,8 @@ TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin,
 /// in the same (z, y) order, and the rows and cells it does not hold add nothing.
 template <typename CellGain>
 void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
-                             std::span<const std::size_t> members, CellGain&& cell_gain,
-                             std::vector<ViewGain>& gains) {
+                             std::span<const std::size_t> members, int outside_sample,
+                             CellGain&& cell_gain, std::vector<ViewGain>& gains) {
   const GridSpec& spec = map.spec();
   const std::size_t k = members.size();
   std::vector<CellBox> boxes;
@@ -139,6 +139,7 @@ void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
       for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
         const std::size_t linear = spec.linear(cell);
         if (map.value(linear).state != CellState::kUnobserved) continue;
+        if (outside_sample > 0 && in_cell_sample(linear, outside_sample)) continue;
         const Eigen::Vector3d center = spec.center(cell);
         bool evaluated = false;
         TargetPrediction prediction;
@@ -280,15 +281,15 @@ std::vector<std::vector<std::size_t>> views_by_origin(std::span<const Frustum> v
 /// origin and every view's sum is bit for bit its own. Origins run in parallel.
 template <typename CellGain>
 std::vector<ViewGain> sum_by_origin(const GainMap& map, std::span<const Frustum> views,
-                                    int num_threads, CellGain&& cell_gain) {
+                                    int num_threads, int outside_sample, CellGain&& cell_gain) {
   std::vector<ViewGain> gains(views.size());
   const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
       const Eigen::Vector3d origin = views[groups[g].front()].origin();
       sum_over_shared_targets(
-          map, views, groups[g], [&](const Index3& target) { return cell_gain(origin, target); },
-          gains);
+          map, views, groups[g], outside_sample,
+          [&](const Index3& target) { return cell_gain(origin, target); }, gains);
     });
   });
   return gains;
@@ -296,24 +297,24 @@ std::vector<ViewGain> sum_by_origin(const GainMap& map, std::span<const Frustum>
 
 template <typename Model>
 std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
-                                       const GainConfig& config) {
+                                       const GainConfig& config, int outside_sample) {
   config.validate();
   require_model_method(config, "exact_view_gains");
   if (config.method == GainMethod::kGreedy) {
-    return sum_by_origin(map, views, config.num_threads,
+    return sum_by_origin(map, views, config.num_threads, outside_sample,
                          [&](const Eigen::Vector3d& origin, const Index3& target) {
                            return greedy_gain(map, origin, target);
                          });
   }
   if (config.method == GainMethod::kSurvival) {
     const SurvivalModel model(config.alpha, map.params().p_min, longest_ray(map.spec(), views));
-    return sum_by_origin(map, views, config.num_threads,
+    return sum_by_origin(map, views, config.num_threads, outside_sample,
                          [&](const Eigen::Vector3d& origin, const Index3& target) {
                            return survival_ray_gain(map, model, origin, target, config.epsilon);
                          });
   }
   const RayTables<Model> tables = tables_for<Model>(map.spec(), views, map.params(), config.alpha);
-  return sum_by_origin(map, views, config.num_threads,
+  return sum_by_origin(map, views, config.num_threads, outside_sample,
                        [&](const Eigen::Vector3d& origin, const Index3& target) {
                          return ray_gain(map, tables, origin, target, config.epsilon);
                        });
@@ -321,10 +322,18 @@ std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frust
 
 template std::vector<ViewGain> exact_view_gains<PaperModel>(const GainMap&,
                                                             std::span<const Frustum>,
-                                                            const GainConfig&);
+                                                            const GainConfig&, int);
 template std::vector<ViewGain> exact_view_gains<BlindModel>(const GainMap&,
                                                             std::span<const Frustum>,
-                                                            const GainConfig&);
+                                                            const GainConfig&, int);
+
+bool in_cell_sample(std::uint64_t i, int bits) {
+  std::uint64_t z = i + 0x9E3779B97F4A7C15ULL;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  z ^= z >> 31;
+  return bits <= 0 || (z >> (64 - bits)) == 0;
+}
 
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                        const GainConfig& config) {
@@ -362,29 +371,31 @@ std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const F
       const std::size_t begin = chunk * kChunk;
       const std::size_t end = std::min(cells.size(), begin + kChunk);
       const Eigen::Vector3d origin = views[members.front()].origin();
+      std::vector<std::size_t> holding;  // the members whose frustum holds the cell
       for (std::size_t i = begin; i < end; ++i) {
         if (map.value(cells[i]).state != CellState::kUnobserved) continue;
         const Index3 cell = spec.unravel(cells[i]);
         const Eigen::Vector3d center = spec.center(cell);
-        bool evaluated = false;
-        TargetPrediction p;
+        holding.clear();
         for (const std::size_t v : members) {
           const CellBox& box = boxes[v];
-          if ((cell.array() < box.lo.array()).any() || (cell.array() > box.hi.array()).any() ||
-              !views[v].contains(center)) {
-            continue;
+          if ((cell.array() >= box.lo.array()).all() && (cell.array() <= box.hi.array()).all() &&
+              views[v].contains(center)) {
+            holding.push_back(v);
           }
-          if (!evaluated) {
-            p = survival ? survival_ray_gain(map, survival_model, origin, cell, config.epsilon)
-                         : ray_gain(map, tables, origin, cell, config.epsilon);
-            evaluated = true;
-          }
+        }
+        if (holding.empty()) continue;
+        const TargetPrediction p =
+            survival ? survival_ray_gain(map, survival_model, origin, cell, config.epsilon)
+                     : ray_gain(map, tables, origin, cell, config.epsilon);
+        for (const std::size_t v : holding) {
           SampleSums& sum = slots[v * chunks + chunk];
           sum.gain += p.gain;
           sum.gain_sq += p.gain * p.gain;
           sum.cells += p.seen;
           sum.cells_sq += p.seen * p.seen;
           ++sum.targets;
+          sum.shared += holding.size() > 1 ? 1 : 0;
         }
       }
     });
@@ -398,6 +409,7 @@ std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const F
       sums[v].cells += s.cells;
       sums[v].cells_sq += s.cells_sq;
       sums[v].targets += s.targets;
+      sums[v].shared += s.shared;
     }
   }
   return sums;

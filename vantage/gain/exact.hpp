@@ -18,10 +18,16 @@ namespace vantage {
 
 /// Exact evaluation of every view on a snapshot, whatever `config.evaluation` says, with the ray
 /// model `Model` (model.hpp; instantiated for PaperModel and BlindModel). With `config.epsilon` =
-/// 0 it is the literal model.
+/// 0 it is the literal model. `outside_sample` > 0 leaves out the cells of that sample
+/// (in_cell_sample), which a caller has evaluated already.
 template <typename Model = PaperModel>
 std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
-                                       const GainConfig& config);
+                                       const GainConfig& config, int outside_sample = 0);
+
+/// Whether the cell of linear index `i` is in the sample of `bits`: the top `bits` bits of a
+/// SplitMix64 hash of `i` are zero (rate 2^-bits). Each sample holds those of more bits. A hash,
+/// not a lattice: a regular lattice lines up with a table's plane and a ring's symmetry.
+bool in_cell_sample(std::uint64_t i, int bits);
 
 /// The same on the grid, which is only read.
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
@@ -51,6 +57,9 @@ struct SampleSums {
   double cells = 0.0;       ///< sum of v_M [cells]
   double cells_sq = 0.0;    ///< sum of v_M^2
   std::size_t targets = 0;  ///< sampled targets inside the frustum
+  /// ... of which another view from the same origin also holds: 0 for every view of a sweep
+  /// whose frusta do not overlap, whose sums are then independent samples.
+  std::size_t shared = 0;
 };
 
 /// The exact evaluation (`config.method` probabilistic or survival) restricted to `cells`: the

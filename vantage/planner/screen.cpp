@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/snapshot.hpp"
@@ -26,27 +27,17 @@ constexpr double kMargin = 0.1;
 /// Neither side of a comparison is trusted with fewer sampled targets than this.
 constexpr std::size_t kMinTargets = 32;
 
-/// SplitMix64 of the cell's index: the sample must not line up with the lattice (a table's plane
-/// is a lattice plane).
-std::uint64_t cell_hash(std::uint64_t i) {
-  std::uint64_t z = i + 0x9E3779B97F4A7C15ULL;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-
 /// The unobserved cells of each stage's sample that the stage before did not hold, in linear
 /// order.
 std::array<std::vector<std::uint32_t>, kStageBits.size()> sample_cells(const GainMap& map) {
   std::array<std::vector<std::uint32_t>, kStageBits.size()> stages;
   for (std::size_t i = 0; i < map.size(); ++i) {
-    const std::uint64_t h = cell_hash(i);
+    if (map.value(i).state != CellState::kUnobserved) continue;
     for (std::size_t s = 0; s < kStageBits.size(); ++s) {
-      if ((h >> (64 - kStageBits[s])) != 0) continue;
-      if (map.value(i).state == CellState::kUnobserved) {
+      if (in_cell_sample(i, kStageBits[s])) {
         stages[s].push_back(static_cast<std::uint32_t>(i));
+        break;
       }
-      break;
     }
   }
   return stages;
@@ -64,16 +55,18 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
   std::vector<std::size_t> alive(n);
   for (std::size_t c = 0; c < n; ++c) alive[c] = c;
 
+  std::optional<GainMap> map;                   // the snapshot the samples read
+  std::vector<SampleSums> sums(frusta.size());  // per view, over the stages so far
+  std::size_t ran = 0;                          // stages run
   if (n > 1) {
-    const GainMap map(grid, config.num_threads);
-    const auto stages = sample_cells(map);
-    std::vector<SampleSums> sums(frusta.size());  // per view, over the stages so far
-    for (std::size_t s = 0; s < stages.size() && alive.size() > 1; ++s) {
+    map.emplace(grid, config.num_threads);
+    const auto stages = sample_cells(*map);
+    for (std::size_t s = 0; s < stages.size() && alive.size() > 1; ++s, ++ran) {
       std::vector<Frustum> views;  // the alive candidates' views, in candidate order
       for (const std::size_t c : alive) {
         views.insert(views.end(), frusta.begin() + first[c], frusta.begin() + first[c + 1]);
       }
-      const std::vector<SampleSums> add = sampled_view_gains(map, views, stages[s], config);
+      const std::vector<SampleSums> add = sampled_view_gains(*map, views, stages[s], config);
       std::size_t k = 0;
       for (const std::size_t c : alive) {
         for (std::size_t v = first[c]; v < first[c + 1]; ++v, ++k) {
@@ -82,6 +75,7 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
           sums[v].cells += add[k].cells;
           sums[v].cells_sq += add[k].cells_sq;
           sums[v].targets += add[k].targets;
+          sums[v].shared += add[k].shared;
         }
       }
       // Horvitz-Thompson: each cell is in the sample with probability 1/rate, so rate * sum is
@@ -91,14 +85,22 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
       std::vector<std::size_t> sampled(n, 0);
       for (const std::size_t c : alive) {
         ViewGain g;
+        double variance = 0.0;
+        bool disjoint = true;
         for (std::size_t v = first[c]; v < first[c + 1]; ++v) {
           g.gain += rate * sums[v].gain;
           g.cells += rate * sums[v].cells;
           g.targets += static_cast<std::size_t>(rate) * sums[v].targets;
           const double sq = cells_objective ? sums[v].cells_sq : sums[v].gain_sq;
+          variance += rate * (rate - 1.0) * sq;
           error[c] += std::sqrt(rate * (rate - 1.0) * sq);  // sd of a sum <= sum of the sds
           sampled[c] += sums[v].targets;
+          disjoint =
+              disjoint && sums[v].shared == 0 && frusta[v].origin() == frusta[first[c]].origin();
         }
+        // NOTE: views from one origin that share no sampled cell (an office stop's sweep) sum
+        // independent samples, whose variances add.
+        if (disjoint) error[c] = std::sqrt(variance);
         out.gains[c] = g;
         estimate[c] = cells_objective ? g.cells : g.gain;
       }
@@ -126,14 +128,21 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
   for (const std::size_t c : alive) {
     views.insert(views.end(), frusta.begin() + first[c], frusta.begin() + first[c + 1]);
   }
-  const std::vector<ViewGain> full = evaluate_views(grid, views, config);
+  // NOTE: an exact evaluation (the survival reading's only one) has evaluated the samples'
+  // cells of the candidates left exactly already: only the cells outside them remain.
+  const bool reuse = ran > 0 && (config.method == GainMethod::kSurvival ||
+                                 (config.method == GainMethod::kProbabilistic &&
+                                  config.evaluation == GainEvaluation::kExact));
+  const std::vector<ViewGain> full =
+      reuse ? exact_view_gains(*map, views, config, kStageBits[ran - 1])
+            : evaluate_views(grid, views, config);
   std::size_t k = 0;
   for (const std::size_t c : alive) {
     ViewGain sum;
     for (std::size_t v = first[c]; v < first[c + 1]; ++v, ++k) {
-      sum.gain += full[k].gain;
-      sum.cells += full[k].cells;
-      sum.targets += full[k].targets;
+      sum.gain += full[k].gain + (reuse ? sums[v].gain : 0.0);
+      sum.cells += full[k].cells + (reuse ? sums[v].cells : 0.0);
+      sum.targets += full[k].targets + (reuse ? sums[v].targets : 0);
     }
     out.gains[c] = sum;
   }
