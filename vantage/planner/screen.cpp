@@ -26,6 +26,10 @@ constexpr double kZ = 3.0;
 constexpr double kMargin = 0.1;
 /// Neither side of a comparison is trusted with fewer sampled targets than this.
 constexpr std::size_t kMinTargets = 32;
+/// The margin is waived when both sides' samples hold at least this many targets' worth of
+/// gain (Kish's effective sample size, (sum g)^2 / sum g^2): then the gain is spread over so many
+/// cells that the sum is close to normal and 3 standard errors bound it (an office stop's sweep).
+constexpr double kEffectiveTargets = 1000.0;
 
 /// The unobserved cells of each stage's sample that the stage before did not hold, in linear
 /// order.
@@ -81,11 +85,11 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
       // Horvitz-Thompson: each cell is in the sample with probability 1/rate, so rate * sum is
       // unbiased, with variance estimated by rate (rate - 1) * (sum of squares).
       const double rate = std::ldexp(1.0, kStageBits[s]);
-      std::vector<double> estimate(n, 0.0), error(n, 0.0);
+      std::vector<double> estimate(n, 0.0), error(n, 0.0), effective(n, 0.0);
       std::vector<std::size_t> sampled(n, 0);
       for (const std::size_t c : alive) {
         ViewGain g;
-        double variance = 0.0;
+        double variance = 0.0, sum = 0.0, sum_sq = 0.0;
         bool disjoint = true;
         for (std::size_t v = first[c]; v < first[c + 1]; ++v) {
           g.gain += rate * sums[v].gain;
@@ -93,6 +97,8 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
           g.targets += static_cast<std::size_t>(rate) * sums[v].targets;
           const double sq = cells_objective ? sums[v].cells_sq : sums[v].gain_sq;
           variance += rate * (rate - 1.0) * sq;
+          sum += cells_objective ? sums[v].cells : sums[v].gain;
+          sum_sq += sq;
           error[c] += std::sqrt(rate * (rate - 1.0) * sq);  // sd of a sum <= sum of the sds
           sampled[c] += sums[v].targets;
           disjoint =
@@ -103,6 +109,7 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
         if (disjoint) error[c] = std::sqrt(variance);
         out.gains[c] = g;
         estimate[c] = cells_objective ? g.cells : g.gain;
+        effective[c] = sum_sq > 0.0 ? sum * sum / sum_sq : 0.0;
       }
       std::size_t leader = alive.front();
       for (const std::size_t c : alive) {
@@ -111,9 +118,11 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
       if (sampled[leader] < kMinTargets) continue;
       std::vector<std::size_t> kept;
       for (const std::size_t c : alive) {
+        const double margin =
+            std::min(effective[c], effective[leader]) >= kEffectiveTargets ? 0.0 : kMargin;
         const bool beaten =
             c != leader && sampled[c] >= kMinTargets &&
-            estimate[c] + kZ * (error[c] + error[leader]) < (1.0 - kMargin) * estimate[leader];
+            estimate[c] + kZ * (error[c] + error[leader]) < (1.0 - margin) * estimate[leader];
         if (beaten) {
           out.estimated[c] = true;
         } else {
