@@ -149,7 +149,6 @@ class Problem {
   Problem(const PointCloud& points_sensor, const Eigen::Isometry3d& T_world_sensor_guess,
           const VoxelMap& map, const RegistrationConfig& config)
       : prior(prior_information(config.prior)),
-        stages(),
         guess_(T_world_sensor_guess),
         c_(T_world_sensor_guess.translation()),
         map_(map),
@@ -327,10 +326,11 @@ class Problem {
     return solved;
   }
 
-  const Matrix6d prior;
-  std::vector<Stage> stages;
   /// The scan's points at full resolution (voxel_size).
   std::size_t full_size() const { return full_.size(); }
+
+  const Matrix6d prior;
+  std::vector<Stage> stages;
 
  private:
   Eigen::Isometry3d guess_;
