@@ -175,17 +175,35 @@ TEST(ExactGain, ViewsFromOneOriginShareRaysBitForBit) {
   }
 }
 
-TEST(ExactGain, ASampleOfEveryUnobservedCellIsTheExactEvaluation) {
-  const OccupancyGrid grid =
+/// The synthetic table top after one scan, seen from the first two ring positions (three yaw
+/// offsets each): the state of the sampled evaluations' oracles.
+struct TwoRingPositions {
+  OccupancyGrid grid =
       synthetic::map_after(synthetic::table_top(0), synthetic::grid_spec(), 1, 160, 120);
-  const std::vector<Frustum> ring = synthetic::ring_views();
-  const std::vector<Frustum> views(ring.begin(), ring.begin() + 6);
-  const GainMap map(grid);
-  std::vector<std::uint32_t> cells;
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    if (map.value(i).state == CellState::kUnobserved)
-      cells.push_back(static_cast<std::uint32_t>(i));
+  std::vector<Frustum> views = [] {
+    const std::vector<Frustum> ring = synthetic::ring_views();
+    return std::vector<Frustum>(ring.begin(), ring.begin() + 6);
+  }();
+  GainMap map{grid};
+
+  /// The unobserved cells in the sample of `bits` (all of them for 0), in linear order.
+  std::vector<std::uint32_t> unobserved(int bits) const {
+    std::vector<std::uint32_t> cells;
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      if (map.value(i).state == CellState::kUnobserved && in_cell_sample(i, bits)) {
+        cells.push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+    return cells;
   }
+};
+
+TEST(ExactGain, ASampleOfEveryUnobservedCellIsTheExactEvaluation) {
+  const TwoRingPositions state;
+  const OccupancyGrid& grid = state.grid;
+  const std::vector<Frustum>& views = state.views;
+  const GainMap& map = state.map;
+  const std::vector<std::uint32_t> cells = state.unobserved(0);
   const GainConfig config;
   const auto exact = exact_view_gains(map, views, config);
   const auto sampled = sampled_view_gains(map, views, cells, config);
@@ -227,24 +245,16 @@ TEST(ExactGain, ASampleOfEveryUnobservedCellIsTheExactEvaluation) {
 // The screen's full evaluation: a sample's exact sums plus the exact evaluation outside it is
 // the exact evaluation, under both readings, for each sample rate it uses.
 TEST(ExactGain, OutsideASamplePlusTheSampleIsTheExactEvaluation) {
-  const OccupancyGrid grid =
-      synthetic::map_after(synthetic::table_top(0), synthetic::grid_spec(), 1, 160, 120);
-  const std::vector<Frustum> ring = synthetic::ring_views();
-  const std::vector<Frustum> views(ring.begin(), ring.begin() + 6);
-  const GainMap map(grid);
+  const TwoRingPositions state;
+  const std::vector<Frustum>& views = state.views;
+  const GainMap& map = state.map;
   for (const GainMethod method : {GainMethod::kProbabilistic, GainMethod::kSurvival}) {
     GainConfig config;
     config.method = method;
     config.alpha = method == GainMethod::kSurvival ? 0.995 : config.alpha;
     const auto exact = exact_view_gains(map, views, config);
     for (const int bits : {6, 4, 2}) {
-      std::vector<std::uint32_t> sample;
-      for (std::size_t i = 0; i < map.size(); ++i) {
-        if (map.value(i).state == CellState::kUnobserved && in_cell_sample(i, bits)) {
-          sample.push_back(static_cast<std::uint32_t>(i));
-        }
-      }
-      const auto in = sampled_view_gains(map, views, sample, config);
+      const auto in = sampled_view_gains(map, views, state.unobserved(bits), config);
       const auto out = exact_view_gains(map, views, config, bits);
       for (std::size_t v = 0; v < views.size(); ++v) {
         EXPECT_GT(in[v].targets, 0u);
