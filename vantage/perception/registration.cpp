@@ -140,7 +140,6 @@ struct Solution {
   int constrained_directions = 0;
   double position_sigma = 0.0;  ///< [m] the posterior's, along its worst axis
   Score score;                  ///< at the end
-  bool ambiguous = false;       ///< another start reached a distinct pose at a cost as low
 };
 
 /// One registration's data, shared by its starts.
@@ -445,6 +444,7 @@ RegistrationResult register_scan(const PointCloud& points_sensor,
   const Problem problem(points_sensor, T_world_sensor_guess, map, config);
   result.first_distance = problem.stages.front().distance;
   Solution best;
+  bool ambiguous = false;  // another start reached a distinct pose at a cost as low
   run_with_threads(config.num_threads, [&] {
     const Score guessed = problem.score(Correction{});
     result.guess_correspondences = guessed.correspondences;
@@ -465,13 +465,11 @@ RegistrationResult register_scan(const PointCloud& points_sensor,
         *std::min_element(solutions.begin(), solutions.end(),
                           [&](const Solution& a, const Solution& b) { return cost(a) < cost(b); });
     result.cost = cost(best);
-    for (const Solution& other : solutions) {
-      // NOTE: further apart than the check lets the posterior be unsure of the position.
-      if (cost(other) < result.cost + config.ambiguity_cost &&
-          problem.separation(other, best) > 2.0 * config.max_position_sigma) {
-        best.ambiguous = true;
-      }
-    }
+    // NOTE: further apart than the check lets the posterior be unsure of the position.
+    ambiguous = std::any_of(solutions.begin(), solutions.end(), [&](const Solution& other) {
+      return cost(other) < result.cost + config.ambiguity_cost &&
+             problem.separation(other, best) > 2.0 * config.max_position_sigma;
+    });
   });
 
   const Vector6d x = best.correction.coordinates();
@@ -487,7 +485,7 @@ RegistrationResult register_scan(const PointCloud& points_sensor,
     result.outcome = RegistrationOutcome::kTooFewMatches;
   } else if (result.mahalanobis2 > config.max_mahalanobis2) {
     result.outcome = RegistrationOutcome::kOutsidePrior;
-  } else if (result.position_sigma > config.max_position_sigma || best.ambiguous) {
+  } else if (result.position_sigma > config.max_position_sigma || ambiguous) {
     result.outcome = RegistrationOutcome::kUncertain;
   } else if (!(result.cost < result.guess_cost)) {
     result.outcome = RegistrationOutcome::kWorseThanPrior;

@@ -89,14 +89,13 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
       std::vector<std::size_t> sampled(n, 0);
       for (const std::size_t c : alive) {
         ViewGain g;
-        double variance = 0.0, sum = 0.0, sum_sq = 0.0;
+        double sum = 0.0, sum_sq = 0.0;  // of the sampled values, over the candidate's views
         bool disjoint = true;
         for (std::size_t v = first[c]; v < first[c + 1]; ++v) {
           g.gain += rate * sums[v].gain;
           g.cells += rate * sums[v].cells;
           g.targets += static_cast<std::size_t>(rate) * sums[v].targets;
           const double sq = cells_objective ? sums[v].cells_sq : sums[v].gain_sq;
-          variance += rate * (rate - 1.0) * sq;
           sum += cells_objective ? sums[v].cells : sums[v].gain;
           sum_sq += sq;
           error[c] += std::sqrt(rate * (rate - 1.0) * sq);  // sd of a sum <= sum of the sds
@@ -106,7 +105,7 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
         }
         // NOTE: views from one origin that share no sampled cell (an office stop's sweep) sum
         // independent samples, whose variances add.
-        if (disjoint) error[c] = std::sqrt(variance);
+        if (disjoint) error[c] = std::sqrt(rate * (rate - 1.0) * sum_sq);
         out.gains[c] = g;
         estimate[c] = cells_objective ? g.cells : g.gain;
         effective[c] = sum_sq > 0.0 ? sum * sum / sum_sq : 0.0;
