@@ -6,10 +6,14 @@
     scripts/registration-stats.py SWEEP_DIR                  # a `vantage bench` folder: every
                                                              # trial's rows in scans.csv/trials/
 
-Over every scan after each run's first (the first defines the map frame and is exact): the
-translation error of the pose used after registration (median, 95th percentile, worst), the
-worst worsening (after minus before; > 0 means registration moved the pose away from the truth),
-how many scans got worse by more than 1 mm, and the median registration time per scan. "final"
+Over every scan after each run's first (the first defines the map frame and is exact), by two
+measures of a pose's error: the sensor's position error, and the displacement of the scan's
+points (root mean square; how far the map's points land from where they belong, which a turn
+moves more than the sensor's position at range). For each: the error of the pose used after
+registration (median, 95th percentile, worst), the worst worsening (after minus before; > 0
+means registration moved the pose away from the truth), and how many scans got worse by more
+than 1 mm; then the median registration time per scan. Runs written before the displacement was
+recorded report the position error alone. "final"
 is the pose the map holds at the end of the run: a scan that fell back and was registered again
 after a later scan (MapperConfig::reregister_window) counts there at its second registration. Run
 folders whose scene is an office are reported apart from table tops.
@@ -35,7 +39,14 @@ SCANS_CSV_HEADER = (
     "scene,method,alpha,trial,scan,view,predicted_gain,greedy_predicted_gain,actual_gain,"
     "unobserved,coverage,plan_seconds,travel_m,fallback,predicted_cells,alpha_used,objective,"
     "pose_error_before_m,pose_error_after_m,pose_error_final_m,register_seconds,segment_seconds,"
-    "integrate_seconds,reference_seconds").split(",")
+    "integrate_seconds,reference_seconds,displacement_before_m,displacement_after_m,"
+    "displacement_final_m").split(",")
+
+
+def errors(before, after, final, seconds, displacement=None):
+    """One scan's row: the position errors (before, after, final) [m], the registration time [s],
+    and the displacements (before, after, final) [m] or None where the run did not record them."""
+    return {"position": (before, after, final), "seconds": seconds, "displacement": displacement}
 
 
 def add_sweep(folder, groups):
@@ -55,8 +66,13 @@ def add_sweep(folder, groups):
             for r in csv.DictReader(handle, fieldnames=names):
                 if int(r["scan"]) < 2 or "pose_error_final_m" not in r:
                     continue
-                rows.append((float(r["pose_error_before_m"]), float(r["pose_error_after_m"]),
-                             float(r["register_seconds"]), float(r["pose_error_final_m"])))
+                displacement = None
+                if r.get("displacement_final_m"):
+                    displacement = tuple(float(r[f"displacement_{k}_m"])
+                                         for k in ("before", "after", "final"))
+                rows.append(errors(float(r["pose_error_before_m"]), float(r["pose_error_after_m"]),
+                                   float(r["pose_error_final_m"]), float(r["register_seconds"]),
+                                   displacement))
     return True
 
 
@@ -79,30 +95,33 @@ def main(argv):
         rows = groups.setdefault(kind, [])
         for scan in scans[1:]:
             e = scan["pose_error"]
-            rows.append((e["before_m"], e["after_m"], scan["seconds"]["register"],
-                         e.get("final_m", e["after_m"])))
+            displacement = None
+            if "displacement_final_m" in e:
+                displacement = tuple(e[f"displacement_{k}_m"] for k in ("before", "after", "final"))
+            rows.append(errors(e["before_m"], e["after_m"], e.get("final_m", e["after_m"]),
+                               scan["seconds"]["register"], displacement))
     for kind, rows in sorted(groups.items()):
-        before = [r[0] for r in rows]
-        after = [r[1] for r in rows]
-        final = [r[3] for r in rows]
-        worse = [max(a, f) - b for b, a, _, f in rows]
-        seconds = [r[2] for r in rows]
         print(f"{kind}: {len(rows)} registered scans from {len(argv) - 1} runs")
-        print(f"  pose error before  median {1e3 * percentile(before, 0.5):7.2f} mm"
-              f"  p95 {1e3 * percentile(before, 0.95):7.2f} mm"
-              f"  worst {1e3 * max(before):7.2f} mm")
-        print(f"  pose error after   median {1e3 * percentile(after, 0.5):7.2f} mm"
-              f"  p95 {1e3 * percentile(after, 0.95):7.2f} mm"
-              f"  worst {1e3 * max(after):7.2f} mm")
-        print(f"  pose error final   median {1e3 * percentile(final, 0.5):7.2f} mm"
-              f"  p95 {1e3 * percentile(final, 0.95):7.2f} mm"
-              f"  worst {1e3 * max(final):7.2f} mm"
-              f"  ({sum(f < a - 1e-9 for _, a, _, f in rows)} scans registered again)")
-        print(f"  worst worsening {1e3 * max(worse):+.2f} mm;"
-              f" scans made worse by > 1 mm: {sum(w > 1e-3 for w in worse)}")
+        report("sensor position", [r["position"] for r in rows])
+        if all(r["displacement"] is not None for r in rows):
+            report("points' displacement", [r["displacement"] for r in rows])
+        seconds = [r["seconds"] for r in rows]
         print(f"  registration time  median {1e3 * percentile(seconds, 0.5):.1f} ms"
               f"  p95 {1e3 * percentile(seconds, 0.95):.1f} ms per scan")
 
+
+def report(measure, triples):
+    """Prints the figures of one error measure over (before, after, final) triples [m]."""
+    print(f"  {measure}:")
+    for name, values in (("before", [t[0] for t in triples]), ("after", [t[1] for t in triples]),
+                         ("final", [t[2] for t in triples])):
+        print(f"    {name:6s}  median {1e3 * percentile(values, 0.5):7.2f} mm"
+              f"  p95 {1e3 * percentile(values, 0.95):7.2f} mm"
+              f"  worst {1e3 * max(values):7.2f} mm")
+    again = sum(f < a - 1e-9 for _, a, f in triples)
+    worse = [max(a, f) - b for b, a, f in triples]
+    print(f"    {again} scans registered again; worst worsening {1e3 * max(worse):+.2f} mm;"
+          f" scans made worse by > 1 mm: {sum(w > 1e-3 for w in worse)}")
 
 if __name__ == "__main__":
     main(sys.argv)

@@ -63,12 +63,15 @@ TEST(Exploration, ShortRunRecordsConsistentFigures) {
     EXPECT_LT(r.object_points, r.points);  // the table's points were segmented out
     // Registration never leaves a pose more than 1 mm worse than the odometry's (issue 14).
     EXPECT_LE(r.pose_error_after, r.pose_error_before + 1e-3) << "scan " << r.scan;
+    EXPECT_LE(r.displacement_after, r.displacement_before + 1e-3) << "scan " << r.scan;
     EXPECT_GE(r.coverage, 0.0);
     EXPECT_LE(r.coverage, 1.0);
     previous = r.unobserved;
   }
   EXPECT_GT(scans[1].coverage, scans[0].coverage);
   EXPECT_GT(scans[1].pose_error_before, 0.0);  // the second pose was believed with noise
+  EXPECT_NEAR(scans[0].displacement_final, 0.0, 1e-12);  // the first defines the map frame
+  EXPECT_GT(scans[1].displacement_before, 0.0);
 
   // The files parse and say the same.
   const auto rows = parse_csv(read_text(dir / "scans.csv"));
@@ -77,6 +80,9 @@ TEST(Exploration, ShortRunRecordsConsistentFigures) {
   EXPECT_EQ(rows[2][4], "2");                                   // scan
   EXPECT_EQ(rows[2][8], std::to_string(scans[1].actual_gain));  // actual_gain
   EXPECT_EQ(rows[1][6], "");                                    // no prediction yet
+  EXPECT_EQ(rows[0][26], "displacement_final_m");
+  EXPECT_NEAR(std::stod(rows[2][26]), scans[1].displacement_final,
+              1e-6 * scans[1].displacement_final);
   const auto json = nlohmann::json::parse(read_text(dir / "run.json"));
   EXPECT_EQ(json["scans"].size(), 2u);
   EXPECT_EQ(json["config"]["method"], "probabilistic");

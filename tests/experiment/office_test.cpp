@@ -67,6 +67,7 @@ TEST(Office, TwoStopsMeetTheTableTopInvariants) {
     EXPECT_GE(r.actual_gain, previous - r.unobserved);
     EXPECT_GT(r.points, r.object_points);  // thinned to one point per cell
     EXPECT_LE(r.pose_error_after, r.pose_error_before + 1e-3) << "stop " << r.scan;
+    EXPECT_LE(r.displacement_after, r.displacement_before + 1e-3) << "stop " << r.scan;
     EXPECT_GT(r.object_points, 0u);
     EXPECT_GE(r.coverage, 0.0);
     EXPECT_LE(r.coverage, 1.0);
@@ -99,7 +100,7 @@ TEST(Office, TwoStopsMeetTheTableTopInvariants) {
   EXPECT_EQ(csv.substr(0, kScansCsvHeader.size()), kScansCsvHeader);
   const auto rows = parse_csv(csv);
   ASSERT_EQ(rows.size(), 3u);
-  ASSERT_EQ(rows[0].size(), 24u);
+  ASSERT_EQ(rows[0].size(), 27u);
   EXPECT_EQ(rows[0][12], "travel_m");
   EXPECT_EQ(rows[0][13], "fallback");
   EXPECT_EQ(rows[0][14], "predicted_cells");

@@ -340,5 +340,40 @@ TEST(PoseError, MeasuresTranslationAndAngle) {
   EXPECT_NEAR(pose_error(a, flipped).rotation, std::numbers::pi, 1e-9);
 }
 
+// The points' displacement from their spread is the brute-force root mean square over the points
+// (seen from b, placed by a), and it tells a turn that brings the points back from one that does
+// not: a sensor shifted 5 mm and turned so that points 1 m ahead land where they belong is judged
+// by the displacement as better than the sensor shifted 5 mm alone.
+TEST(PoseError, TheDisplacementOfAScansPointsIsTheirRootMeanSquare) {
+  const Eigen::Isometry3d truth = make_pose({0.1, -0.4, 2.0}, {1.0, -1.0, 1.2});
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal(0.0, 0.2);
+  PointCloud points_sensor;  // a blob about 1 m ahead of the sensor
+  for (int i = 0; i < 500; ++i) {
+    points_sensor.emplace_back(normal(rng), normal(rng), 1.0 + normal(rng));
+  }
+  const PointSpread spread = point_spread(transform(truth, points_sensor));
+  for (const Eigen::Isometry3d& a :
+       {truth * make_pose({0.01, -0.02, 0.03}, {0.004, -0.002, 0.005}),
+        make_pose(Eigen::Vector3d::Zero(), {0.0, 0.003, 0.0}) * truth, truth}) {
+    double sum = 0.0;
+    for (const Eigen::Vector3d& p : points_sensor) sum += (a * p - truth * p).squaredNorm();
+    EXPECT_NEAR(pose_error(a, truth, spread).displacement, std::sqrt(sum / 500.0), 1e-12);
+    EXPECT_EQ(pose_error(a, truth, spread).translation, pose_error(a, truth).translation);
+  }
+  // Spread in the sensor's frame, moved to the world: the same.
+  const PointSpread moved = point_spread(points_sensor).transformed(truth);
+  EXPECT_TRUE(moved.mean.isApprox(spread.mean, 1e-12));
+  EXPECT_TRUE(moved.covariance.isApprox(spread.covariance, 1e-12));
+
+  const double angle = 0.005;  // [rad]: a sideways shift of 5 mm, turned back at 1 m
+  const Eigen::Isometry3d shifted = truth * make_pose(Eigen::Vector3d::Zero(), {0.005, 0, 0});
+  const Eigen::Isometry3d turned_back = shifted * make_pose({0.0, -angle, 0.0}, {0, 0, 0});
+  EXPECT_NEAR(pose_error(turned_back, truth).translation, 0.005, 1e-12);
+  EXPECT_LT(pose_error(turned_back, truth, spread).displacement,
+            0.5 * pose_error(shifted, truth, spread).displacement);
+  EXPECT_TRUE(point_spread({}).covariance.isZero());
+}
+
 }  // namespace
 }  // namespace vantage::perception

@@ -197,16 +197,23 @@ class Explorer {
   /// What the mapper did with a scan taken from the true pose `truth`.
   static void record_update(const MapperUpdate& update, const Eigen::Isometry3d& truth,
                             ScanRecord& record) {
+    // NOTE: the errors are judged at truth, the integrated points where the scan saw them.
+    const perception::PointSpread points = update.object_spread.transformed(truth);
     record.seconds.register_scan = update.seconds_register;
     record.seconds.segment = update.seconds_segment;
     record.seconds.integrate = update.seconds_integrate;
-    const perception::PoseError before = perception::pose_error(update.T_world_sensor_guess, truth);
-    const perception::PoseError after = perception::pose_error(update.T_world_sensor, truth);
+    const perception::PoseError before =
+        perception::pose_error(update.T_world_sensor_guess, truth, points);
+    const perception::PoseError after = perception::pose_error(update.T_world_sensor, truth, points);
+    record.points_spread = points;
     record.pose_error_before = before.translation;
     record.yaw_error_before = before.rotation;
+    record.displacement_before = before.displacement;
     record.pose_error_after = after.translation;
     record.yaw_error_after = after.rotation;
+    record.displacement_after = after.displacement;
     record.pose_error_final = after.translation;
+    record.displacement_final = after.displacement;
     record.registration = update.registration;
     record.registration_sigma = update.registration_result.position_sigma;
     record.registration_mahalanobis2 = update.registration_result.mahalanobis2;
@@ -241,9 +248,10 @@ class Explorer {
     for (const MapperUpdate::Reregistered& r : update.reregistered) {
       ScanRecord& earlier = result_.scans.at(r.scan);
       const perception::PoseError error =
-          perception::pose_error(r.T_world_sensor, earlier.T_world_sensor);
+          perception::pose_error(r.T_world_sensor, earlier.T_world_sensor, earlier.points_spread);
       earlier.pose_error_final = error.translation;
       earlier.yaw_error_final = error.rotation;
+      earlier.displacement_final = error.displacement;
       record.reregistered.push_back(earlier.scan);
     }
   }

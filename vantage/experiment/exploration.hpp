@@ -134,6 +134,14 @@ struct ScanRecord {
   /// scan pinned a scan that had fallen back (MapperConfig::reregister_window) [m], [rad]
   double pose_error_final = 0.0;
   double yaw_error_final = 0.0;
+  /// How far the points the scan put into the map land from where they belong (root mean
+  /// square; PoseError), under the believed, the registered and the final pose [m]: what the map
+  /// suffers.
+  double displacement_before = 0.0;
+  double displacement_after = 0.0;
+  double displacement_final = 0.0;
+  /// Where those points lie in the world, at the true pose (for the final displacement).
+  perception::PointSpread points_spread;
   /// What registration made of this scan: accepted, or why the guess was kept.
   perception::RegistrationOutcome registration = perception::RegistrationOutcome::kEmptyMap;
   /// Registration's own figures: the posterior's position sigma [m], the correction's squared

@@ -113,7 +113,10 @@ json scan_json(const ScanRecord& r) {
               {"before_rad", r.yaw_error_before},
               {"after_rad", r.yaw_error_after},
               {"final_m", r.pose_error_final},
-              {"final_rad", r.yaw_error_final}}},
+              {"final_rad", r.yaw_error_final},
+              {"displacement_before_m", r.displacement_before},
+              {"displacement_after_m", r.displacement_after},
+              {"displacement_final_m", r.displacement_final}}},
             {"registration", perception::to_string(r.registration)},
             {"registration_figures",
              {{"position_sigma_m", r.registration_sigma},
@@ -209,13 +212,14 @@ std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>&
   for (const ScanRecord& r : scans) {
     rows += fmt::format(
         "{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g},{:.15g},{:d},{},{},{},{:.6g},{:.6g},{:.6g},"
-        "{:.6g},{:.6g},{:.6g},{:.6g}\n",
+        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
         label.scene, to_string(label.method), alpha, label.trial, r.scan, r.view,
         optional_number(r.predicted_gain), optional_number(r.greedy_predicted_gain), r.actual_gain,
         r.unobserved, r.coverage, r.seconds.plan, r.travel, r.fallback ? 1 : 0,
         optional_number(r.predicted_cells), optional_number(r.alpha), objective,
         r.pose_error_before, r.pose_error_after, r.pose_error_final, r.seconds.register_scan,
-        r.seconds.segment, r.seconds.integrate, r.seconds.reference);
+        r.seconds.segment, r.seconds.integrate, r.seconds.reference, r.displacement_before,
+        r.displacement_after, r.displacement_final);
   }
   return rows;
 }

@@ -16,6 +16,8 @@ namespace vantage {
 /// The header of scans.csv. Other tools read it: append columns, never change these.
 /// travel_m is the distance travelled to the scan's view (table top: the walk along the ring;
 /// office: the path driven), fallback 1 where the planned goal was not reachable (§5.3.1).
+/// The pose errors are the sensor's position error; displacement_* how far the scan's points land
+/// from where they belong (root mean square), under the believed, registered and final pose.
 /// `alpha` is the probabilistic method's setting (a number or "auto"), `alpha_used` the a its
 /// decision for this scan took; predicted_gain is in bits for the probabilistic method and in
 /// cells for the others, predicted_cells always in cells (E, or greedy's count), the unit of
@@ -24,7 +26,8 @@ inline constexpr std::string_view kScansCsvHeader =
     "scene,method,alpha,trial,scan,view,predicted_gain,greedy_predicted_gain,actual_gain,"
     "unobserved,coverage,plan_seconds,travel_m,fallback,predicted_cells,alpha_used,objective,"
     "pose_error_before_m,pose_error_after_m,pose_error_final_m,register_seconds,segment_seconds,"
-    "integrate_seconds,reference_seconds";
+    "integrate_seconds,reference_seconds,displacement_before_m,displacement_after_m,"
+    "displacement_final_m";
 
 /// Which run a row belongs to.
 struct RunLabel {

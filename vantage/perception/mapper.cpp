@@ -154,6 +154,12 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
     scan.parts.push_back({std::move(kept), part.T_scan_sensor, part.fov});
   }
 
+  PointCloud objects_scan;  // what each view contributes, in the scan's frame
+  for (const ScanPart& part : scan.parts) {
+    for (const Eigen::Vector3d& p : part.points_sensor) objects_scan.push_back(part.T_scan_sensor * p);
+  }
+  update.object_spread = perception::point_spread(objects_scan);
+
   auto start = std::chrono::steady_clock::now();
   scan.trusted = scans_ == 0;  // the first scan defines the map frame
   scan.T_world_sensor = T_world_sensor_guess;

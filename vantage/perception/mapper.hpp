@@ -81,6 +81,9 @@ struct MapperUpdate {
   perception::RegistrationResult registration_result;
   std::size_t points = 0;         ///< points in the scan
   std::size_t object_points = 0;  ///< points integrated (after thinning and table segmentation)
+  /// Where the points integrated lie, in the scan's frame (the first view's sensor): with the
+  /// true pose, how far a pose error moved what went into the map (perception::pose_error).
+  perception::PointSpread object_spread;
   /// Cells that left or re-entered the unobserved set; over the parts of a scan, each cell
   /// counts once, by its net change.
   IntegrationResult integration;

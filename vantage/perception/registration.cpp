@@ -498,9 +498,32 @@ RegistrationResult register_scan(const PointCloud& points_sensor,
 
 void silence_pcl_console() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
 
+PointSpread point_spread(const PointCloud& points) {
+  PointSpread s;
+  if (points.empty()) return s;
+  for (const Eigen::Vector3d& p : points) s.mean += p;
+  s.mean /= static_cast<double>(points.size());
+  for (const Eigen::Vector3d& p : points) s.covariance += (p - s.mean) * (p - s.mean).transpose();
+  s.covariance /= static_cast<double>(points.size());
+  return s;
+}
+
 PoseError pose_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
   const Eigen::AngleAxisd relative(a.linear().transpose() * b.linear());
   return {(a.translation() - b.translation()).norm(), relative.angle()};
+}
+
+PoseError pose_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+                     const PointSpread& points_at_b) {
+  PoseError error = pose_error(a, b);
+  // A point q placed by b lands at E q = R q + t under a, E = a b^-1, so E q - q = A q + t with
+  // A = R - I, whose mean square over the points is tr(A Σ Aᵀ) + |A μ + t|².
+  const Eigen::Isometry3d E = a * b.inverse();
+  const Eigen::Matrix3d A = E.linear() - Eigen::Matrix3d::Identity();
+  const double mean_square = (A * points_at_b.covariance * A.transpose()).trace() +
+                             (A * points_at_b.mean + E.translation()).squaredNorm();
+  error.displacement = std::sqrt(std::max(mean_square, 0.0));
+  return error;
 }
 
 }  // namespace vantage::perception

@@ -128,13 +128,35 @@ RegistrationResult register_scan(const PointCloud& points_sensor,
 /// call; the vantage CLI makes it.
 void silence_pcl_console();
 
+/// Where a scan's points lie: their mean and covariance, enough to tell how far a pose error
+/// moves them on average.
+struct PointSpread {
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();        ///< [m]
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();  ///< [m²]
+
+  /// The spread of the same points in frame a, this being their spread in frame b.
+  PointSpread transformed(const Eigen::Isometry3d& T_a_b) const {
+    return {T_a_b * mean, T_a_b.linear() * covariance * T_a_b.linear().transpose()};
+  }
+};
+
+/// The spread of `points` (none: zero).
+PointSpread point_spread(const PointCloud& points);
+
 /// Distance between two poses.
 struct PoseError {
   double translation = 0.0;  ///< [m] between the origins
   double rotation = 0.0;     ///< [rad] angle of the relative rotation, in [0, π]
+  /// [m] how far the scan's points land from where they belong, root mean square. What a map
+  /// suffers: a sensor's position error traded for a smaller turn can bring its points closer.
+  double displacement = 0.0;
 };
 
 /// The error of pose `a` against pose `b` (e.g. before or after registration against the truth).
 PoseError pose_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b);
+/// ... and the displacement of a scan's points, taken from `b`, whose spread (in the frame both
+/// poses are in) is `points_at_b`, when they are placed by `a` instead.
+PoseError pose_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
+                     const PointSpread& points_at_b);
 
 }  // namespace vantage::perception
