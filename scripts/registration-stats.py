@@ -5,6 +5,8 @@
     scripts/registration-stats.py /tmp/runs/*                # e.g. every run of an explore loop
     scripts/registration-stats.py SWEEP_DIR                  # a `vantage bench` folder: every
                                                              # trial's rows in scans.csv/trials/
+    scripts/registration-stats.py --by scene SWEEP_DIR       # ... one report per scene (or any
+                                                             # scans.csv column: method, trial)
 
 Over every scan after each run's first (the first defines the map frame and is exact), by two
 measures of a pose's error: the sensor's position error, and the displacement of the scan's
@@ -49,14 +51,14 @@ def errors(before, after, final, seconds, displacement=None):
     return {"position": (before, after, final), "seconds": seconds, "displacement": displacement}
 
 
-def add_sweep(folder, groups):
+def add_sweep(folder, groups, by=None):
     """Adds the rows of a `vantage bench` folder (its scans.csv, or its trials/*.csv), which keep
-    the pose errors and registration times in their columns; False if it is no sweep folder."""
+    the pose errors and registration times in their columns, in one group or one per value of
+    the column `by`; False if it is no sweep folder."""
     files = [folder / "scans.csv"] if (folder / "scans.csv").is_file() else \
         sorted((folder / "trials").glob("*.csv")) if (folder / "trials").is_dir() else []
     if not files:
         return False
-    rows = groups.setdefault(f"sweep {folder.name}", [])
     for f in files:
         with open(f, newline="") as handle:
             # NOTE: a trial's file is rows only, under scans.csv's header (README, vantage explore)
@@ -66,6 +68,10 @@ def add_sweep(folder, groups):
             for r in csv.DictReader(handle, fieldnames=names):
                 if int(r["scan"]) < 2 or "pose_error_final_m" not in r:
                     continue
+                if by is not None and by not in r:
+                    sys.exit(f"registration-stats: --by {by}: no such column in {f}")
+                label = f"sweep {folder.name}" + (f" {by}={r[by]}" if by else "")
+                rows = groups.setdefault(label, [])
                 displacement = None
                 if r.get("displacement_final_m"):
                     displacement = tuple(float(r[f"displacement_{k}_m"])
@@ -77,11 +83,14 @@ def add_sweep(folder, groups):
 
 
 def main(argv):
+    by = None
+    if len(argv) > 2 and argv[1] == "--by":
+        by, argv = argv[2], argv[:1] + argv[3:]
     if len(argv) < 2:
         sys.exit(__doc__)
     groups = {}
     for arg in argv[1:]:
-        if add_sweep(Path(arg), groups):
+        if add_sweep(Path(arg), groups, by):
             continue
         path = Path(arg) / "run.json"
         if not path.is_file():
