@@ -69,7 +69,7 @@ TEST(Exploration, ShortRunRecordsConsistentFigures) {
     previous = r.unobserved;
   }
   EXPECT_GT(scans[1].coverage, scans[0].coverage);
-  EXPECT_GT(scans[1].pose_error_before, 0.0);  // the second pose was believed with noise
+  EXPECT_GT(scans[1].pose_error_before, 0.0);            // the second pose was believed with noise
   EXPECT_NEAR(scans[0].displacement_final, 0.0, 1e-12);  // the first defines the map frame
   EXPECT_GT(scans[1].displacement_before, 0.0);
 

@@ -375,6 +375,10 @@ TEST_F(ManifestTest, OtherMistakesAreNamed) {
                "missing key 'frame'");
   expect_error(replace(kSensor, "frame: optical", "frame: camera") + kRegion + kClouds,
                "sensor.frame", "optical or x_forward");
+  // A value that spans lines (a quoted escape, or a plain scalar folded over blank lines, as
+  // the fuzzer found) is echoed escaped: the message stays one line.
+  expect_error(replace(kSensor, "frame: optical", "frame: \"x_\\n\\nforward\"") + kRegion + kClouds,
+               "sensor.frame", "'x_\\x0a\\x0aforward'");
   expect_error(replace(kSensor, "  min_range: 0.3\n",
                        "  fov_deg: {horizontal: 60, vertical: 45}\n  min_range: 0.3\n") +
                    kRegion + kClouds,

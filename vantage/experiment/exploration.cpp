@@ -204,7 +204,8 @@ class Explorer {
     record.seconds.integrate = update.seconds_integrate;
     const perception::PoseError before =
         perception::pose_error(update.T_world_sensor_guess, truth, points);
-    const perception::PoseError after = perception::pose_error(update.T_world_sensor, truth, points);
+    const perception::PoseError after =
+        perception::pose_error(update.T_world_sensor, truth, points);
     record.points_spread = points;
     record.pose_error_before = before.translation;
     record.yaw_error_before = before.rotation;

@@ -45,7 +45,10 @@ std::string where(const std::string& source, int line) {
 
 [[noreturn]] void throw_error(const std::string& source, int line, std::string_view key,
                               std::string_view what) {
-  throw YamlError(cat(where(source, line), ": ", key, key.empty() ? "" : ": ", what));
+  // NOTE: keys and values echoed from the file may hold line breaks (a quoted "\n", a plain
+  // scalar folded over blank lines) or binary; the message stays one line.
+  throw YamlError(cat(where(source, line), ": ", printable(key, 200), key.empty() ? "" : ": ",
+                      printable(what, 500)));
 }
 
 std::string child_key(const std::string& parent, std::string_view key) {

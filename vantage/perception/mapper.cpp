@@ -156,7 +156,8 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
 
   PointCloud objects_scan;  // what each view contributes, in the scan's frame
   for (const ScanPart& part : scan.parts) {
-    for (const Eigen::Vector3d& p : part.points_sensor) objects_scan.push_back(part.T_scan_sensor * p);
+    for (const Eigen::Vector3d& p : part.points_sensor)
+      objects_scan.push_back(part.T_scan_sensor * p);
   }
   update.object_spread = perception::point_spread(objects_scan);
 
