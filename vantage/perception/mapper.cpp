@@ -42,6 +42,15 @@ PointCloud known_part(const PointCloud& points, const Eigen::Isometry3d& T_world
   return out;
 }
 
+/// Every view's points in the scan's frame (the first view's sensor).
+PointCloud in_scan_frame(const std::vector<ScanPart>& parts) {
+  PointCloud out;
+  for (const ScanPart& part : parts) {
+    for (const Eigen::Vector3d& p : part.points_sensor) out.push_back(part.T_scan_sensor * p);
+  }
+  return out;
+}
+
 /// `T_world_scan * T_scan_sensor`, exactly `T_world_scan` for a view without a pan.
 Eigen::Isometry3d compose(const Eigen::Isometry3d& T_world_scan,
                           const Eigen::Isometry3d& T_scan_sensor) {
@@ -154,12 +163,7 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
     scan.parts.push_back({std::move(kept), part.T_scan_sensor, part.fov});
   }
 
-  PointCloud objects_scan;  // what each view contributes, in the scan's frame
-  for (const ScanPart& part : scan.parts) {
-    for (const Eigen::Vector3d& p : part.points_sensor)
-      objects_scan.push_back(part.T_scan_sensor * p);
-  }
-  update.object_spread = perception::point_spread(objects_scan);
+  update.object_spread = perception::point_spread(in_scan_frame(scan.parts));
 
   auto start = std::chrono::steady_clock::now();
   scan.trusted = scans_ == 0;  // the first scan defines the map frame
@@ -219,10 +223,7 @@ PointCloud Mapper::world_points(const HeldScan& scan) const {
 
 perception::RegistrationResult Mapper::register_held(const HeldScan& scan,
                                                      const OccupancyGrid& known) const {
-  PointCloud points;  // the scan's objects in its own frame
-  for (const ScanPart& part : scan.parts) {
-    for (const Eigen::Vector3d& p : part.points_sensor) points.push_back(part.T_scan_sensor * p);
-  }
+  PointCloud points = in_scan_frame(scan.parts);
   if (config_.register_overlap_only) points = known_part(points, scan.T_world_sensor_guess, known);
   return perception::register_scan(points, scan.T_world_sensor_guess, reference_,
                                    config_.registration);
