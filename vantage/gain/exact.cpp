@@ -8,9 +8,11 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "vantage/gain/detail/target_sums.hpp"
 #include "vantage/gain/metrics.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/gain/survival.hpp"
+#include "vantage/gain/target_ray.hpp"
 #include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/parallel.hpp"
@@ -18,6 +20,9 @@
 
 namespace vantage {
 namespace {
+
+using detail::longest_ray;
+using detail::sum_by_origin;
 
 /// Cell values read straight from the grid, for one-off rays where a snapshot would cost more
 /// than it saves.
@@ -65,118 +70,40 @@ TargetPrediction ray_gain(const Cells& map, const RayTables<Model>& tables,
 }
 
 /// Gain and visibility of the target under the survival reading (survival.hpp); 0 once the ray
-/// is stopped (visibility below `epsilon`) before it.
+/// is stopped (visibility below `epsilon`) before it. Walks the cells TargetWalk takes, as
+/// count_view_gains does (hierarchy.hpp), so the two agree bit for bit.
 template <typename Cells>
 TargetPrediction survival_ray_gain(const Cells& map, const SurvivalModel& model,
                                    const Eigen::Vector3d& origin, const Index3& target,
                                    double epsilon) {
   const GridSpec& spec = map.spec();
-  const std::size_t target_linear = spec.linear(target);
-  SurvivalModel::State state;
-  GainMap::Value prev;
-  TargetPrediction prediction;
-  bool first = true;
-  traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int m) {
-    const GainMap::Value cell = map.value(linear);
-    if (first) {
-      state = model.enter(m, cell);
-      first = false;
-    } else {
-      model.step(state, prev, cell);
-    }
-    prev = cell;
-    if (linear == target_linear) {
-      prediction = SurvivalModel::predict(state, cell);
-      return false;
-    }
-    return state.visibility >= epsilon && state.visibility > 0.0;
-  });
-  return prediction;
+  TargetWalk walk(spec, origin, target);
+  if (!walk.entered()) return {};
+  GainMap::Value cell = map.value(walk.linear());
+  SurvivalModel::State state = model.enter(walk.m(), cell);
+  while (!walk.at_target()) {
+    if (!(state.visibility >= epsilon && state.visibility > 0.0)) return {};
+    walk.advance();
+    const GainMap::Value next = map.value(walk.linear());
+    model.step(state, cell, next);
+    cell = next;
+  }
+  return SurvivalModel::predict(state, cell);
 }
 
 /// Whether nothing occludes the target (the simple greedy gain): 1 or 0, in bits and in cells.
+/// Walks the cells TargetWalk takes, as count_view_gains does (hierarchy.hpp).
 template <typename Cells>
 TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin,
                              const Index3& target) {
-  const double seen = line_of_sight(map.spec(), origin, target,
-                                    [&](std::size_t linear) { return map.value(linear).state; })
-                          ? 1.0
-                          : 0.0;
-  return {seen, seen};
-}
-
-/// Sums a per-target gain over the unobserved cells inside each frustum, for views that share
-/// one origin (`members`, indices into `views`): each unobserved cell in any member's frustum is
-/// evaluated once and added to every member whose frustum holds it. The frustum and the cell's
-/// class are tested before any traversal. Rows (fixed y, z) run in parallel; a member's row sums
-/// are added in row order, so the result does not depend on threads, and it is bit for bit the
-/// member's sum evaluated alone: its cells are added in the same order within a row and its rows
-/// in the same (z, y) order, and the rows and cells it does not hold add nothing.
-template <typename CellGain>
-void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
-                             std::span<const std::size_t> members, int outside_sample,
-                             CellGain&& cell_gain, std::vector<ViewGain>& gains) {
   const GridSpec& spec = map.spec();
-  const std::size_t k = members.size();
-  std::vector<CellBox> boxes;
-  CellBox box{spec.dims, Index3(-1, -1, -1)};
-  for (const std::size_t v : members) {
-    boxes.push_back(cells_under(spec, views[v]));
-    if (boxes.back().empty()) continue;
-    box.lo = box.lo.cwiseMin(boxes.back().lo);
-    box.hi = box.hi.cwiseMax(boxes.back().hi);
-  }
-  if (box.empty()) return;
-  const int ny = box.hi.y() - box.lo.y() + 1;
-  const int nz = box.hi.z() - box.lo.z() + 1;
-  const auto rows = static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
-  std::vector<ViewGain> row_sums(rows * k);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rows), [&](const auto& range) {
-    for (std::size_t row = range.begin(); row != range.end(); ++row) {
-      ViewGain* sums = row_sums.data() + row * k;
-      Index3 cell(0, box.lo.y() + static_cast<int>(row % static_cast<std::size_t>(ny)),
-                  box.lo.z() + static_cast<int>(row / static_cast<std::size_t>(ny)));
-      for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
-        const std::size_t linear = spec.linear(cell);
-        if (map.value(linear).state != CellState::kUnobserved) continue;
-        if (outside_sample > 0 && in_cell_sample(linear, outside_sample)) continue;
-        const Eigen::Vector3d center = spec.center(cell);
-        bool evaluated = false;
-        TargetPrediction prediction;
-        for (std::size_t m = 0; m < k; ++m) {
-          const CellBox& b = boxes[m];
-          if ((cell.array() < b.lo.array()).any() || (cell.array() > b.hi.array()).any() ||
-              !views[members[m]].contains(center)) {
-            continue;
-          }
-          if (!evaluated) {
-            prediction = cell_gain(cell);
-            evaluated = true;
-          }
-          sums[m].gain += prediction.gain;
-          sums[m].cells += prediction.seen;
-          ++sums[m].targets;
-        }
-      }
+  TargetWalk walk(spec, origin, target);
+  if (walk.entered()) {
+    for (; !walk.at_target(); walk.advance()) {
+      if (occludes(map.value(walk.linear()).state)) return {0.0, 0.0};
     }
-  });
-  for (std::size_t m = 0; m < k; ++m) {
-    ViewGain total;
-    for (std::size_t row = 0; row < rows; ++row) {
-      const ViewGain& r = row_sums[row * k + m];
-      total.gain += r.gain;
-      total.cells += r.cells;
-      total.targets += r.targets;
-    }
-    gains[members[m]] = total;
   }
-}
-
-/// The most cells a ray from any view's origin crosses.
-int longest_ray(const GridSpec& spec, std::span<const Frustum> views) {
-  int cells = 1;
-  for (const Frustum& view : views) cells = std::max(cells, max_ray_cells(spec, view.origin()));
-  return cells;
+  return {1.0, 1.0};
 }
 
 /// The tables for rays from every view's origin.
@@ -186,25 +113,24 @@ RayTables<Model> tables_for(const GridSpec& spec, std::span<const Frustum> views
   return RayTables<Model>(alpha, params.p_min, longest_ray(spec, views));
 }
 
-/// Unobserved cells before the target on its ray, or -1 when an occupied cell lies before it.
+/// Unobserved cells before the target on its ray, or -1 when an occupied cell lies before it
+/// (the cells TargetWalk takes, as the survival reading's exact evaluation).
 int unobserved_before(const GainMap& map, const Eigen::Vector3d& origin, const Index3& target) {
   const GridSpec& spec = map.spec();
-  const std::size_t target_linear = spec.linear(target);
+  TargetWalk walk(spec, origin, target);
+  if (!walk.entered()) return -1;  // never seen: predicts nothing, as exact_view_gains
   int unobserved = 0;
-  traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int) {
-    if (linear == target_linear) return false;
-    switch (map.value(linear).state) {
+  for (; !walk.at_target(); walk.advance()) {
+    switch (map.value(walk.linear()).state) {
       case CellState::kOccupied:
-        unobserved = -1;
-        return false;
+        return -1;
       case CellState::kUnobserved:
         ++unobserved;
         break;
       case CellState::kFree:
         break;
     }
-    return true;
-  });
+  }
   return unobserved;
 }
 
@@ -274,25 +200,6 @@ std::vector<std::vector<std::size_t>> views_by_origin(std::span<const Frustum> v
     }
   }
   return groups;
-}
-
-/// Every view's sum of `cell_gain(origin, target)` over its targets; the views of one origin
-/// (a ring position's yaw offsets) share each target's ray, so each cell is evaluated once per
-/// origin and every view's sum is bit for bit its own. Origins run in parallel.
-template <typename CellGain>
-std::vector<ViewGain> sum_by_origin(const GainMap& map, std::span<const Frustum> views,
-                                    int num_threads, int outside_sample, CellGain&& cell_gain) {
-  std::vector<ViewGain> gains(views.size());
-  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
-  run_with_threads(num_threads, [&] {
-    tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
-      const Eigen::Vector3d origin = views[groups[g].front()].origin();
-      sum_over_shared_targets(
-          map, views, groups[g], outside_sample,
-          [&](const Index3& target) { return cell_gain(origin, target); }, gains);
-    });
-  });
-  return gains;
 }
 
 template <typename Model>
