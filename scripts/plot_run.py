@@ -247,7 +247,7 @@ def legend_below(fig, ax, handles, ncol=2):
 def arrow_length(ax):
     """Arrows a fixed share of the drawing's size, so a building's views are not dots."""
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
-    return 0.03 * max(x1 - x0, y1 - y0)
+    return 0.06 * max(x1 - x0, y1 - y0)
 
 
 def plot_plan(run_dir, plan):
@@ -286,13 +286,13 @@ def plan_figure(run_dir, plan):
     arrows = ax.quiver(xs[:len(candidates)], ys[:len(candidates)],
                        [math.cos(a) for a in yaws], [math.sin(a) for a in yaws], values,
                        cmap=cmap, norm=norm, angles="xy", scale_units="xy", scale=1 / length,
-                       width=0.004, headwidth=4, zorder=3)
+                       width=0.003, headwidth=4, headlength=4, headaxislength=3.5, zorder=3)
     fig.colorbar(arrows, ax=ax, shrink=0.6, pad=0.02, label=f"{what} [{unit}]")
     bx, by = best["sensor"]["position"][:2]
     yaw = math.radians(best["yaw"])
     ax.plot(bx, by, "o", ms=16, mfc="none", mec="#d50000", mew=2.5, zorder=5)
-    ax.arrow(bx, by, 2.5 * length * math.cos(yaw), 2.5 * length * math.sin(yaw), color="#d50000",
-             width=0.15 * length, head_width=0.5 * length, length_includes_head=True, zorder=6)
+    ax.arrow(bx, by, 1.6 * length * math.cos(yaw), 1.6 * length * math.sin(yaw), color="#d50000",
+             width=0.08 * length, head_width=0.3 * length, length_includes_head=True, zorder=6)
     # The label inside the plot, on the side of the view towards the middle.
     (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
     ax.annotate(f"candidate {best['index']}\n{format_number(best[key], unit)}", (bx, by),

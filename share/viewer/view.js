@@ -237,7 +237,8 @@ async function main() {
   const units = data.units;
   const topSlider = $('top-candidates');
   topSlider.max = String(mostCandidates);
-  topSlider.value = String(Math.min(mostCandidates, 100));
+  // NOTE: the attribute, not .value: the page's DOM then shows the setting (the headless check).
+  topSlider.setAttribute('value', String(Math.min(mostCandidates, 100)));
   function showDecision(decision) {
     candidates.clear();
     $('gain-legend').style.display = decision ? '' : 'none';
@@ -361,7 +362,7 @@ async function main() {
   const cut = $('height-cut');
   cut.min = '0';
   cut.max = String(grid.dims[2] - 1);
-  cut.value = cut.max;
+  cut.setAttribute('value', cut.max);
   function applyCut() {
     const k = Number(cut.value);
     for (const mesh of [occupiedMesh, unobservedMesh]) {

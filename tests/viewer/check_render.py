@@ -50,6 +50,15 @@ def main(dom_file, png_file):
     if state != "ready" or (errors and errors.group(1).strip()):
         fail(f"the page did not finish cleanly: state '{state}', errors: "
              f"{errors.group(1).strip() if errors else '?'}")
+    # The controls a building needs (issue 27): a height cut that starts by hiding nothing,
+    # a view from above, and how many of the best candidates are drawn.
+    cut_max = attribute(dom, "height-cut", "max")
+    if attribute(dom, "height-cut", "value") != cut_max or int(cut_max) < 1:
+        fail(f"the height cut is not set up over the grid's layers (max {cut_max})")
+    if not re.search(r'<button[^>]*id="top-view"', dom):
+        fail("the page has no view-from-above button")
+    if int(attribute(dom, "top-candidates", "max")) < 2:
+        fail("the slider over the best candidates is not set up")
     ramp = [hex_rgb(c) for c in attribute(dom, "height-bar", "data-ramp").split(",")]
     chosen = hex_rgb(attribute(dom, "chosen-swatch", "data-color"))
 
