@@ -1,6 +1,7 @@
 #include "convert.hpp"
 
 #include <sstream>
+#include <thread>
 
 #include "vantage/io/format_parsing.hpp"
 #include "vantage/io/trajectory.hpp"
@@ -106,6 +107,11 @@ void raise_file_error(const std::filesystem::path& path, const char* message, bo
     PyErr_SetString(PyExc_ValueError, message);
   }
   throw py::error_already_set();
+}
+
+double mapping_cost(int num_threads) {
+  return mapping_bytes_per_cell(
+      num_threads > 0 ? num_threads : static_cast<int>(std::thread::hardware_concurrency()));
 }
 
 void check_grid_memory(const GridSpec& spec, double bytes_per_cell, const std::string& what) {

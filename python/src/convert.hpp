@@ -84,6 +84,9 @@ auto with_file(const std::filesystem::path& path, bool writing, F&& f) {
   }
 }
 
+/// What a Mapper's or a plan's grid costs a cell on `num_threads` threads (0: every core).
+double mapping_cost(int num_threads);
+
 /// Refuses (MemoryBudgetError, Python's MemoryError) a grid of `spec` at `bytes_per_cell` that
 /// the memory available now cannot hold, before it is allocated; `what` names it.
 void check_grid_memory(const GridSpec& spec, double bytes_per_cell, const std::string& what);

@@ -89,9 +89,9 @@ void def_mapper_init(py::class_<Mapper>& mapper, const char* start, const char* 
   mapper.def(py::init([](const Start& from, const std::string& integration, bool table_segmentation,
                          bool icp, int num_threads) {
                if constexpr (std::is_same_v<Start, GridSpec>) {
-                 check_grid_memory(from, kMappingBytesPerCell, "a Mapper's grid");
+                 check_grid_memory(from, mapping_cost(num_threads), "a Mapper's grid");
                } else {
-                 check_grid_memory(from.spec(), kMappingBytesPerCell, "a Mapper's grid");
+                 check_grid_memory(from.spec(), mapping_cost(num_threads), "a Mapper's grid");
                }
                return Mapper(
                    from, recorded_mapper_config(integration, table_segmentation, icp, num_threads));
@@ -114,7 +114,7 @@ py::tuple plan_recorded(const std::vector<DoubleArray>& clouds, const DoubleArra
                                     " poses; give one pose per cloud"));
   }
   config.greedy_reference = true;  // as `vantage plan`: its JSON lists each greedy gain
-  check_grid_memory(spec, kMappingBytesPerCell, "the plan's grid");
+  check_grid_memory(spec, mapping_cost(config.gain.num_threads), "the plan's grid");
   Mapper mapper(
       spec, recorded_mapper_config(integration, table_segmentation, icp, config.gain.num_threads));
   Eigen::Isometry3d T_cloud_sensor = Eigen::Isometry3d::Identity();
@@ -366,7 +366,8 @@ void bind_plan(py::module_& m) {
         const Manifest manifest = with_file(path, false, [&] { return read_manifest(path); });
         MapperConfig config = mapper_config_for(manifest);
         config.integration.num_threads = num_threads;
-        check_grid_memory(manifest.grid, kMappingBytesPerCell, cat("the grid of ", path.string()));
+        check_grid_memory(manifest.grid, mapping_cost(num_threads),
+                          cat("the grid of ", path.string()));
         Mapper mapper(manifest.grid, config);
         py::gil_scoped_release release;
         map_recorded(manifest, mapper);

@@ -85,10 +85,18 @@ struct MemoryEstimate {
 /// Bytes a cell of an OccupancyGrid holds: its log-odds (a float).
 inline constexpr double kOccupancyGridBytesPerCell = 4.0;
 
-/// Bytes a grid cell costs mapping and planning at their peak (`vantage plan`, a Mapper and a
-/// plan in Python), all threads included, measured on `vantage plan --map` of a map whose cells
-/// are all known (docs/robustness.md, "Memory"), rounded up.
-inline constexpr double kMappingBytesPerCell = 48.0;
+/// Bytes a grid cell costs mapping and planning at their peak (`vantage plan`, `explore`, a bench
+/// trial; a Mapper and a plan in Python): measured 52.0 B a cell at the margin on `vantage plan
+/// --map` of maps of 8 to 64 M cells, every cell known, at 1 and 2 threads (docs/robustness.md,
+/// "Memory"), and earlier 4.4 B more a thread on `plan` of a manifest; so 50 + 5 a thread,
+/// which is 55 at one thread and 60 at two.
+inline constexpr double kMappingBytesPerCell = 50.0;
+inline constexpr double kMappingThreadBytesPerCell = 5.0;
+
+/// Bytes a cell costs mapping and planning on `threads` threads.
+inline double mapping_bytes_per_cell(int threads) {
+  return kMappingBytesPerCell + kMappingThreadBytesPerCell * std::max(1, threads);
+}
 
 /// "1.50 GiB", "340 MiB".
 inline std::string describe_bytes(double bytes) {
