@@ -282,10 +282,13 @@ def plan_figure(run_dir, plan):
     ax.autoscale()
     ax.margins(0.08)
     length = arrow_length(ax)
+    # Many candidates (a building's frontiers) are drawn shorter, so that they do not cover the
+    # map; the chosen view keeps its size.
+    short = length * min(1.0, max(0.3, math.sqrt(30 / len(candidates))))
     yaws = [math.radians(c["yaw"]) for c in candidates]
     arrows = ax.quiver(xs[:len(candidates)], ys[:len(candidates)],
                        [math.cos(a) for a in yaws], [math.sin(a) for a in yaws], values,
-                       cmap=cmap, norm=norm, angles="xy", scale_units="xy", scale=1 / length,
+                       cmap=cmap, norm=norm, angles="xy", scale_units="xy", scale=1 / short,
                        width=0.003, headwidth=4, headlength=4, headaxislength=3.5, zorder=3)
     fig.colorbar(arrows, ax=ax, shrink=0.6, pad=0.02, label=f"{what} [{unit}]")
     bx, by = best["sensor"]["position"][:2]

@@ -408,7 +408,15 @@ async function main() {
     div.textContent = n;
     return div;
   }));
+  // The page's address can set the view: #cut=2.0 hides the cells above 2.0 m, #above looks
+  // from above (view.html#cut=2.0&above), so a building's picture can be made headless.
+  const hash = new URLSearchParams(window.location.hash.slice(1));
+  if (hash.has('cut')) {
+    const k = Math.ceil((Number(hash.get('cut')) - grid.origin[2]) / grid.resolution) - 1;
+    if (Number.isFinite(k)) cut.setAttribute('value', String(Math.min(Math.max(k, 0), grid.dims[2] - 1)));
+  }
   applyCut();
+  if (hash.has('above')) viewFromAbove();
   update();
   if (window.vantageErrors.length === 0) {
     $('status').dataset.state = 'ready';
