@@ -126,7 +126,8 @@ using CandidateVisit = std::function<void(std::size_t, std::size_t, json&)>;
 /// Parses a results file's text with its candidates handed to `visit` one at a time instead of
 /// kept: plan.json's `candidates`, run.json's `scans[i].considered`. run.json's own `candidates`
 /// (the ring, which the page does not draw) are skipped. A million candidates cost the memory of
-/// one, not a document of gigabytes.
+/// one, not a document of gigabytes. Without `visit` the candidates are skipped unbuilt (the
+/// lists stay, empty): the document's skeleton, at a fraction of the time.
 json parse_results(const std::string& text, const fs::path& file, bool plan,
                    const CandidateVisit& visit) {
   std::array<std::string, 5> keys;  // the key last read at each depth
@@ -143,6 +144,8 @@ json parse_results(const std::string& text, const fs::path& file, bool plan,
       case json::parse_event_t::array_start:
         if (in_list(depth + 1)) index = 0;
         return true;
+      case json::parse_event_t::object_start:
+        return visit || !in_list(depth);
       case json::parse_event_t::value:
         if (in_list(depth)) {
           throw std::runtime_error(fmt::format(
@@ -451,7 +454,7 @@ void note_candidates(const json& decisions, std::size_t cap, json& data) {
 json explore_data(const fs::path& dir, const ViewerConfig& config) {
   const fs::path file = dir / "run.json";
   const std::string text = read_results_file(file, config);
-  const json doc = parse_results(text, file, false, [](std::size_t, std::size_t, json&) {});
+  const json doc = parse_results(text, file, false, nullptr);
   const Field run(file, doc, "");
   const Field scene = run["scene"];
   const GridSpec spec = grid_spec(scene["grid"]);
@@ -547,17 +550,13 @@ json explore_data(const fs::path& dir, const ViewerConfig& config) {
 json plan_data(const fs::path& dir, const ViewerConfig& config) {
   const fs::path file = dir / "plan.json";
   const std::string text = read_results_file(file, config);
-  bool scored = true;
-  const json doc = parse_results(text, file, true, [&](std::size_t, std::size_t, json& c) {
-    scored = scored && c.contains("score");
-  });
+  const json doc = parse_results(text, file, true, nullptr);
   const Field plan(file, doc, "");
   const GridSpec spec = grid_spec(plan["map"]["grid"]);
   const std::string method = plan["method"].text();
   std::string gain_unit = unit_in(plan, "predicted_gain");
   if (gain_unit.empty()) gain_unit = has_objective(method) ? "bits" : "cells";
   const std::string objective = plan.has("objective") ? plan["objective"].text() : "bits";
-  const Ranking ranking = ranking_of(plan, method, objective, scored, gain_unit);
   // The clouds mapped: plan.json's own count, else its map's (0 for a plan on --map alone).
   json clouds = nullptr;
   if (plan.has("clouds")) {
@@ -565,29 +564,32 @@ json plan_data(const fs::path& dir, const ViewerConfig& config) {
   } else if (plan["map"].has("clouds")) {
     clouds = plan["map"]["clouds"].integer();
   }
-  json data = {
-      {"source", "plan"},
-      {"title", fmt::format("plan · {} · {}", method, dir.filename().string())},
-      {"office", false},
-      {"method", method},
-      {"grid", grid_json(spec)},
-      {"max_cells", config.max_cells},
-      {"clouds", clouds},
-      {"units",
-       {{"score", ranking.unit}, {"gain", gain_unit}, {"cells", "cells"}, {"greedy", "cells"}}},
-      {"ranked_by", ranking.what},
-      {"notes", json::array()},
-      {"scans", json::array()}};
+  json data = {{"source", "plan"},
+               {"title", fmt::format("plan · {} · {}", method, dir.filename().string())},
+               {"office", false},
+               {"method", method},
+               {"grid", grid_json(spec)},
+               {"max_cells", config.max_cells},
+               {"clouds", clouds},
+               {"notes", json::array()},
+               {"scans", json::array()}};
   add_sensor(plan, std::nullopt, "plan.json", data);
   const int best = plan["next_best_view"]["index"].integer();
   CandidatePicker picker(config.max_candidates,
                          [&](std::size_t, const json& c) { return c["view"] == best; });
+  // NOTE: plan.json of format 1 had no scores: its first candidate says which it is.
+  std::optional<Ranking> ranking;
   parse_results(text, file, true, [&](std::size_t, std::size_t j, json& c) {
     const Field candidate(file, c, fmt::format("candidates[{}]", j));
-    json drawn = candidate_of(candidate, "sensor", "index", "greedy_gain", ranking);
+    if (!ranking) ranking = ranking_of(plan, method, objective, candidate.has("score"), gain_unit);
+    json drawn = candidate_of(candidate, "sensor", "index", "greedy_gain", *ranking);
     const double score = drawn["score"].get<double>();
     picker.add(0, j, score, std::move(drawn));
   });
+  if (!ranking) ranking = ranking_of(plan, method, objective, true, gain_unit);
+  data["units"] = {
+      {"score", ranking->unit}, {"gain", gain_unit}, {"cells", "cells"}, {"greedy", "cells"}};
+  data["ranked_by"] = ranking->what;
   json decision = picker.decision(0, 0);
   if (decision["chosen"].is_null()) {
     throw plan["candidates"].error(
