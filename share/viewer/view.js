@@ -133,8 +133,7 @@ function label(THREE, text, position, size) {
 async function main() {
   const data = JSON.parse($('vantage-data').textContent);
   const {THREE, OrbitControls} = await loadThree();
-  const sensor = data.sensor ?? {h_fov: 57 * Math.PI / 180, v_fov: 43 * Math.PI / 180,
-                                 min_range: 0.5, max_range: 3.5};
+  const sensor = data.sensor;  // the recorded one, or the default with a note (vantage view)
   const grid = data.grid;
   const extent = grid.dims.map((d) => d * grid.resolution);
   const center = new THREE.Vector3(...grid.origin.map((o, i) => o + extent[i] / 2));

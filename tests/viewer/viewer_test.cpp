@@ -113,6 +113,17 @@ std::set<Cell> cells_of(const json& flat) {
   return cells;
 }
 
+/// The one line build_view_page fails with on `dir`; fails the test when it succeeds.
+std::string view_error(const std::filesystem::path& dir, const ViewerConfig& config) {
+  try {
+    build_view_page(dir, config);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for " << dir;
+  return {};
+}
+
 class ViewerTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -358,12 +369,8 @@ TEST_F(ViewerTest, ResultsFilesThatAreNotRegularFilesAreRefused) {
   std::filesystem::create_symlink("/dev/zero", zero_dir / "plan.json");
   for (const auto& [dir, what] :
        {std::pair{fifo_dir, "FIFO"}, std::pair{zero_dir, "character device"}}) {
-    try {
-      build_view_page(dir, config_);
-      FAIL() << "no error for " << what;
-    } catch (const std::runtime_error& e) {
-      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
-    }
+    const std::string error = view_error(dir, config_);
+    EXPECT_NE(error.find(what), std::string::npos) << error;
   }
 }
 
@@ -371,14 +378,8 @@ TEST_F(ViewerTest, AnOversizedResultsFileIsRefusedUnread) {
   // Sparse: larger than the cap on paper, nothing on disk.
   const std::filesystem::path file = tmp_ / "run" / "run.json";
   std::filesystem::resize_file(file, kMaxViewerFileBytes + 1);
-  try {
-    build_view_page(tmp_ / "run", config_);
-    FAIL() << "no error";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("more than the 1 GiB vantage view reads"),
-              std::string::npos)
-        << e.what();
-  }
+  const std::string error = view_error(tmp_ / "run", config_);
+  EXPECT_NE(error.find("more than the 1 GiB vantage view reads"), std::string::npos) << error;
 }
 
 TEST_F(ViewerTest, AGridBeyondTheMemoryBudgetIsRefusedBeforeItIsAllocated) {
@@ -386,14 +387,9 @@ TEST_F(ViewerTest, AGridBeyondTheMemoryBudgetIsRefusedBeforeItIsAllocated) {
   run["scene"]["grid"]["dims"] = {1024, 1024, 1024};
   write_file(tmp_ / "run" / "run.json", run.dump());
   config_.max_memory = std::uint64_t{1} << 30;
-  try {
-    build_view_page(tmp_ / "run", config_);
-    FAIL() << "no error";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("1024 x 1024 x 1024 cells) needs about 8.06 GiB"),
-              std::string::npos)
-        << e.what();
-  }
+  const std::string error = view_error(tmp_ / "run", config_);
+  EXPECT_NE(error.find("1024 x 1024 x 1024 cells) needs about 8.06 GiB"), std::string::npos)
+      << error;
 }
 
 TEST_F(ViewerTest, TextFromTheFolderCannotCloseThePagesScripts) {
