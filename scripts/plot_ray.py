@@ -35,10 +35,20 @@ def main(argv):
         2, 1, figsize=(8, 4.2), sharex=True, gridspec_kw={"height_ratios": [5, 1]})
     top.plot(cells, [float(r["visibility"]) for r in rows], "o-", ms=3, label="visibility p(x)")
     top.plot(cells, [float(r["posterior"]) for r in rows], "s-", ms=3, label="posterior p(o)")
-    top.plot(cells, [float(r["gain"]) for r in rows], ":", color="grey", label="gain [bits]")
     top.set_ylim(-0.05, 1.05)
     top.set_ylabel("probability")
-    top.legend(loc="best", fontsize=8)
+    # NOTE: a cell's gain is information, in bits and possibly negative (a cell the scan is
+    # expected to make less certain): its own axis, not the probabilities' [0, 1].
+    bits = top.twinx()
+    gains = [float(r["gain"]) for r in rows]
+    bits.plot(cells, gains, ":", color="grey", label="gain [bits]")
+    bits.axhline(0.0, color="grey", lw=0.5)
+    low, high = min(0.0, min(gains)), max(0.0, max(gains))
+    pad = 0.05 * max(high - low, 1e-6)
+    bits.set_ylim(low - pad, high + pad)
+    bits.set_ylabel("expected information gain [bits]")
+    handles = top.get_legend_handles_labels()[0] + bits.get_legend_handles_labels()[0]
+    top.legend(handles=handles, loc="best", fontsize=8)
     top.grid(alpha=0.3)
     if len(argv) > 3:
         top.set_title(argv[3])
@@ -51,6 +61,7 @@ def main(argv):
     strip.set_xlabel("cell along the ray (green free, red occupied, yellow unobserved)")
     fig.tight_layout()
     fig.savefig(argv[2], dpi=120)
+    return fig
 
 
 if __name__ == "__main__":

@@ -23,6 +23,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.colors import Normalize  # noqa: E402
+from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from plot_top_view import draw_top_view  # noqa: E402
 
@@ -38,6 +39,13 @@ def yaw_of(quaternion_xyzw):
 
 
 def plot_progress(run_dir, scans, run):
+    fig = progress_figure(scans, run)
+    fig.savefig(os.path.join(run_dir, "unobserved.png"), dpi=120)
+    plt.close(fig)
+
+
+def progress_figure(scans, run):
+    """unobserved.png: unobserved cells and coverage by scan (office: also by distance)."""
     office = run["scene"].get("kind") == "office"
     x = [int(r["scan"]) for r in scans]
     fig, axes = plt.subplots(1, 2 if office else 1, figsize=(11.5 if office else 6.4, 4),
@@ -45,6 +53,7 @@ def plot_progress(run_dir, scans, run):
     ax = axes[0][0]
     ax.plot(x, [int(r["unobserved"]) for r in scans], "o-", color="#c62828", label="unobserved")
     ax.set_xlabel("stop (a 360-degree sweep each)" if office else "scan")
+    ax.xaxis.set_major_locator(MaxNLocator(integer=True))  # no scan 1.5
     ax.set_ylabel("unobserved cells")
     ax.grid(alpha=0.3)
     cov = ax.twinx()
@@ -72,8 +81,7 @@ def plot_progress(run_dir, scans, run):
         by.grid(alpha=0.3)
         by.set_title(f"{total:.1f} m in {len(scans)} stops")
     fig.tight_layout()
-    fig.savefig(os.path.join(run_dir, "unobserved.png"), dpi=120)
-    plt.close(fig)
+    return fig
 
 
 def read_floor_map(path):
@@ -189,40 +197,115 @@ def plot_map(run_dir, run):
                 plt.Line2D([], [], marker=r"$\rightarrow$", ls="", ms=12, color="#e65100",
                            label="views taken (number: scan)"),
                 plt.Line2D([], [], color="#e65100", lw=1.5, alpha=0.7, label="walk")]
-    ax.legend(handles=handles, fontsize=7, loc="upper left")
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_title(f"{run['scene']['name']}: final map and the {len(path)} views taken")
     ax.grid(alpha=0.2)
-    fig.tight_layout()
+    legend_below(fig, ax, handles, ncol=3)
     fig.savefig(os.path.join(run_dir, "map.png"), dpi=120)
     plt.close(fig)
 
 
+# The methods that predict with a visibility model: they rank by their objective, bits or cells.
+OBSERVABILITY_METHODS = ("probabilistic", "survival")
+
+
+def ranking_of(doc, method):
+    """(key, unit, what) of the number a method ranks a plan's candidates by: plan.json's `score`
+    in its unit and what it is. plan.json before `units.score` followed the objective said
+    "bits" for the survival reading's score, which is its expected cells seen: for the methods
+    with a visibility model the objective names the unit."""
+    units = doc.get("units", {})
+    if not all("score" in c for c in doc.get("candidates", [])):  # an older plan.json
+        return "predicted_gain", units.get("predicted_gain", ""), "predicted gain"
+    unit = units.get("score", units.get("predicted_gain", ""))
+    if method in OBSERVABILITY_METHODS and doc.get("objective") in ("bits", "cells"):
+        unit = doc["objective"]
+    what = {"latombe": "greedy gain x exp(-lambda x travel)", "yamauchi": "minus the travel",
+            "random": "score (the choice is drawn at random)"}.get(method, "score")
+    if method in OBSERVABILITY_METHODS:
+        what = "expected cells seen" if unit == "cells" else "expected information gain"
+    return "score", unit, what
+
+
+def format_number(x, unit):
+    """A number as `vantage plan`'s table prints it: 1 decimal, 3 for scores in metres."""
+    return f"{x:.3f} {unit}" if unit in ("m", "-m") else f"{x:.1f} {unit}"
+
+
+def legend_below(fig, ax, handles, ncol=2):
+    """The legend in a band under the plot, clear of its views and its axis labels."""
+    legend = fig.legend(handles=handles, fontsize=7, loc="lower center", ncol=ncol,
+                        frameon=False)
+    fig.canvas.draw()
+    height = legend.get_window_extent().height / fig.bbox.height
+    fig.tight_layout(rect=(0, height + 0.01, 1, 1))
+    return legend
+
+
+def arrow_length(ax):
+    """Arrows a fixed share of the drawing's size, so a building's views are not dots."""
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    return 0.06 * max(x1 - x0, y1 - y0)
+
+
 def plot_plan(run_dir, plan):
+    fig = plan_figure(run_dir, plan)
+    fig.savefig(os.path.join(run_dir, "map.png"), dpi=120)
+    plt.close(fig)
+
+
+def plan_figure(run_dir, plan):
+    """The plan's map.png: the map from above, the candidates coloured by what the method ranks
+    them by (so the chosen view is the best-coloured one but for random and yamauchi), and the
+    chosen view drawn last, larger, and named."""
     fig, ax = plt.subplots(figsize=(9.0, 7.4))
     handles = draw_top_view(ax, os.path.join(run_dir, "map_top.csv"), fig, occupied_by_height=False)
-    unit = plan["units"]["predicted_gain"]
-    candidates = sorted(plan["candidates"], key=lambda c: c["predicted_gain"])  # best on top
-    gains = [c["predicted_gain"] for c in candidates]
-    norm = Normalize(vmin=min(gains), vmax=max(max(gains), min(gains) + 1e-9))
-    cmap = plt.get_cmap("viridis")
-    for c in candidates:
-        px, py = c["sensor"]["position"][:2]
-        yaw = math.radians(c["yaw"])
-        ax.arrow(px, py, 0.15 * math.cos(yaw), 0.15 * math.sin(yaw),
-                 color=cmap(norm(c["predicted_gain"])), width=0.006, head_width=0.04,
-                 length_includes_head=True)
-    fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=ax, shrink=0.6, pad=0.02,
-                 label=f"candidate's predicted gain [{unit}]")
+    method = plan["method"]
+    key, unit, what = ranking_of(plan, method)
     best = plan["next_best_view"]
+    # Best drawn last (on top); the chosen view after all of them.
+    candidates = sorted(plan["candidates"], key=lambda c: c[key])
+    values = [c[key] for c in candidates]
+    norm = Normalize(vmin=min(values), vmax=max(max(values), min(values) + 1e-9))
+    cmap = plt.get_cmap("viridis")
+    xs = [c["sensor"]["position"][0] for c in candidates]
+    ys = [c["sensor"]["position"][1] for c in candidates]
+    for p in (best["sensor"]["position"], (plan.get("robot") or {}).get("sensor", {}).get(
+            "position")):
+        if p:
+            xs.append(p[0])
+            ys.append(p[1])
+    ax.update_datalim(list(zip(xs, ys)))
+    ax.set_aspect("equal")
+    ax.autoscale()
+    ax.margins(0.08)
+    length = arrow_length(ax)
+    # Many candidates (a building's frontiers) are drawn shorter, so that they do not cover the
+    # map; the chosen view keeps its size.
+    short = length * min(1.0, max(0.3, math.sqrt(30 / len(candidates))))
+    yaws = [math.radians(c["yaw"]) for c in candidates]
+    arrows = ax.quiver(xs[:len(candidates)], ys[:len(candidates)],
+                       [math.cos(a) for a in yaws], [math.sin(a) for a in yaws], values,
+                       cmap=cmap, norm=norm, angles="xy", scale_units="xy", scale=1 / short,
+                       width=0.003, headwidth=4, headlength=4, headaxislength=3.5, zorder=3)
+    fig.colorbar(arrows, ax=ax, shrink=0.6, pad=0.02, label=f"{what} [{unit}]")
     bx, by = best["sensor"]["position"][:2]
     yaw = math.radians(best["yaw"])
-    ax.arrow(bx, by, 0.3 * math.cos(yaw), 0.3 * math.sin(yaw), color="#d50000", width=0.012,
-             head_width=0.07, length_includes_head=True, zorder=5)
+    ax.plot(bx, by, "o", ms=16, mfc="none", mec="#d50000", mew=2.5, zorder=5)
+    ax.arrow(bx, by, 1.6 * length * math.cos(yaw), 1.6 * length * math.sin(yaw), color="#d50000",
+             width=0.08 * length, head_width=0.3 * length, length_includes_head=True, zorder=6)
+    # The label inside the plot, on the side of the view towards the middle.
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    ax.annotate(f"candidate {best['index']}\n{format_number(best[key], unit)}", (bx, by),
+                xytext=(bx + (0.25 if bx < (x0 + x1) / 2 else -0.25) * (x1 - x0),
+                        by + (0.15 if by < (y0 + y1) / 2 else -0.15) * (y1 - y0)),
+                ha="center", va="center", fontsize=9, weight="bold", color="#d50000", zorder=7,
+                arrowprops={"arrowstyle": "-", "color": "#d50000", "lw": 1},
+                bbox={"boxstyle": "round", "fc": "white", "ec": "#d50000", "alpha": 0.85})
     handles += [plt.Line2D([], [], marker=r"$\rightarrow$", ls="", ms=10, color=cmap(0.5),
-                           label="candidate views (colour: gain)"),
+                           label=f"{len(candidates)} candidate views (colour: {what})"),
                 plt.Line2D([], [], marker=r"$\rightarrow$", ls="", ms=14, color="#d50000",
                            label=f"next best view: candidate {best['index']}")]
     if plan.get("robot"):
@@ -230,19 +313,20 @@ def plot_plan(run_dir, plan):
         ax.plot(rx, ry, "s", color="black", ms=8, zorder=6)
         handles.append(plt.Line2D([], [], marker="s", ls="", color="black",
                                   label=f"robot ({plan['robot']['from']})"))
-    ax.legend(handles=handles, fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=2)
-    ax.set_aspect("equal")
-    ax.autoscale()
-    ax.margins(0.08)
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-    method = plan["method"] + (f", a = {plan['alpha']}" if plan["method"] == "probabilistic" else "")
-    ax.set_title(f"next best view ({method}): candidate {best['index']}, "
-                 f"{best['predicted_gain']:.1f} {unit}", fontsize=10)
+    label = method + (f", a = {plan['alpha']}" if method in OBSERVABILITY_METHODS else "")
+    title = f"next best view ({label}): candidate {best['index']}\n{what}: " + \
+        format_number(best[key], unit)
+    if method in OBSERVABILITY_METHODS:
+        other = ("predicted_gain", plan["units"].get("predicted_gain", "bits")) \
+            if unit == "cells" else ("predicted_cells", "cells")
+        if other[0] in best:
+            title += f" ({format_number(best[other[0]], other[1])})"
+    ax.set_title(title, fontsize=10)
     ax.grid(alpha=0.2)
-    fig.tight_layout()
-    fig.savefig(os.path.join(run_dir, "map.png"), dpi=120)
-    plt.close(fig)
+    legend_below(fig, ax, handles)
+    return fig
 
 
 def main(argv):

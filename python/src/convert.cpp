@@ -1,7 +1,9 @@
 #include "convert.hpp"
 
 #include <sstream>
+#include <thread>
 
+#include "vantage/io/format_parsing.hpp"
 #include "vantage/io/trajectory.hpp"
 #include "vantage/util/text.hpp"
 
@@ -93,18 +95,29 @@ Eigen::Vector3d to_vector3(const DoubleArray& values, const char* what) {
   return {values.at(0), values.at(1), values.at(2)};
 }
 
-void raise_if_file_error(const std::filesystem::path& path, const char* message, bool writing) {
+void raise_file_error(const std::filesystem::path& path, const char* message, bool writing) {
   // NOTE: OSError's errno and filename are left unset: with them set, str() would print
   // "[Errno 2] ..." in place of the library's one-line message.
   std::error_code ec;
   if (!writing && !std::filesystem::exists(path, ec)) {
     PyErr_SetString(PyExc_FileNotFoundError, message);
-    throw py::error_already_set();
-  }
-  if (writing) {
+  } else if (writing || !not_a_readable_file(path).empty()) {
     PyErr_SetString(PyExc_OSError, message);
-    throw py::error_already_set();
+  } else {
+    PyErr_SetString(PyExc_ValueError, message);
   }
+  throw py::error_already_set();
+}
+
+double mapping_cost(int num_threads) {
+  return mapping_bytes_per_cell(
+      num_threads > 0 ? num_threads : static_cast<int>(std::thread::hardware_concurrency()));
+}
+
+void check_grid_memory(const GridSpec& spec, double bytes_per_cell, const std::string& what) {
+  check_memory(
+      {static_cast<std::uint64_t>(spec.num_cells()), bytes_per_cell, 0.0}, 0,
+      cat(what, " of ", spec.dims.x(), " x ", spec.dims.y(), " x ", spec.dims.z(), " cells"));
 }
 
 }  // namespace vantage::python

@@ -15,6 +15,7 @@
 
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/map/point_cloud.hpp"
+#include "vantage/util/memory.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage::python {
@@ -60,22 +61,34 @@ py::array_t<T> grid_array(const GridSpec& spec, const std::vector<T>& values) {
   return out;
 }
 
-/// Raises FileNotFoundError (an OSError) with `message` when `path` does not exist and OSError
-/// when `writing`; returns otherwise, so the caller rethrows the library's own error.
-void raise_if_file_error(const std::filesystem::path& path, const char* message, bool writing);
+/// Raises the Python error a file's std::runtime_error stands for, with `message`:
+/// FileNotFoundError when `path` does not exist, OSError when `writing` or when it is no
+/// readable file (a folder, a FIFO, no permission), ValueError otherwise (its content is
+/// malformed: bad input, as a bad argument is).
+[[noreturn]] void raise_file_error(const std::filesystem::path& path, const char* message,
+                                   bool writing);
 
-/// Calls `f`, turning a std::runtime_error about `path` into OSError as raise_if_file_error says.
-/// The message stays the library's one line.
+/// Calls `f`, turning a std::runtime_error about `path` into the Python error raise_file_error
+/// says; the memory budget's refusal stays a MemoryError. The message stays the library's one
+/// line.
 template <typename F>
 auto with_file(const std::filesystem::path& path, bool writing, F&& f) {
   try {
     return f();
   } catch (const std::invalid_argument&) {
     throw;
-  } catch (const std::runtime_error& e) {
-    raise_if_file_error(path, e.what(), writing);
+  } catch (const MemoryBudgetError&) {
     throw;
+  } catch (const std::runtime_error& e) {
+    raise_file_error(path, e.what(), writing);
   }
 }
+
+/// What a Mapper's or a plan's grid costs a cell on `num_threads` threads (0: every core).
+double mapping_cost(int num_threads);
+
+/// Refuses (MemoryBudgetError, Python's MemoryError) a grid of `spec` at `bytes_per_cell` that
+/// the memory available now cannot hold, before it is allocated; `what` names it.
+void check_grid_memory(const GridSpec& spec, double bytes_per_cell, const std::string& what);
 
 }  // namespace vantage::python

@@ -95,6 +95,9 @@ OccupancyGrid load(const std::filesystem::path& path, const std::optional<GridSp
   config.grid = spec;
   config.padding = padding;
   config.crop = crop;
+  config.check_grid = [&](const GridSpec& grid) {
+    check_grid_memory(grid, kOccupancyGridBytesPerCell, cat("the grid of ", path.string()));
+  };
   config.validate();
   return with_file(path, false, [&] { return read_octomap(path, config).grid; });
 }
@@ -107,6 +110,7 @@ py::dict save(const OccupancyGrid& grid, const std::filesystem::path& path) {
   out["occupied_cells"] = e.occupied_cells;
   out["unobserved_cells"] = e.unobserved_cells;
   out["tree_nodes"] = e.tree_nodes;
+  out["spec"] = grid.spec();  // what load(spec=) needs for the same grid: files hold no box
   return out;
 }
 
@@ -212,12 +216,14 @@ void bind_map(py::module_& m) {
                             "it returns have the grid's shape and are indexed [i, j, k].")
       .def(py::init(
                [](const GridSpec& spec, double p_hit, double p_miss, double p_min, double p_max) {
+                 check_grid_memory(spec, kOccupancyGridBytesPerCell, "an OccupancyGrid");
                  return OccupancyGrid(spec, OccupancyParams{p_hit, p_miss, p_min, p_max});
                }),
            py::arg("spec"), py::arg("p_hit") = OccupancyParams{}.p_hit,
            py::arg("p_miss") = OccupancyParams{}.p_miss, py::arg("p_min") = OccupancyParams{}.p_min,
            py::arg("p_max") = OccupancyParams{}.p_max,
-           "An all-unknown grid (p = 0.5) with OctoMap's hit/miss/clamp probabilities.")
+           "An all-unknown grid (p = 0.5) with OctoMap's hit/miss/clamp probabilities. "
+           "MemoryError, before allocating, for a grid larger than the memory available.")
       .def_property_readonly("spec", &OccupancyGrid::spec, "The grid's GridSpec.")
       .def_property_readonly(
           "shape", [](const OccupancyGrid& g) { return shape_of(g.spec()); }, "(nx, ny, nz).")
@@ -263,14 +269,19 @@ void bind_map(py::module_& m) {
            "estimation) or 'endpoint' (OctoMap's ray casting). ValueError for a non-finite point "
            "or a pose that is not rigid; the grid is unchanged then.")
       .def("save", &save, py::arg("path"),
-           "Writes the grid as an OctoMap .bt or .ot file, atomically; returns what it wrote. "
-           "OSError when writing fails, ValueError for another extension.")
+           "Writes the grid as an OctoMap .bt or .ot file, atomically; returns what it wrote, "
+           "with the grid's `spec` to load it back with. OSError when writing fails, ValueError "
+           "for another extension.")
       .def_static("load", &load, py::arg("path"), py::arg("spec") = std::nullopt,
                   py::arg("padding") = 0, py::arg("crop") = false,
                   "Reads an OctoMap .bt or .ot file into a grid: into `spec` when given (with "
                   "`crop`, voxels outside it are dropped), else into the smallest box holding "
-                  "every known voxel grown by `padding` cells. FileNotFoundError for a missing "
-                  "file, RuntimeError for a malformed one.")
+                  "every known voxel grown by `padding` cells, on OctoMap's lattice through the "
+                  "world origin. An OctoMap file holds voxels, not the grid's box: a grid with "
+                  "unknown cells at its border, or whose origin is off that lattice, comes back "
+                  "the same only with spec= (save() returns it). FileNotFoundError for a missing "
+                  "file, OSError for one that cannot be read, ValueError for a malformed one, "
+                  "MemoryError (before allocating) for a grid larger than the memory available.")
       .def(
           "copy", [](const OccupancyGrid& g) { return OccupancyGrid(g); }, "An independent copy.")
       .def("__repr__", [](const OccupancyGrid& g) {

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <numeric>
+#include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -86,6 +88,11 @@ template <typename Start>
 void def_mapper_init(py::class_<Mapper>& mapper, const char* start, const char* doc) {
   mapper.def(py::init([](const Start& from, const std::string& integration, bool table_segmentation,
                          bool icp, int num_threads) {
+               if constexpr (std::is_same_v<Start, GridSpec>) {
+                 check_grid_memory(from, mapping_cost(num_threads), "a Mapper's grid");
+               } else {
+                 check_grid_memory(from.spec(), mapping_cost(num_threads), "a Mapper's grid");
+               }
                return Mapper(
                    from, recorded_mapper_config(integration, table_segmentation, icp, num_threads));
              }),
@@ -107,6 +114,7 @@ py::tuple plan_recorded(const std::vector<DoubleArray>& clouds, const DoubleArra
                                     " poses; give one pose per cloud"));
   }
   config.greedy_reference = true;  // as `vantage plan`: its JSON lists each greedy gain
+  check_grid_memory(spec, mapping_cost(config.gain.num_threads), "the plan's grid");
   Mapper mapper(
       spec, recorded_mapper_config(integration, table_segmentation, icp, config.gain.num_threads));
   Eigen::Isometry3d T_cloud_sensor = Eigen::Isometry3d::Identity();
@@ -183,6 +191,37 @@ void bind_plan(py::module_& m) {
       "positions at `height`, each looking at the centre turned by every yaw offset [m, rad]. "
       "Returns a K x 4 x 4 array, view (k, j) at index k * len(yaw_offsets) + j.");
   m.def(
+      "ring_candidates",
+      [](const py::object& region, std::optional<double> radius, std::optional<double> height,
+         std::optional<int> positions) {
+        Eigen::AlignedBox3d roi;
+        if (py::isinstance<GridSpec>(region)) {
+          const auto& spec = region.cast<const GridSpec&>();
+          roi = Eigen::AlignedBox3d(spec.origin, spec.max_corner());
+        } else {
+          const auto corners = region.cast<std::pair<DoubleArray, DoubleArray>>();
+          roi = Eigen::AlignedBox3d(to_vector3(corners.first, "roi[0]"),
+                                    to_vector3(corners.second, "roi[1]"));
+          if (!roi.min().allFinite() || !roi.max().allFinite() ||
+              (roi.min().array() > roi.max().array()).any()) {
+            throw std::invalid_argument("roi must be (min corner, max corner), min <= max");
+          }
+        }
+        RingConfig ring = default_ring(roi);
+        if (radius) ring.radius = *radius;
+        if (height) ring.height = *height;
+        if (positions) ring.positions = *positions;
+        ring.validate();
+        return from_poses(ring_poses(ring));
+      },
+      py::arg("region"), py::arg("radius") = std::nullopt, py::arg("height") = std::nullopt,
+      py::arg("positions") = std::nullopt,
+      "The candidates `vantage plan` scores by default (--candidates ring): a ring around "
+      "`region`, a GridSpec (its box, as for `plan --map`) or a (min, max) region of interest "
+      "(a manifest's roi) [m]; radius 1.5 half-diagonals of its footprint (at least 1 m), 0.3 m "
+      "above its top, 10 positions, yaw offsets -15, 0, 15 degrees; radius, height and "
+      "positions as `plan --radius --height --views` override them. K x 4 x 4.");
+  m.def(
       "sphere_poses",
       [](const DoubleArray& center, double radius, int views) {
         SphereConfig sphere;
@@ -236,7 +275,17 @@ void bind_plan(py::module_& m) {
                     "of `vantage plan`'s table and JSON).")
       .def_property_readonly(
           "seconds", [](const RankedPlan& p) { return p.plan.seconds; },
-          "Wall time of the decision [s].");
+          "Wall time of the decision [s].")
+      .def("__repr__", [](const RankedPlan& p) {
+        const std::size_t best = p.plan.best;
+        std::string out = cat("Plan(best=", best, ", candidates=", p.plan.scores.size());
+        if (best < p.plan.scores.size()) out += cat(", score=", p.plan.scores[best]);
+        if (best < p.plan.gains.size()) {
+          out += cat(", gain=", p.plan.gains[best].gain, ", cells=", p.plan.gains[best].cells);
+        }
+        if (best < p.plan.greedy_gains.size()) out += cat(", greedy=", p.plan.greedy_gains[best]);
+        return out + cat(", seconds=", p.plan.seconds, ")");
+      });
 
   m.def("plan_next_view", &decide, py::arg("grid"), py::arg("candidates"), py::arg("fov"),
         py::arg("config") = PlannerConfig{}, py::arg("seed") = 1,
@@ -317,6 +366,8 @@ void bind_plan(py::module_& m) {
         const Manifest manifest = with_file(path, false, [&] { return read_manifest(path); });
         MapperConfig config = mapper_config_for(manifest);
         config.integration.num_threads = num_threads;
+        check_grid_memory(manifest.grid, mapping_cost(num_threads),
+                          cat("the grid of ", path.string()));
         Mapper mapper(manifest.grid, config);
         py::gil_scoped_release release;
         map_recorded(manifest, mapper);

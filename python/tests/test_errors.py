@@ -103,11 +103,17 @@ def test_missing_files_raise_os_errors(tmp_path, vantage_bin):
                  lambda: vt.Scene(str(tmp_path / "missing.yaml"))):
         with pytest.raises(FileNotFoundError, match="missing"):
             read()
-    # A file that exists but is not a map is a RuntimeError, naming it.
+    # A file that exists but is not a map is bad input, a ValueError naming it (as the README
+    # says); one that is no file at all (a folder) cannot be read, an OSError.
     bad = tmp_path / "bad.bt"
     bad.write_text("not an octree\n")
-    with pytest.raises(RuntimeError, match="bad.bt"):
+    with pytest.raises(ValueError, match="bad.bt"):
         vt.OccupancyGrid.load(bad)
+    folder = tmp_path / "folder.bt"
+    folder.mkdir()
+    with pytest.raises(OSError, match="directory"):
+        vt.OccupancyGrid.load(folder)
+    folder.rmdir()
     # Writing where no folder can be made is an OSError; nothing is left behind.
     blocker = tmp_path / "file"
     blocker.write_text("")
@@ -118,3 +124,47 @@ def test_missing_files_raise_os_errors(tmp_path, vantage_bin):
     with pytest.raises(ValueError, match=r"\.txt"):
         vt.OccupancyGrid(SPEC).save(tmp_path / "map.txt")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.bt", "file"]
+
+
+def test_malformed_files_raise_value_errors(tmp_path):
+    """Bad input in a file is a ValueError, as a bad argument is (the README), never a
+    RuntimeError."""
+    cloud = tmp_path / "bad.pcd"
+    cloud.write_text("VERSION .7\nFIELDS x y z\nPOINTS lots\n")
+    manifest = tmp_path / "manifest.yaml"
+    manifest.write_text("clouds: 3\n")
+    scene = tmp_path / "scene.yaml"
+    scene.write_text("name: [unclosed\n")
+    for path, read in ((cloud, vt.read_point_cloud), (manifest, vt.read_manifest),
+                       (manifest, vt.map_recorded), (scene, vt.Scene)):
+        with pytest.raises(ValueError, match=path.name):
+            read(str(path) if read is vt.Scene else path)
+
+
+HUGE = """
+import resource, sys
+import vantage as vt
+resource.setrlimit(resource.RLIMIT_AS, (3 << 30, 3 << 30))
+spec = vt.GridSpec((0, 0, 0), 0.01, (1024, 1024, 1024))
+try:
+    {call}
+except MemoryError as e:
+    print(e)
+    sys.exit(0)
+sys.exit("no MemoryError")
+"""
+
+
+@pytest.mark.parametrize("call", ["vt.OccupancyGrid(spec)", "vt.Mapper(spec)"])
+def test_a_grid_beyond_the_memory_is_refused_before_it_is_allocated(call):
+    """Under a 3 GiB address-space limit a grid of 1024^3 cells (4 GiB of log-odds) is refused
+    with the budget's one line, before the allocation would fail."""
+    import os
+    import subprocess
+    import sys
+    run = subprocess.run([sys.executable, "-c", HUGE.format(call=call)], capture_output=True,
+                         text=True, env=os.environ)
+    assert run.returncode == 0, run.stdout + run.stderr
+    line = run.stdout.strip()
+    assert "1024 x 1024 x 1024 cells needs about" in line, line
+    assert "\n" not in line

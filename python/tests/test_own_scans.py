@@ -7,21 +7,13 @@ import pytest
 import vantage as vt
 
 
-def ring_of(manifest):
-    """The candidates `vantage plan` uses by default: 10 ring positions around the ROI's centre,
-    1.5 half diagonals (at least 1 m) away, 0.3 m above its top."""
-    lo, hi = (np.asarray(v) for v in manifest["roi"])
-    radius = max(1.0, 1.5 * 0.5 * np.linalg.norm((hi - lo)[:2]))
-    return vt.ring_poses((lo + hi) / 2, radius, hi[2] + 0.3, positions=10)
-
-
 @pytest.fixture(scope="module")
 def planned(own_scans):
     folder, cli, _ = own_scans
     manifest = vt.read_manifest(folder)
     clouds = [vt.read_point_cloud(c["file"]) for c in manifest["clouds"]]
     poses = np.stack([c["T_world_cloud"] for c in manifest["clouds"]])
-    candidates = ring_of(manifest)
+    candidates = vt.ring_candidates(manifest["roi"])  # what `vantage plan` uses by default
     grid, plan = vt.plan(clouds, poses, manifest["fov"], manifest["grid"], candidates,
                          frame=manifest["frame"],
                          table_segmentation=manifest["table_segmentation"],
@@ -71,6 +63,13 @@ def test_same_candidates_gains_and_ranking_as_the_cli(planned):
     for c in cli["candidates"]:
         i = c["index"]
         np.testing.assert_array_equal(candidates[i][:3, 3], c["sensor"]["position"])
+        # The same orientation: quaternion x, y, z, w of the CLI's (up to sign).
+        q = np.asarray(c["sensor"]["quaternion_xyzw"])
+        x, y, z, w = q
+        rotation = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                             [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                             [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+        np.testing.assert_allclose(candidates[i][:3, :3], rotation, atol=1e-12)
         # Bit for bit: the same grid and the same code, on any number of threads.
         assert plan.gains[i].gain == c["predicted_gain"], i
         assert plan.greedy_gains[i] == c["greedy_gain"], i

@@ -42,9 +42,17 @@ function format(x, unit) {
   return `${x.toFixed(digits)}${unit ? ' ' + unit : ''}`;
 }
 
+/// A number as the terminal prints it: `digits` decimals and its unit ('-' when not recorded).
+function fixed(x, digits, unit) {
+  return x === null || x === undefined ? '-' : `${x.toFixed(digits)} ${unit}`;
+}
+
 /// An InstancedMesh of cubes at the given cell indices (flat x, y, z triples).
 function cellMesh(THREE, data, cells, material, colorOf) {
   const n = cells.length / 3;
+  // Lowest first, so that a height cut is the mesh's count (userData.countUpTo).
+  const order = Array.from({length: n}, (_, i) => i).sort((a, b) => cells[3 * a + 2] - cells[3 * b + 2]);
+  cells = order.flatMap((i) => [cells[3 * i], cells[3 * i + 1], cells[3 * i + 2]]);
   const r = data.grid.resolution;
   const o = data.grid.origin;
   const geometry = new THREE.BoxGeometry(r * 0.96, r * 0.96, r * 0.96);
@@ -65,6 +73,16 @@ function cellMesh(THREE, data, cells, material, colorOf) {
   }
   mesh.instanceMatrix.needsUpdate = true;
   mesh.computeBoundingSphere();
+  // The number of cells at layer k and below.
+  mesh.userData.cells = cells;
+  mesh.userData.countUpTo = (k) => {
+    let lo = 0, hi = n;
+    while (lo < hi) {
+      const mid = (lo + hi) >> 1;
+      if (cells[3 * mid + 2] <= k) lo = mid + 1; else hi = mid;
+    }
+    return lo;
+  };
   return mesh;
 }
 
@@ -115,13 +133,15 @@ function label(THREE, text, position, size) {
 async function main() {
   const data = JSON.parse($('vantage-data').textContent);
   const {THREE, OrbitControls} = await loadThree();
-  const sensor = data.sensor ?? {h_fov: 57 * Math.PI / 180, v_fov: 43 * Math.PI / 180,
-                                 min_range: 0.5, max_range: 3.5};
+  const sensor = data.sensor;  // the recorded one, or the default with a note (vantage view)
   const grid = data.grid;
   const extent = grid.dims.map((d) => d * grid.resolution);
   const center = new THREE.Vector3(...grid.origin.map((o, i) => o + extent[i] / 2));
   // NOTE: the sensor reaches metres past a table top; frusta drawn that long would hide it.
   const depth = Math.min(sensor.max_range, 0.8, Math.max(0.1, 0.3 * Math.max(...extent)));
+  // Many candidates are drawn small, so that they do not cover the map.
+  const mostCandidates = Math.max(1, ...data.decisions.map((d) => d.candidates.length));
+  const candidateDepth = depth * Math.min(1, Math.max(0.3, Math.sqrt(30 / mostCandidates)));
 
   $('heading').textContent = data.title;
   $('chosen-swatch').style.background = kChosen;
@@ -159,10 +179,12 @@ async function main() {
     zMax = Math.max(zMax, occupied.cells[i]);
   }
   const height = (k) => grid.origin[2] + (k + 0.5) * grid.resolution;
+  let occupiedMesh = null;
   if (occupied.cells.length > 0) {
     const colorOf = (k) => rampColor(THREE, kHeightRamp, zMax > zMin ? (k - zMin) / (zMax - zMin) : 0.5);
-    scene.add(cellMesh(THREE, data, occupied.cells,
-                       new THREE.MeshBasicMaterial({vertexColors: true}), colorOf));
+    occupiedMesh = cellMesh(THREE, data, occupied.cells,
+                            new THREE.MeshBasicMaterial({vertexColors: true}), colorOf);
+    scene.add(occupiedMesh);
     $('height-min').textContent = format(height(zMin), 'm');
     $('height-max').textContent = format(height(zMax), 'm');
   } else {
@@ -207,24 +229,34 @@ async function main() {
     return part;
   });
 
-  // Candidates of the decision shown, coloured by predicted gain; the chosen one solid.
+  // Candidates of the decision shown, coloured by what the method ranks them by; the chosen one
+  // solid. The top-N slider keeps the best N by score (and the chosen one).
   const candidates = new THREE.Group();
   scene.add(candidates);
   const units = data.units;
+  const topSlider = $('top-candidates');
+  topSlider.max = String(mostCandidates);
+  // NOTE: the attribute, not .value: the page's DOM then shows the setting (the headless check).
+  topSlider.setAttribute('value', String(Math.min(mostCandidates, 100)));
   function showDecision(decision) {
     candidates.clear();
     $('gain-legend').style.display = decision ? '' : 'none';
+    $('top-row').style.display = decision && decision.candidates.length > 1 ? '' : 'none';
     if (!decision || decision.candidates.length === 0) return;
-    const gains = decision.candidates.map((c) => c.gain);
-    const lo = Math.min(...gains), hi = Math.max(...gains);
+    const scores = decision.candidates.map((c) => c.score);
+    const lo = Math.min(...scores), hi = Math.max(...scores);
+    const top = Math.min(Number(topSlider.value), decision.candidates.length);
+    const ranked = decision.candidates.map((c, j) => j)
+        .sort((a, b) => scores[b] - scores[a] || a - b).slice(0, top);
     const points = [], colors = [];
-    decision.candidates.forEach((c, j) => {
-      if (j === decision.chosen) return;
-      const color = rampColor(THREE, kGainRamp, hi > lo ? (c.gain - lo) / (hi - lo) : 1);
+    for (const j of ranked) {
+      if (j === decision.chosen) continue;
+      const c = decision.candidates[j];
+      const color = rampColor(THREE, kGainRamp, hi > lo ? (c.score - lo) / (hi - lo) : 1);
       const before = points.length;
-      frustumLines(THREE, sensor, c, depth, points);
+      frustumLines(THREE, sensor, c, candidateDepth, points);
       for (let k = before; k < points.length; ++k) colors.push(color);
-    });
+    }
     if (points.length > 0) candidates.add(linesOf(THREE, points, colors));
     const chosen = decision.candidates[decision.chosen];
     const [apex, ...c] = frustumCorners(THREE, sensor, chosen, depth);
@@ -233,10 +265,35 @@ async function main() {
     const solid = new THREE.BufferGeometry().setFromPoints(sides);
     candidates.add(new THREE.Mesh(solid, new THREE.MeshBasicMaterial({
       color: kChosen, side: THREE.DoubleSide})));
-    $('gain-title').textContent =
-        `predicted gain of each candidate [${units.gain}], ${decision.candidates.length} candidates`;
-    $('gain-min').textContent = format(lo, units.gain);
-    $('gain-max').textContent = format(hi, units.gain);
+    const shown = ranked.includes(decision.chosen) ? top : top + 1;
+    $('gain-title').textContent = `${data.ranked_by} of each candidate [${units.score}]: ` +
+        `${shown} drawn of ${decision.total} candidates`;
+    $('top-count').textContent = `${top} of ${decision.candidates.length}`;
+    $('gain-min').textContent = format(lo, units.score);
+    $('gain-max').textContent = format(hi, units.score);
+  }
+
+  // Numbers as the terminal prints them: explore's line (cells, no decimals), plan's table (one
+  // decimal; latombe's and yamauchi's scores three).
+  function describeChoice(decision, k) {
+    const chosen = decision.candidates[decision.chosen];
+    if (data.source === 'plan') {
+      const scoreDigits = data.method === 'latombe' || data.method === 'yamauchi' ? 3 : 1;
+      const parts = [`predicted gain ${fixed(chosen.gain, 1, units.gain)}`];
+      if (chosen.cells !== null && units.gain !== 'cells') {
+        parts.push(`predicted seen ${fixed(chosen.cells, 1, units.cells)}`);
+      }
+      parts.push(`greedy gain ${fixed(chosen.greedy, 1, units.greedy)}`);
+      return `next best view: view ${chosen.view}, ${data.ranked_by} ` +
+          `${fixed(chosen.score, scoreDigits, units.score)} (${parts.join(', ')})`;
+    }
+    const cells = chosen.cells ?? (units.gain === 'cells' ? chosen.gain : null);
+    let text = `decision for scan ${k + 1}: view ${chosen.view}, predicted ` +
+        `${fixed(cells, 0, units.cells)} (greedy ${fixed(chosen.greedy, 0, units.greedy)})`;
+    if (units.score !== 'cells') {
+      text += `; ranked by ${data.ranked_by}: ${fixed(chosen.score, 1, units.score)}`;
+    }
+    return text;
   }
 
   // The slider: after scan k, the views taken so far and the decision that chose scan k + 1.
@@ -261,10 +318,7 @@ async function main() {
     }
     let text = '';
     if (decision) {
-      const chosen = decision.candidates[decision.chosen];
-      text = `${data.source === 'plan' ? 'next best view' : `decision for scan ${k + 1}`}: ` +
-             `view ${chosen.view}, predicted ${format(chosen.gain, units.gain)} ` +
-             `(greedy ${format(chosen.greedy, units.greedy)})`;
+      text = describeChoice(decision, k);
       const next = data.scans[k];
       if (data.source === 'explore' && next) text += `; the scan then saw ${next.actual_gain} cells`;
     } else if (data.source === 'explore') {
@@ -293,6 +347,31 @@ async function main() {
   controls.target.copy(sphere.center);
   controls.update();
 
+  // From above: straight down on the grid's middle, the whole grid in sight.
+  function viewFromAbove() {
+    const reach = Math.max(extent[0], extent[1]) / 2 / Math.tan((camera.fov * Math.PI) / 360);
+    controls.target.set(center.x, center.y, grid.origin[2]);
+    // NOTE: a hair off vertical: OrbitControls cannot orbit from exactly above with z up.
+    camera.position.set(center.x, center.y - reach * 1e-3, grid.origin[2] + extent[2] + reach * 1.1);
+    controls.update();
+    render();
+  }
+
+  // The height cut: cells above it are hidden, so a building's rooms show under its ceiling.
+  const cut = $('height-cut');
+  cut.min = '0';
+  cut.max = String(grid.dims[2] - 1);
+  cut.setAttribute('value', cut.max);
+  function applyCut() {
+    const k = Number(cut.value);
+    for (const mesh of [occupiedMesh, unobservedMesh]) {
+      if (mesh) mesh.count = mesh.userData.countUpTo(k);
+    }
+    $('height-cut-value').textContent = k >= grid.dims[2] - 1 ? 'none' :
+        `cells above ${format(grid.origin[2] + (k + 1) * grid.resolution, 'm')} hidden`;
+    render();
+  }
+
   function render() { renderer.render(scene, camera); }
   // The panel covers the left of the window: centre the view in the rest of it.
   function fit() {
@@ -307,6 +386,9 @@ async function main() {
   controls.addEventListener('change', render);
   window.addEventListener('resize', () => { fit(); render(); });
   slider.addEventListener('input', update);
+  topSlider.addEventListener('input', update);
+  cut.addEventListener('input', applyCut);
+  $('top-view').addEventListener('click', viewFromAbove);
   $('show-candidates').addEventListener('change', (e) => { candidates.visible = e.target.checked; render(); });
   $('show-taken').addEventListener('change', (e) => { taken.visible = e.target.checked; render(); });
   $('show-unobserved').addEventListener('change', (e) => {
@@ -314,13 +396,26 @@ async function main() {
     render();
   });
 
+  const inputs = data.source === 'plan'
+      ? (data.clouds === null ? 'clouds not recorded' :
+         `${data.clouds} ${data.clouds === 1 ? 'cloud' : 'clouds'}`)
+      : `${data.scans.length} ${data.scans.length === 1 ? 'scan' : 'scans'}`;
   $('summary').textContent = `${occupied.total} occupied cells of ${grid.resolution} m; ` +
-      `${data.scans.length} scans; three.js ${data.three_version}`;
+      `${inputs}; three.js ${data.three_version}`;
   $('notes').replaceChildren(...notes.map((n) => {
     const div = document.createElement('div');
     div.textContent = n;
     return div;
   }));
+  // The page's address can set the view: #cut=2.0 hides the cells above 2.0 m, #above looks
+  // from above (view.html#cut=2.0&above), so a building's picture can be made headless.
+  const hash = new URLSearchParams(window.location.hash.slice(1));
+  if (hash.has('cut')) {
+    const k = Math.ceil((Number(hash.get('cut')) - grid.origin[2]) / grid.resolution) - 1;
+    if (Number.isFinite(k)) cut.setAttribute('value', String(Math.min(Math.max(k, 0), grid.dims[2] - 1)));
+  }
+  applyCut();
+  if (hash.has('above')) viewFromAbove();
   update();
   if (window.vantageErrors.length === 0) {
     $('status').dataset.state = 'ready';

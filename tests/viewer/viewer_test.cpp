@@ -4,7 +4,9 @@
 #include "vantage/experiment/viewer.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
@@ -111,6 +113,17 @@ std::set<Cell> cells_of(const json& flat) {
   return cells;
 }
 
+/// The one line build_view_page fails with on `dir`; fails the test when it succeeds.
+std::string view_error(const std::filesystem::path& dir, const ViewerConfig& config) {
+  try {
+    build_view_page(dir, config);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for " << dir;
+  return {};
+}
+
 class ViewerTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -209,8 +222,174 @@ TEST_F(ViewerTest, PlanFolderShowsItsRankingAndTheNextBestView) {
   ASSERT_EQ(data["decisions"].size(), 1u);
   EXPECT_EQ(data["decisions"][0]["chosen"], 0);
   EXPECT_EQ(data["occupied"]["total"], 24u);
-  EXPECT_FALSE(data.contains("sensor"));  // not recorded: the page says so
-  EXPECT_EQ(data["notes"].size(), 1u);
+  // Not recorded: the default sensor, and the page says so.
+  EXPECT_DOUBLE_EQ(data["sensor"]["h_fov"].get<double>(), SensorFov{}.h_fov);
+  ASSERT_EQ(data["notes"].size(), 1u);
+  EXPECT_NE(data["notes"][0].get<std::string>().find("does not record the sensor"),
+            std::string::npos);
+}
+
+/// A survival plan as `vantage plan` writes it (issue 27's contract): the score is the expected
+/// cells seen, predicted_gain is in bits, and the two disagree on the order; the chosen view,
+/// index 2, has the most cells and the fewest bits.
+json survival_plan() {
+  json candidates = json::array();
+  const std::array<std::array<double, 3>, 4> gains = {
+      {{2, 100.0, 5000.0}, {3, 700.0, 300.0}, {1, 800.0, 200.0}, {0, 900.0, 100.0}}};
+  for (const auto& [index, bits, cells] : gains) {
+    candidates.push_back({{"index", static_cast<int>(index)},
+                          {"sensor", pose(index, 0, 1)},
+                          {"predicted_gain", bits},
+                          {"predicted_cells", cells},
+                          {"greedy_gain", cells + 1},
+                          {"score", cells}});
+  }
+  return {{"map", {{"grid", grid_json()}, {"clouds", 1}}},
+          {"method", "survival"},
+          {"objective", "cells"},
+          {"clouds", 1},
+          {"sensor",
+           {{"horizontal_fov_deg", 63.0},
+            {"vertical_fov_deg", 49.0},
+            {"min_range_m", 0.4},
+            {"max_range_m", 3.0}}},
+          {"units",
+           {{"predicted_gain", "bits"},
+            {"predicted_cells", "cells"},
+            {"greedy_gain", "cells"},
+            {"score", "cells"},
+            {"travel", "m"}}},
+          {"next_best_view", candidates[0]},
+          {"candidates", candidates}};
+}
+
+TEST_F(ViewerTest, APlanIsColouredByItsScoreInItsUnit) {
+  // plan.json before issue 27 said "bits" for the survival reading's score: the objective wins.
+  for (const char* said : {"cells", "bits"}) {
+    SCOPED_TRACE(said);
+    json plan = survival_plan();
+    plan["units"]["score"] = said;
+    write_octomap(tmp_ / "plan" / "map.bt", map_);
+    write_file(tmp_ / "plan" / "plan.json", plan.dump());
+    const json data = page_data(build_view_page(tmp_ / "plan", config_));
+    EXPECT_EQ(data["units"]["score"], "cells");
+    EXPECT_EQ(data["units"]["gain"], "bits");
+    EXPECT_EQ(data["ranked_by"], "expected cells seen");
+    const json& d = data["decisions"][0];
+    ASSERT_EQ(d["candidates"].size(), 4u);
+    const json& chosen = d["candidates"][d["chosen"].get<std::size_t>()];
+    EXPECT_EQ(chosen["view"], 2);
+    EXPECT_EQ(chosen["score"], 5000.0);
+    EXPECT_EQ(chosen["gain"], 100.0);
+    EXPECT_EQ(chosen["cells"], 5000.0);
+    EXPECT_EQ(chosen["greedy"], 5001.0);
+    for (const json& c : d["candidates"]) EXPECT_LE(c["score"], chosen["score"]);
+  }
+}
+
+TEST_F(ViewerTest, APlanDrawsTheRecordedSensorAndCountsItsClouds) {
+  write_octomap(tmp_ / "plan" / "map.bt", map_);
+  json plan = survival_plan();
+  write_file(tmp_ / "plan" / "plan.json", plan.dump());
+  json data = page_data(build_view_page(tmp_ / "plan", config_));
+  EXPECT_NEAR(data["sensor"]["h_fov"].get<double>(), 63.0 * M_PI / 180.0, 1e-12);
+  EXPECT_NEAR(data["sensor"]["v_fov"].get<double>(), 49.0 * M_PI / 180.0, 1e-12);
+  EXPECT_EQ(data["sensor"]["min_range"], 0.4);
+  EXPECT_EQ(data["sensor"]["max_range"], 3.0);
+  EXPECT_EQ(data["clouds"], 1);
+  EXPECT_TRUE(data["notes"].empty()) << data["notes"];
+  // A plan.json without the top-level count: its map's.
+  plan.erase("clouds");
+  plan["map"]["clouds"] = 0;
+  write_file(tmp_ / "plan" / "plan.json", plan.dump());
+  data = page_data(build_view_page(tmp_ / "plan", config_));
+  EXPECT_EQ(data["clouds"], 0);
+}
+
+TEST_F(ViewerTest, AnExploreRunOfTheSurvivalReadingIsInCells) {
+  json run = run_json();
+  run["config"]["method"] = "survival";
+  run["config"]["objective"] = "cells";
+  // Cells disagree with bits: view 1 has the most bits, view 5 (taken) the most cells.
+  const std::array<double, 3> cells = {300.0, 200.0, 11536.0};
+  for (std::size_t j = 0; j < 3; ++j)
+    run["scans"][1]["considered"][j]["predicted_cells"] = cells[j];
+  run["scans"][1]["considered"][0]["predicted_gain"] = 9000.0;
+  write_file(tmp_ / "run" / "run.json", run.dump());
+  const json data = page_data(build_view_page(tmp_ / "run", config_));
+  EXPECT_EQ(data["units"]["score"], "cells");
+  const json& d = data["decisions"][0];
+  const json& chosen = d["candidates"][d["chosen"].get<std::size_t>()];
+  EXPECT_EQ(chosen["view"], 5);
+  EXPECT_EQ(chosen["score"], 11536.0);  // the terminal's "predicted 11536 cells"
+  EXPECT_EQ(chosen["cells"], 11536.0);
+  EXPECT_EQ(d["candidates"][0]["score"], 300.0);
+}
+
+TEST_F(ViewerTest, ManyCandidatesAreCutToTheBestAndTheChosen) {
+  json plan = survival_plan();
+  json candidates = json::array();
+  for (int i = 0; i < 50; ++i) {
+    candidates.push_back({{"index", i},
+                          {"sensor", pose(i * 0.01, 0, 1)},
+                          {"predicted_gain", 1.0},
+                          {"score", static_cast<double>((i * 7) % 50)}});
+  }
+  plan["candidates"] = candidates;
+  plan["next_best_view"] = candidates[0];  // score 0: the worst, still drawn
+  write_octomap(tmp_ / "plan" / "map.bt", map_);
+  write_file(tmp_ / "plan" / "plan.json", plan.dump());
+  config_.max_candidates = 10;
+  const json data = page_data(build_view_page(tmp_ / "plan", config_));
+  const json& d = data["decisions"][0];
+  EXPECT_EQ(d["total"], 50);
+  ASSERT_EQ(d["candidates"].size(), 10u);
+  EXPECT_EQ(d["candidates"][d["chosen"].get<std::size_t>()]["view"], 0);
+  std::set<double> scores;
+  int previous = -1;
+  for (const json& c : d["candidates"]) {
+    scores.insert(c["score"].get<double>());
+    EXPECT_GT(c["view"].get<int>(), previous);  // in the file's order
+    previous = c["view"].get<int>();
+  }
+  EXPECT_EQ(scores, (std::set<double>{0, 41, 42, 43, 44, 45, 46, 47, 48, 49}));
+  bool noted = false;
+  for (const json& n : data["notes"])
+    noted |= n.get<std::string>().find("40 candidates") != std::string::npos;
+  EXPECT_TRUE(noted) << data["notes"];
+}
+
+TEST_F(ViewerTest, ResultsFilesThatAreNotRegularFilesAreRefused) {
+  const std::filesystem::path fifo_dir = tmp_ / "fifo";
+  std::filesystem::create_directories(fifo_dir);
+  ASSERT_EQ(mkfifo((fifo_dir / "run.json").c_str(), 0600), 0);
+  write_octomap(fifo_dir / "map.bt", map_);
+  const std::filesystem::path zero_dir = tmp_ / "zero";
+  std::filesystem::create_directories(zero_dir);
+  std::filesystem::create_symlink("/dev/zero", zero_dir / "plan.json");
+  for (const auto& [dir, what] :
+       {std::pair{fifo_dir, "FIFO"}, std::pair{zero_dir, "character device"}}) {
+    const std::string error = view_error(dir, config_);
+    EXPECT_NE(error.find(what), std::string::npos) << error;
+  }
+}
+
+TEST_F(ViewerTest, AnOversizedResultsFileIsRefusedUnread) {
+  // Sparse: larger than the cap on paper, nothing on disk.
+  const std::filesystem::path file = tmp_ / "run" / "run.json";
+  std::filesystem::resize_file(file, kMaxViewerFileBytes + 1);
+  const std::string error = view_error(tmp_ / "run", config_);
+  EXPECT_NE(error.find("more than the 1 GiB vantage view reads"), std::string::npos) << error;
+}
+
+TEST_F(ViewerTest, AGridBeyondTheMemoryBudgetIsRefusedBeforeItIsAllocated) {
+  json run = run_json();
+  run["scene"]["grid"]["dims"] = {1024, 1024, 1024};
+  write_file(tmp_ / "run" / "run.json", run.dump());
+  config_.max_memory = std::uint64_t{1} << 30;
+  const std::string error = view_error(tmp_ / "run", config_);
+  EXPECT_NE(error.find("1024 x 1024 x 1024 cells) needs about 8.06 GiB"), std::string::npos)
+      << error;
 }
 
 TEST_F(ViewerTest, TextFromTheFolderCannotCloseThePagesScripts) {

@@ -8,15 +8,21 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <queue>
 #include <sstream>
 #include <stdexcept>
 #include <string_view>
 #include <vector>
 
 #include "vantage/experiment/viewer_assets.hpp"
+#include "vantage/io/format_parsing.hpp"
 #include "vantage/io/octomap_io.hpp"
+#include "vantage/util/memory.hpp"
+#include "vantage/views/frustum.hpp"
 
 namespace vantage {
 namespace {
@@ -84,15 +90,86 @@ class Field {
   std::string where_;
 };
 
-json read_json(const fs::path& file) {
+/// The bytes of a results file: a regular file (a FIFO would block, a device never end) of at
+/// most kMaxViewerFileBytes, after the memory budget has room for them.
+std::string read_results_file(const fs::path& file, const ViewerConfig& config) {
+  if (const std::string why = not_a_readable_file(file); !why.empty()) {
+    throw std::runtime_error(fmt::format("{}: {}", file.string(), why));
+  }
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (!ec && size > kMaxViewerFileBytes) {
+    throw std::runtime_error(fmt::format("{}: {} bytes, more than the {} vantage view reads",
+                                         file.string(), size,
+                                         describe_bytes(static_cast<double>(kMaxViewerFileBytes))));
+  }
+  // NOTE: the text, and the parse's transient copies of a candidate at a time.
+  check_memory({0, 0.0, 2.0 * static_cast<double>(ec ? 0 : size) + kViewerFixedBytes},
+               config.max_memory, fmt::format("vantage view of {}", file.string()));
   std::ifstream in(file, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot be read", file.string()));
-  std::ostringstream text;
-  text << in.rdbuf();
+  std::string text;
+  text.resize(static_cast<std::size_t>(ec ? 0 : size));
+  in.read(text.data(), static_cast<std::streamsize>(text.size()));
+  text.resize(static_cast<std::size_t>(in.gcount()));
+  if (in.peek() != std::char_traits<char>::eof()) {  // grew since: read no further than the cap
+    throw std::runtime_error(
+        fmt::format("{}: changed while it was read (or is larger than it says)", file.string()));
+  }
+  return text;
+}
+
+/// Called with each candidate of a results file (its list: 0 for plan.json, the scan's index
+/// for run.json; its index in the list; the candidate), which is then dropped from the document.
+using CandidateVisit = std::function<void(std::size_t, std::size_t, json&)>;
+
+/// Parses a results file's text with its candidates handed to `visit` one at a time instead of
+/// kept: plan.json's `candidates`, run.json's `scans[i].considered`. run.json's own `candidates`
+/// (the ring, which the page does not draw) are skipped. A million candidates cost the memory of
+/// one, not a document of gigabytes. Without `visit` the candidates are skipped unbuilt (the
+/// lists stay, empty): the document's skeleton, at a fraction of the time.
+json parse_results(const std::string& text, const fs::path& file, bool plan,
+                   const CandidateVisit& visit) {
+  std::array<std::string, 5> keys;  // the key last read at each depth
+  std::size_t list = 0, index = 0;
+  const auto in_list = [&](int depth) {
+    return plan ? depth == 2 && keys[1] == "candidates"
+                : depth == 4 && keys[1] == "scans" && keys[3] == "considered";
+  };
+  const json::parser_callback_t callback = [&](int depth, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::key:
+        if (depth < static_cast<int>(keys.size())) keys[depth] = parsed.get<std::string>();
+        return plan || depth != 1 || parsed != "candidates";
+      case json::parse_event_t::array_start:
+        if (in_list(depth + 1)) index = 0;
+        return true;
+      case json::parse_event_t::object_start:
+        return visit || !in_list(depth);
+      case json::parse_event_t::value:
+        if (in_list(depth)) {
+          throw std::runtime_error(fmt::format(
+              "{}: {}[{}] is not an object", file.string(),
+              plan ? std::string("candidates") : fmt::format("scans[{}].considered", list), index));
+        }
+        return true;
+      case json::parse_event_t::object_end:
+        if (in_list(depth)) {
+          visit(list, index++, parsed);
+          return false;
+        }
+        if (!plan && depth == 2 && keys[1] == "scans") ++list;
+        return true;
+      default:
+        return true;
+    }
+  };
   try {
-    return json::parse(text.str());
+    return json::parse(text, callback);
   } catch (const json::parse_error& e) {
     throw std::runtime_error(fmt::format("{}: not valid JSON ({})", file.string(), e.what()));
+  } catch (const json::exception& e) {
+    throw std::runtime_error(fmt::format("{}: {}", file.string(), e.what()));
   }
 }
 
@@ -130,15 +207,21 @@ json grid_json(const GridSpec& spec) {
           {"dims", {spec.dims.x(), spec.dims.y(), spec.dims.z()}}};
 }
 
-/// Cell indices as one flat array (x0, y0, z0, x1, ...), thinned evenly to at most `cap`.
-json cell_layer(const std::vector<std::size_t>& cells, const GridSpec& spec, std::size_t cap) {
+/// Cell indices as one flat array (x0, y0, z0, x1, ...) of the cells `keep` picks, in the grid's
+/// order, thinned evenly to at most `cap` of their `n`.
+template <typename Keep>
+json cell_layer(const OccupancyGrid& grid, std::size_t n, std::size_t cap, Keep&& keep) {
   json flat = json::array();
-  const std::size_t n = cells.size();
-  for (std::size_t k = 0; k < n; ++k) {
+  const GridSpec& spec = grid.spec();
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    if (!keep(i)) continue;
     // NOTE: keeps the k-th cell where floor(k * cap / n) steps up, so a cut layer stays spread
     // over the whole map instead of ending at some height.
-    if (n > cap && (k + 1) * cap / n == k * cap / n) continue;
-    const Index3 c = spec.unravel(cells[k]);
+    const bool drawn = n <= cap || (k + 1) * cap / n != k * cap / n;
+    ++k;
+    if (!drawn) continue;
+    const Index3 c = spec.unravel(i);
     flat.push_back(c.x());
     flat.push_back(c.y());
     flat.push_back(c.z());
@@ -147,34 +230,37 @@ json cell_layer(const std::vector<std::size_t>& cells, const GridSpec& spec, std
 }
 
 /// The occupied cells, and the unobserved cells that touch observed space (the surface of what is
-/// still unknown; cells deeper inside it would be hidden behind those anyway).
-json map_layers(const fs::path& map_file, const GridSpec& spec, std::size_t cap) {
-  if (!fs::exists(map_file))
-    throw std::runtime_error(fmt::format("{}: missing", map_file.string()));
+/// still unknown; cells deeper inside it would be hidden behind those anyway). Counted first and
+/// drawn second, so that what the page holds is bounded by the cap whatever the grid's size.
+json map_layers(const fs::path& map_file, const GridSpec& spec, const ViewerConfig& config) {
+  check_memory(
+      {static_cast<std::uint64_t>(spec.num_cells()), kViewerBytesPerCell, kViewerFixedBytes},
+      config.max_memory,
+      fmt::format("vantage view of {} ({} x {} x {} cells)", map_file.string(), spec.dims.x(),
+                  spec.dims.y(), spec.dims.z()));
   OctomapImportConfig import;
   import.grid = spec;
   const OccupancyGrid grid = read_octomap(map_file, import).grid;
-  std::vector<std::size_t> occupied, surface;
-  std::size_t unobserved = 0;
   const std::array<Index3, 6> steps = {Index3(1, 0, 0),  Index3(-1, 0, 0), Index3(0, 1, 0),
                                        Index3(0, -1, 0), Index3(0, 0, 1),  Index3(0, 0, -1)};
-  for (std::size_t i = 0; i < grid.size(); ++i) {
-    const CellState state = grid.state(i);
-    if (state == CellState::kOccupied) occupied.push_back(i);
-    if (state != CellState::kUnobserved) continue;
-    ++unobserved;
+  const auto occupied = [&](std::size_t i) { return grid.state(i) == CellState::kOccupied; };
+  const auto surface = [&](std::size_t i) {
+    if (grid.state(i) != CellState::kUnobserved) return false;
     const Index3 c = spec.unravel(i);
     for (const Index3& step : steps) {
       const Index3 n = c + step;
-      if (spec.contains(n) && grid.state(spec.linear(n)) != CellState::kUnobserved) {
-        surface.push_back(i);
-        break;
-      }
+      if (spec.contains(n) && grid.state(spec.linear(n)) != CellState::kUnobserved) return true;
     }
+    return false;
+  };
+  std::size_t n_occupied = 0, n_surface = 0;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    n_occupied += occupied(i) ? 1 : 0;
+    n_surface += surface(i) ? 1 : 0;
   }
-  json layers = {{"occupied", cell_layer(occupied, spec, cap)},
-                 {"unobserved", cell_layer(surface, spec, cap)}};
-  layers["unobserved"]["all"] = unobserved;
+  json layers = {{"occupied", cell_layer(grid, n_occupied, config.max_cells, occupied)},
+                 {"unobserved", cell_layer(grid, n_surface, config.max_cells, surface)}};
+  layers["unobserved"]["all"] = grid.counts().unobserved;
   return layers;
 }
 
@@ -183,42 +269,192 @@ json pose_of(const Field& pose) {
           {"quaternion", pose["quaternion_xyzw"].numbers(4)}};
 }
 
-/// The sensor's field of view from `holder`'s "sensor", or a note on the page that `file` has
-/// none and the frusta show the default one (the page draws SensorFov's defaults then).
-void add_sensor(const Field& holder, std::string_view file, json& data) {
-  if (!holder.has("sensor")) {
+/// The sensor's field of view: the file's "sensor" (degrees), else a run.json scene's (radians),
+/// else the default one, with a note on the page that the file has none.
+void add_sensor(const Field& doc, const std::optional<Field>& older, std::string_view file,
+                json& data) {
+  constexpr double kDeg = 3.14159265358979323846 / 180.0;
+  if (doc.has("sensor")) {
+    const Field s = doc["sensor"];
+    data["sensor"] = {{"h_fov", s["horizontal_fov_deg"].number() * kDeg},
+                      {"v_fov", s["vertical_fov_deg"].number() * kDeg},
+                      {"min_range", s["min_range_m"].number()},
+                      {"max_range", s["max_range_m"].number()}};
+  } else if (older && older->has("sensor")) {
+    const Field s = (*older)["sensor"];
+    data["sensor"] = {{"h_fov", s["h_fov_rad"].number()},
+                      {"v_fov", s["v_fov_rad"].number()},
+                      {"min_range", s["min_range_m"].number()},
+                      {"max_range", s["max_range_m"].number()}};
+  } else {
+    const SensorFov fov;
+    data["sensor"] = {{"h_fov", fov.h_fov},
+                      {"v_fov", fov.v_fov},
+                      {"min_range", fov.min_range},
+                      {"max_range", fov.max_range}};
     data["notes"].push_back(fmt::format(
-        "{} does not record the sensor's field of view: views are drawn as 57°×43° frusta", file));
-    return;
+        "{} does not record the sensor: views are drawn with the default one ({:.0f}°×{:.0f}°, "
+        "{:g} to {:g} m)",
+        file, fov.h_fov / kDeg, fov.v_fov / kDeg, fov.min_range, fov.max_range));
   }
-  const Field s = holder["sensor"];
-  data["sensor"] = {{"h_fov", s["h_fov_rad"].number()},
-                    {"v_fov", s["v_fov_rad"].number()},
-                    {"min_range", s["min_range_m"].number()},
-                    {"max_range", s["max_range_m"].number()}};
 }
 
-/// One candidate for the page: its pose (under `pose_key`), its index and both gains.
+/// What a method ranks its candidates by, as the page colours them: a candidate's field, its
+/// unit, and what it is.
+struct Ranking {
+  std::string key;
+  std::string unit;
+  std::string what;
+};
+
+/// The methods that predict with a visibility model: they rank by their objective.
+bool has_objective(std::string_view method) {
+  return method == "probabilistic" || method == "survival";
+}
+
+/// `units.<key>` of a results file, or "" when it has none.
+std::string unit_in(const Field& doc, std::string_view key) {
+  if (!doc.has("units") || !doc["units"].has(key)) return {};
+  return doc["units"][key].text();
+}
+
+/// The ranking of a results file. A candidate's `score` when it carries one (plan.json does);
+/// for the methods with a visibility model its unit is the objective's (plan.json before issue
+/// 27 said "bits" for the survival reading's score, which is its expected cells seen). Without
+/// a score (run.json) the methods with a visibility model ranked by predicted cells for the
+/// cells objective and by predicted gain otherwise, the rest by predicted gain.
+Ranking ranking_of(const Field& doc, std::string_view method, std::string_view objective,
+                   bool scored, std::string_view gain_unit) {
+  if (has_objective(method)) {
+    if (objective == "cells") {
+      return {scored ? "score" : "predicted_cells", "cells", "expected cells seen"};
+    }
+    return {scored ? "score" : "predicted_gain", "bits", "expected information gain"};
+  }
+  if (!scored) return {"predicted_gain", std::string(gain_unit), "predicted gain"};
+  Ranking r{"score", unit_in(doc, "score"), "score"};
+  if (r.unit.empty()) r.unit = gain_unit;
+  if (method == "latombe") r.what = "greedy gain × exp(−λ travel)";
+  if (method == "yamauchi") r.what = "minus the travel";
+  return r;
+}
+
+/// A candidate for the page: its pose (under `pose_key`), index, ranking score and predictions.
 json candidate_of(const Field& c, std::string_view pose_key, std::string_view index_key,
-                  std::string_view greedy_key) {
+                  std::string_view greedy_key, const Ranking& ranking) {
   json candidate = pose_of(c[pose_key]);
   candidate["view"] = c[index_key].integer();
+  candidate["score"] = c[ranking.key].number();
   candidate["gain"] = c["predicted_gain"].number();
+  const auto optional = [&](std::string_view key) {
+    if (!c.has(key)) return json(nullptr);
+    const std::optional<double> v = c[key].optional_number();
+    return v ? json(*v) : json(nullptr);
+  };
+  candidate["cells"] = optional("predicted_cells");
   // NOTE: run.json records greedy's gain for the chosen candidate only (and every candidate's
   // where the method scores by it); the page shows the chosen one's.
-  const std::optional<double> greedy = c[greedy_key].optional_number();
-  candidate["greedy"] = greedy ? json(*greedy) : json(nullptr);
+  candidate["greedy"] = optional(greedy_key);
+  candidate["estimated"] = c.has("estimated") && c["estimated"].value().is_boolean() &&
+                           c["estimated"].value().get<bool>();
   return candidate;
 }
 
-/// What a method's predicted gain is counted in (docs/model.md, "Bits are not cells").
-std::string gain_unit_of(std::string_view method) {
-  return method == "probabilistic" ? "bits" : "cells";
+/// The candidates of each list the page draws: the chosen one and the best by score (ties: the
+/// earlier) up to `cap` in all, in their order in the file; and how many there were.
+class CandidatePicker {
+ public:
+  /// `chosen(list, candidate)`: whether the candidate is the list's chosen view.
+  CandidatePicker(std::size_t cap, std::function<bool(std::size_t, const json&)> chosen)
+      : cap_(cap), chosen_(std::move(chosen)) {}
+
+  void add(std::size_t list, std::size_t index, double score, json candidate) {
+    List& l = lists_[list];
+    ++l.total;
+    if (!l.chosen && chosen_(list, candidate)) {
+      l.chosen = Kept{score, index, std::move(candidate)};
+      return;
+    }
+    l.best.push({score, index, std::move(candidate)});
+    if (l.best.size() > cap_) l.best.pop();
+  }
+
+  /// The list's decision for the page: its kept candidates in the file's order, the chosen one's
+  /// place among them (null when the list does not hold it) and the count before the cut.
+  json decision(std::size_t list, std::size_t after_scan) {
+    List& l = lists_[list];
+    json d = {{"after_scan", after_scan},
+              {"chosen", nullptr},
+              {"candidates", json::array()},
+              {"total", l.total}};
+    std::vector<Kept> kept;
+    if (l.chosen) {
+      kept.push_back(std::move(*l.chosen));
+      // NOTE: the chosen one counts against the cap: the page holds at most `cap` candidates.
+      if (l.best.size() == cap_) l.best.pop();
+    }
+    for (; !l.best.empty(); l.best.pop()) kept.push_back(l.best.top());
+    std::sort(kept.begin(), kept.end(),
+              [](const Kept& a, const Kept& b) { return a.index < b.index; });
+    for (Kept& k : kept) {
+      if (l.chosen && k.index == l.chosen->index) d["chosen"] = d["candidates"].size();
+      d["candidates"].push_back(std::move(k.candidate));
+    }
+    return d;
+  }
+
+  std::size_t total(std::size_t list) const {
+    const auto it = lists_.find(list);
+    return it == lists_.end() ? 0 : it->second.total;
+  }
+
+ private:
+  struct Kept {
+    double score;
+    std::size_t index;
+    json candidate;
+  };
+  /// Orders a heap with the worst on top: the lower score, then the later candidate.
+  struct Better {
+    bool operator()(const Kept& a, const Kept& b) const {
+      return a.score != b.score ? a.score > b.score : a.index < b.index;
+    }
+  };
+  struct List {
+    std::size_t total = 0;
+    std::optional<Kept> chosen;
+    std::priority_queue<Kept, std::vector<Kept>, Better> best;
+  };
+  std::size_t cap_;
+  std::function<bool(std::size_t, const json&)> chosen_;
+  std::map<std::size_t, List> lists_;
+};
+
+/// The page's notes on the candidates cut and on estimated gains.
+void note_candidates(const json& decisions, std::size_t cap, json& data) {
+  std::size_t cut = 0, most = 0, estimated = 0;
+  for (const json& d : decisions) {
+    cut += d["total"].get<std::size_t>() - d["candidates"].size();
+    most = std::max(most, d["total"].get<std::size_t>());
+    for (const json& c : d["candidates"]) estimated += c["estimated"].get<bool>() ? 1 : 0;
+  }
+  if (cut > 0) {
+    data["notes"].push_back(fmt::format(
+        "drawn: the chosen view and the best by score, {} a decision; {} candidates of up to {} "
+        "a decision not drawn (vantage view --max-candidates)",
+        cap, cut, most));
+  }
+  if (estimated > 0) {
+    data["notes"].push_back(fmt::format(
+        "{} candidates' gains are the screened search's estimates, not full evaluations",
+        estimated));
+  }
 }
 
-json explore_data(const fs::path& dir, std::size_t cap) {
+json explore_data(const fs::path& dir, const ViewerConfig& config) {
   const fs::path file = dir / "run.json";
-  const json doc = read_json(file);
+  const std::string text = read_results_file(file, config);
+  const json doc = parse_results(text, file, false, nullptr);
   const Field run(file, doc, "");
   const Field scene = run["scene"];
   const GridSpec spec = grid_spec(scene["grid"]);
@@ -227,18 +463,44 @@ json explore_data(const fs::path& dir, std::size_t cap) {
       {"source", "explore"},
       {"title", fmt::format("{} · {} · {}", scene["name"].text(), method, dir.filename().string())},
       {"office", scene.has("kind") && scene["kind"].text() == "office"},
+      {"method", method},
       {"grid", grid_json(spec)},
-      {"max_cells", cap},
+      {"max_cells", config.max_cells},
       {"notes", json::array()},
       {"scans", json::array()},
       {"decisions", json::array()}};
-  data["units"] = {{"gain", gain_unit_of(method)}, {"greedy", "cells"}};
-  if (run.has("gain_units")) {
-    data["units"] = {{"gain", run["gain_units"]["predicted_gain"].text()},
-                     {"greedy", run["gain_units"]["greedy_predicted_gain"].text()}};
+  std::string gain_unit = has_objective(method) ? "bits" : "cells";
+  if (run.has("gain_units")) gain_unit = run["gain_units"]["predicted_gain"].text();
+  if (const std::string u = unit_in(run, "predicted_gain"); !u.empty()) gain_unit = u;
+  std::string objective = run.has("objective") ? run["objective"].text() : std::string();
+  if (objective.empty() && run["config"].has("objective")) {
+    objective = run["config"]["objective"].text();
   }
-  add_sensor(scene, "run.json (made before vantage view)", data);
+  add_sensor(run, scene, "run.json", data);
   const Field scans = run["scans"];
+
+  // The candidates, a second time through the text: with the ranking and the views taken
+  // known, the best of each decision are kept.
+  std::vector<int> taken;
+  for (std::size_t i = 0; i < scans.size_of_array(); ++i) {
+    taken.push_back(scans[i]["view"].integer());
+  }
+  std::optional<Ranking> ranking;
+  CandidatePicker picker(config.max_candidates, [&](std::size_t list, const json& c) {
+    return list < taken.size() && c["view"] == taken[list];
+  });
+  parse_results(text, file, false, [&](std::size_t list, std::size_t j, json& c) {
+    const Field candidate(file, c, fmt::format("scans[{}].considered[{}]", list, j));
+    if (!ranking) ranking = ranking_of(run, method, objective, candidate.has("score"), gain_unit);
+    json drawn = candidate_of(candidate, "pose", "view", "greedy_predicted_gain", *ranking);
+    const double score = drawn["score"].get<double>();
+    picker.add(list, j, score, std::move(drawn));
+  });
+  if (!ranking) ranking = ranking_of(run, method, objective, false, gain_unit);
+  data["units"] = {
+      {"score", ranking->unit}, {"gain", gain_unit}, {"cells", "cells"}, {"greedy", "cells"}};
+  data["ranked_by"] = ranking->what;
+
   bool decisions_recorded = true;
   for (std::size_t i = 0; i < scans.size_of_array(); ++i) {
     const Field s = scans[i];
@@ -252,24 +514,23 @@ json explore_data(const fs::path& dir, std::size_t cap) {
     scan["actual_gain"] = s["actual_gain"].number();
     scan["unobserved"] = s["unobserved"].number();
     scan["coverage"] = s["coverage"].number();
-    const std::optional<double> predicted = s["predicted_gain"].optional_number();
-    scan["predicted_gain"] = predicted ? json(*predicted) : json(nullptr);
+    const auto optional = [&](std::string_view key) {
+      const std::optional<double> v = s.has(key) ? s[key].optional_number() : std::nullopt;
+      return v ? json(*v) : json(nullptr);
+    };
+    scan["predicted_gain"] = optional("predicted_gain");
+    scan["predicted_cells"] = optional("predicted_cells");
+    scan["greedy_predicted_gain"] = optional("greedy_predicted_gain");
     data["scans"].push_back(scan);
     if (i == 0) continue;
     if (!s.has("considered")) {
       decisions_recorded = false;
       continue;
     }
-    const Field considered = s["considered"];
-    json decision = {{"after_scan", i}, {"chosen", nullptr}, {"candidates", json::array()}};
-    for (std::size_t j = 0; j < considered.size_of_array(); ++j) {
-      const json candidate = candidate_of(considered[j], "pose", "view", "greedy_predicted_gain");
-      if (candidate["view"] == scan["view"]) decision["chosen"] = j;
-      decision["candidates"].push_back(candidate);
-    }
-    if (decision["chosen"].is_null() && !decision["candidates"].empty()) {
-      throw considered.error(fmt::format("scans[{}].considered does not hold the view taken ({})",
-                                         i, scan["view"].get<int>()));
+    json decision = picker.decision(i, i);
+    if (decision["chosen"].is_null() && picker.total(i) > 0) {
+      throw s["considered"].error(fmt::format(
+          "scans[{}].considered does not hold the view taken ({})", i, scan["view"].get<int>()));
     }
     data["decisions"].push_back(decision);
   }
@@ -278,42 +539,65 @@ json explore_data(const fs::path& dir, std::size_t cap) {
         "run.json does not record the candidates' gains (made before vantage view): only the "
         "views taken are shown");
   }
+  note_candidates(data["decisions"], config.max_candidates, data);
   data["notes"].push_back(
       "the map is the one after the last scan (map.bt); the slider steps through the views and "
       "decisions");
-  data.update(map_layers(dir / "map.bt", spec, cap));
+  data.update(map_layers(dir / "map.bt", spec, config));
   return data;
 }
 
-json plan_data(const fs::path& dir, std::size_t cap) {
+json plan_data(const fs::path& dir, const ViewerConfig& config) {
   const fs::path file = dir / "plan.json";
-  const json doc = read_json(file);
+  const std::string text = read_results_file(file, config);
+  const json doc = parse_results(text, file, true, nullptr);
   const Field plan(file, doc, "");
   const GridSpec spec = grid_spec(plan["map"]["grid"]);
   const std::string method = plan["method"].text();
+  std::string gain_unit = unit_in(plan, "predicted_gain");
+  if (gain_unit.empty()) gain_unit = has_objective(method) ? "bits" : "cells";
+  const std::string objective = plan.has("objective") ? plan["objective"].text() : "bits";
+  // The clouds mapped: plan.json's own count, else its map's (0 for a plan on --map alone).
+  json clouds = nullptr;
+  if (plan.has("clouds")) {
+    clouds = plan["clouds"].integer();
+  } else if (plan["map"].has("clouds")) {
+    clouds = plan["map"]["clouds"].integer();
+  }
   json data = {{"source", "plan"},
                {"title", fmt::format("plan · {} · {}", method, dir.filename().string())},
                {"office", false},
+               {"method", method},
                {"grid", grid_json(spec)},
-               {"max_cells", cap},
-               {"units", {{"gain", gain_unit_of(method)}, {"greedy", "cells"}}},
+               {"max_cells", config.max_cells},
+               {"clouds", clouds},
                {"notes", json::array()},
                {"scans", json::array()}};
-  add_sensor(plan, "plan.json", data);
+  add_sensor(plan, std::nullopt, "plan.json", data);
   const int best = plan["next_best_view"]["index"].integer();
-  const Field candidates = plan["candidates"];
-  json decision = {{"after_scan", 0}, {"chosen", nullptr}, {"candidates", json::array()}};
-  for (std::size_t j = 0; j < candidates.size_of_array(); ++j) {
-    const json candidate = candidate_of(candidates[j], "sensor", "index", "greedy_gain");
-    if (candidate["view"] == best) decision["chosen"] = j;
-    decision["candidates"].push_back(candidate);
-  }
+  CandidatePicker picker(config.max_candidates,
+                         [&](std::size_t, const json& c) { return c["view"] == best; });
+  // NOTE: plan.json of format 1 had no scores: its first candidate says which it is.
+  std::optional<Ranking> ranking;
+  parse_results(text, file, true, [&](std::size_t, std::size_t j, json& c) {
+    const Field candidate(file, c, fmt::format("candidates[{}]", j));
+    if (!ranking) ranking = ranking_of(plan, method, objective, candidate.has("score"), gain_unit);
+    json drawn = candidate_of(candidate, "sensor", "index", "greedy_gain", *ranking);
+    const double score = drawn["score"].get<double>();
+    picker.add(0, j, score, std::move(drawn));
+  });
+  if (!ranking) ranking = ranking_of(plan, method, objective, true, gain_unit);
+  data["units"] = {
+      {"score", ranking->unit}, {"gain", gain_unit}, {"cells", "cells"}, {"greedy", "cells"}};
+  data["ranked_by"] = ranking->what;
+  json decision = picker.decision(0, 0);
   if (decision["chosen"].is_null()) {
-    throw candidates.error(
+    throw plan["candidates"].error(
         fmt::format("candidates does not hold the next best view (index {})", best));
   }
   data["decisions"] = json::array({decision});
-  data.update(map_layers(dir / "map.bt", spec, cap));
+  note_candidates(data["decisions"], config.max_candidates, data);
+  data.update(map_layers(dir / "map.bt", spec, config));
   return data;
 }
 
@@ -371,6 +655,9 @@ std::string fill(std::string_view page,
 
 void ViewerConfig::validate() const {
   if (max_cells == 0) throw std::invalid_argument("ViewerConfig.max_cells must be positive");
+  if (max_candidates == 0) {
+    throw std::invalid_argument("ViewerConfig.max_candidates must be positive");
+  }
 }
 
 fs::path web_dir() {
@@ -388,9 +675,9 @@ std::string build_view_page(const fs::path& results_dir, const ViewerConfig& con
   }
   json data;
   if (fs::exists(results_dir / "run.json")) {
-    data = explore_data(results_dir, config.max_cells);
+    data = explore_data(results_dir, config);
   } else if (fs::exists(results_dir / "plan.json")) {
-    data = plan_data(results_dir, config.max_cells);
+    data = plan_data(results_dir, config);
   } else {
     throw std::runtime_error(fmt::format(
         "{}: neither an explore folder (run.json, map.bt) nor a plan folder (plan.json, map.bt)",

@@ -1,5 +1,6 @@
 #include "vantage/views/ring.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -22,6 +23,15 @@ void RingConfig::validate() const {
   for (const double yaw : yaw_offsets) {
     if (!std::isfinite(yaw)) throw std::invalid_argument("ring.yaw_offsets must be finite");
   }
+}
+
+RingConfig default_ring(const Eigen::AlignedBox3d& roi) {
+  RingConfig ring;
+  ring.center = roi.center();
+  ring.radius = std::max(1.0, 1.5 * 0.5 * roi.sizes().head<2>().norm());
+  ring.height = roi.max().z() + 0.3;
+  ring.positions = 10;
+  return ring;
 }
 
 Eigen::Isometry3d look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target) {

@@ -24,6 +24,11 @@ struct RingConfig {
   void validate() const;
 };
 
+/// The ring `vantage plan` puts around a region of interest when not told otherwise: centred on
+/// it, a radius of 1.5 half-diagonals of its footprint (at least 1 m), 0.3 m above its top, 10
+/// positions, the paper's yaw offsets.
+RingConfig default_ring(const Eigen::AlignedBox3d& roi);
+
 /// Pose of a sensor at `eye` looking at `target`, with the sensor's z axis as close to world +z
 /// as the direction allows (sensor frame: x forward, y left, z up).
 Eigen::Isometry3d look_at(const Eigen::Vector3d& eye, const Eigen::Vector3d& target);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands/commands.hpp"
+#include "commands/options.hpp"
 #include "shell.hpp"
 #include "vantage/experiment/viewer.hpp"
 #include "vantage/io/atomic_file.hpp"
@@ -43,6 +44,12 @@ void add_view_command(CLI::App& app) {
                   "cells drawn per layer (occupied, unobserved); more are thinned evenly")
       ->check(whole_in(1, std::int64_t{1} << 30))
       ->capture_default_str();
+  cmd->add_option("--max-candidates", o->viewer.max_candidates,
+                  "candidates drawn per decision: the chosen view and the best by score; the "
+                  "page says how many were cut")
+      ->check(whole_in(1, std::int64_t{1} << 30))
+      ->capture_default_str();
+  add_memory_option(*cmd, o->viewer.max_memory);
   cmd->callback([o] { run(*o); });
 }
 
