@@ -7,9 +7,11 @@
 // decision").
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <limits>
 #include <map>
 #include <memory>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,12 +20,16 @@
 #include "bench/octomap_gain.hpp"
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/gain/exact.hpp"
+#include "vantage/gain/hierarchy.hpp"
+#include "vantage/io/octomap_io.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/choose.hpp"
+#include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/world.hpp"
 #include "vantage/views/frontier.hpp"
 #include "vantage/views/ring.hpp"
+#include "vantage/views/sphere.hpp"
 
 namespace vantage::bench {
 namespace {
@@ -191,6 +197,101 @@ BENCHMARK(BM_Decision_Synthetic)
     ->ArgsProduct({{0, 1, 2, 3}, {2}})
     ->ArgNames({"search", "threads"})
     ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+// The decision at scale (issue 25): the default method (the survival reading, ranking by cells,
+// a = 0.995) on tabletop-4 with the ring after 1, 3 and 6 scans and with 200 and 1 000 sphere
+// views after one scan, and Latombe on OctoMap's FR-079 building with its frontier candidates;
+// the pruned search (docs/decision.md) against the exhaustive exact one where that finishes in
+// reasonable time. "same_choice" compares with the exhaustive exact choice (computed once, not
+// timed; for the survival reading and greedy by count_view_gains, bit for bit the same sums).
+
+/// tabletop-4 after one scan, `n` sphere views around the ring's centre at the ring's radius.
+DecisionState& sphere_state(int n) {
+  static std::map<int, DecisionState> states;
+  if (const auto it = states.find(n); it != states.end()) return it->second;
+  const sim::Scene scene = sim::load_scene("tabletop-4");
+  DecisionState state(table_top(4, 1).grid, kSurvivalAlpha);
+  SphereConfig sphere;
+  sphere.center = scene.ring.center;
+  sphere.radius = scene.ring.radius;
+  sphere.views = n;
+  for (const Eigen::Isometry3d& pose : sphere_poses(sphere)) {
+    state.candidates.push_back({Frustum(pose, scene.fov())});
+  }
+  return states.emplace(n, std::move(state)).first->second;
+}
+
+/// OctoMap's FR-079 building (tests/data/real/geb079.bt, 0.08 m cells) and four level views at
+/// every frontier region's centroid, as `vantage plan --map geb079.bt --candidates frontier`
+/// makes them; travel from the first region's centroid.
+DecisionState& fr079() {
+  static DecisionState state = [] {
+    OctomapImport imported = read_octomap(VANTAGE_REAL_DATA_DIR "/geb079.bt");
+    DecisionState s(std::move(imported.grid), kOfficeAlpha);
+    const std::vector<FrontierRegion> regions = frontier_regions(s.grid, FrontierConfig{});
+    const Eigen::Vector3d here = regions.front().centroid;
+    SensorFov fov;
+    for (const FrontierRegion& region : regions) {
+      for (int k = 0; k < 4; ++k) {
+        Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+        pose.linear() = Eigen::AngleAxisd(k * std::numbers::pi / 2.0, Eigen::Vector3d::UnitZ())
+                            .toRotationMatrix();
+        pose.translation() = region.centroid;
+        s.candidates.push_back({Frustum(pose, fov), (region.centroid - here).norm()});
+      }
+    }
+    return s;
+  }();
+  return state;
+}
+
+/// Arguments: case (0-2 tabletop-4's ring after 1, 3, 6 scans; 3, 4 sphere of 200, 1 000 views
+/// after one scan; 5 FR-079 frontier, Latombe), search (0 exhaustive exact, 3 pruned), threads.
+void BM_DecisionAtScale(benchmark::State& bench) {
+  const auto which = bench.range(0);
+  DecisionState& s = which <= 2   ? table_top(4, which == 0 ? 1 : (which == 1 ? 3 : 6))
+                     : which == 3 ? sphere_state(200)
+                     : which == 4 ? sphere_state(1000)
+                                  : fr079();
+  PlannerConfig config;
+  config.method = which == 5 ? PlannerMethod::kLatombe : PlannerMethod::kSurvival;
+  config.objective = GainObjective::kCells;
+  config.gain.alpha = which == 5 ? kOfficeAlpha : kSurvivalAlpha;
+  config.gain.num_threads = static_cast<int>(bench.range(2));
+  config.gain.evaluation = GainEvaluation::kExact;
+  config.search = bench.range(1) == 3 ? DecisionSearch::kPruned : DecisionSearch::kExhaustive;
+  Plan plan;
+  for (auto _ : bench) plan = plan_next_view(s.grid, s.candidates, config);
+  // The exhaustive exact choice, by the counts that equal exact_view_gains' bit for bit.
+  std::vector<Frustum> views;
+  for (const Candidate& c : s.candidates) views.push_back(c.view);
+  const GainMap map(s.grid);
+  const ClassBlocks blocks = summarize_classes(map, views);
+  GainConfig gain = config.gain;
+  gain.method = gain_method_of(config.method);
+  const bool greedy = gain.method == GainMethod::kGreedy;
+  const std::vector<ViewGain> exact = count_view_gains(
+      map, &blocks, views, greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain);
+  std::vector<double> scores;
+  for (std::size_t c = 0; c < exact.size(); ++c) {
+    const double factor = config.method == PlannerMethod::kLatombe
+                              ? std::exp(-config.lambda * s.candidates[c].travel)
+                              : 1.0;
+    scores.push_back((greedy ? exact[c].gain : exact[c].cells) * factor);
+  }
+  bench.counters["candidates"] = static_cast<double>(s.candidates.size());
+  bench.counters["evaluated"] = static_cast<double>(plan.evaluated);
+  bench.counters["same_choice"] = plan.best == choose_best(scores) ? 1.0 : 0.0;
+  bench.counters["prediction_ms"] = 1e3 * plan.prediction_seconds;
+  bench.counters["cells"] = static_cast<double>(s.grid.size());
+}
+BENCHMARK(BM_DecisionAtScale)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {3}, {2}})
+    ->ArgsProduct({{0, 1, 2, 5}, {0}, {2}})
+    ->ArgNames({"case", "search", "threads"})
+    ->Iterations(3)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -6,7 +6,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "vantage/gain/exact.hpp"
 #include "vantage/planner/choose.hpp"
+#include "vantage/planner/prune.hpp"
 #include "vantage/planner/screen.hpp"
 #include "vantage/util/text.hpp"
 
@@ -67,6 +69,69 @@ std::vector<double> gains_of(const OccupancyGrid& grid, const Views& views, Gain
     }
   }
   return values;
+}
+
+double since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Whether the pruned search serves the method (PlannerConfig::search).
+bool prunable(PlannerMethod method) {
+  return method == PlannerMethod::kSurvival || method == PlannerMethod::kProbabilistic ||
+         method == PlannerMethod::kGreedy || method == PlannerMethod::kLatombe;
+}
+
+/// The pruned search (prune.hpp) and, for the candidate it chooses, the full prediction.
+Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidates,
+                 const Views& views, const PlannerConfig& config,
+                 std::chrono::steady_clock::time_point start) {
+  GainConfig gain = config.gain;
+  gain.method = gain_method_of(config.method);
+  const bool counts = gain.method == GainMethod::kGreedy;
+  const detail::PrunedScore score = counts ? detail::PrunedScore::kGreedy
+                                           : (config.method == PlannerMethod::kSurvival &&
+                                                      config.objective == GainObjective::kCells
+                                                  ? detail::PrunedScore::kSurvivalCells
+                                                  : detail::PrunedScore::kBits);
+  std::vector<double> factor;
+  if (config.method == PlannerMethod::kLatombe) {
+    for (const Candidate& c : candidates) factor.push_back(std::exp(-config.lambda * c.travel));
+  }
+  detail::Pruning pruning =
+      detail::prune_candidates(grid, views.frusta, views.first, factor, gain, score);
+  Plan plan;
+  plan.best = pruning.best;
+  plan.gains = std::move(pruning.gains);
+  plan.estimated = std::move(pruning.estimated);
+  plan.scores = std::move(pruning.scores);
+  plan.evaluated = pruning.evaluated;
+  if (counts) {
+    for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
+  }
+  plan.seconds = since(start);
+  if (score == detail::PrunedScore::kSurvivalCells) {
+    // NOTE: the cells decided; the bits of eq. (4) are the chosen view's report, not the choice.
+    const auto predict_start = std::chrono::steady_clock::now();
+    const std::size_t b = plan.best;
+    const std::span<const Frustum> chosen(views.frusta.data() + views.first[b],
+                                          views.first[b + 1] - views.first[b]);
+    ViewGain full;
+    for (const ViewGain& g : exact_view_gains(grid, chosen, gain)) {
+      full.gain += g.gain;
+      full.cells += g.cells;
+      full.targets += g.targets;
+    }
+    plan.gains[b] = full;
+    plan.prediction_seconds = since(predict_start);
+  }
+  if (config.greedy_reference && !counts) {
+    const auto reference_start = std::chrono::steady_clock::now();
+    plan.greedy_gains =
+        views.sums(gains_of(grid, views, config.gain, GainMethod::kGreedy, GainObjective::kCells));
+    plan.reference_seconds = since(reference_start);
+    plan.seconds += plan.reference_seconds;  // as the other searches count it
+  }
+  return plan;
 }
 
 }  // namespace
@@ -137,14 +202,24 @@ PlannerMethod parse_planner_method(std::string_view name) {
 }
 
 std::string_view to_string(DecisionSearch search) {
-  return search == DecisionSearch::kScreened ? "screened" : "exhaustive";
+  switch (search) {
+    case DecisionSearch::kScreened:
+      return "screened";
+    case DecisionSearch::kPruned:
+      return "pruned";
+    case DecisionSearch::kExhaustive:
+      break;
+  }
+  return "exhaustive";
 }
 
 DecisionSearch parse_decision_search(std::string_view name) {
-  if (name == "exhaustive") return DecisionSearch::kExhaustive;
-  if (name == "screened") return DecisionSearch::kScreened;
+  for (const DecisionSearch s :
+       {DecisionSearch::kExhaustive, DecisionSearch::kScreened, DecisionSearch::kPruned}) {
+    if (name == to_string(s)) return s;
+  }
   throw std::invalid_argument(
-      cat("unknown decision search '", name, "' (expected exhaustive or screened)"));
+      cat("unknown decision search '", name, "' (expected exhaustive, screened or pruned)"));
 }
 
 std::string_view to_string(GainObjective objective) {
@@ -183,6 +258,9 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   // NOTE: the paper's model and the metrics score by something other than greedy's count, so
   // greedy's prediction on the same poses is the reference of their predictions (Fig. 11).
   const GainMethod scored_by = gain_method_of(config.method);
+  if (config.search == DecisionSearch::kPruned && prunable(config.method)) {
+    return plan_pruned(grid, candidates, views, config, start);
+  }
   if (probabilistic && config.search == DecisionSearch::kScreened) {
     // NOTE: only the argmax and its prediction are needed; a dropped candidate keeps its
     // estimate, flagged, and the greedy reference (if asked for) stays every candidate's.
@@ -202,6 +280,8 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
       if (plan.estimated[c]) full[c] = -std::numeric_limits<double>::infinity();
     }
     plan.best = choose_best(full);
+    plan.evaluated =
+        static_cast<std::size_t>(std::count(plan.estimated.begin(), plan.estimated.end(), false));
     if (config.greedy_reference) {
       const auto reference_start = std::chrono::steady_clock::now();
       plan.greedy_gains = views.sums(
@@ -251,6 +331,7 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
       plan.best = choose_best(plan.scores);
       break;
   }
+  plan.evaluated = candidates.size();
   plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return plan;
 }

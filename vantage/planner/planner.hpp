@@ -62,11 +62,17 @@ enum class DecisionSearch {
   kExhaustive,  ///< every candidate evaluated in full (gain.evaluation)
   /// Sampled estimates drop the candidates that cannot win; the rest are evaluated in full and
   /// the best of them is chosen. Plan::gains of a dropped candidate is its estimate.
+  /// Statistical: it may miss the best candidate (docs/decision.md).
   kScreened,
+  /// Upper bounds from the map's block summary order the candidates; they are evaluated exactly
+  /// best bound first until no bound left can beat the best score. The exhaustive exact search's
+  /// choice, proven; Plan::gains of a candidate never evaluated is its bound. Survival,
+  /// probabilistic, greedy and Latombe; the others search exhaustively.
+  kPruned,
 };
 
 std::string_view to_string(DecisionSearch search);
-/// Parses "exhaustive" or "screened"; throws std::invalid_argument naming the value.
+/// Parses "exhaustive", "screened" or "pruned"; throws std::invalid_argument naming the value.
 DecisionSearch parse_decision_search(std::string_view name);
 
 /// Settings of the decision.
@@ -111,6 +117,10 @@ struct Plan {
   /// ... of which evaluating the greedy reference (PlannerConfig::greedy_reference), which the
   /// decision itself does not need [s]
   double reference_seconds = 0.0;
+  /// The pruned search: the chosen candidate's full prediction (gain in bits beside the cells
+  /// the survival reading ranks by), evaluated after the decision and not part of `seconds` [s]
+  double prediction_seconds = 0.0;
+  std::size_t evaluated = 0;  ///< candidates evaluated in full (all but the estimated ones)
 };
 
 /// Scores the candidates and chooses one. Ties go to the lower index; kRandom uses `seed` and

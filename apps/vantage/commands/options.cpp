@@ -32,9 +32,11 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
       ->capture_default_str();
   if (search_option) {
     cmd.add_option("--search", search,
-                   "how the probabilistic method searches the candidates: screened (sampled "
-                   "estimates drop the views that cannot win, the rest are evaluated in full; "
-                   "docs/decision.md) or exhaustive (every view in full)")
+                   "how the candidates are searched (docs/decision.md): screened (statistical: "
+                   "sampled estimates drop the views that cannot win; survival and "
+                   "probabilistic), pruned (exact: upper bounds from the map's blocks skip them; "
+                   "survival, probabilistic, greedy and latombe) or exhaustive (every view in "
+                   "full)")
         ->capture_default_str();
   }
   cmd.add_option("--epsilon", epsilon, "early stop of a ray's model, in [0, 0.5)")
