@@ -90,6 +90,62 @@ TEST(Bench, RefusesToResumeAFolderWithOtherSettings) {
                std::invalid_argument);
 }
 
+// issue 27: merge never mixes, overwrites or replaces unseen, and takes only trial files.
+TEST(Bench, MergeRefusesWhatWouldMixOrReplace) {
+  BenchConfig config = tiny_sweep();
+  config.methods = {PlannerMethod::kRandom};
+  config.trials = 1;
+  config.jobs = 1;
+  const auto a = testing::fresh_dir("bench-merge-a");
+  run_bench(a, config);
+  const auto key = bench_trials(config).front().key();
+  const auto merged = testing::fresh_dir("bench-merge-out");
+  merge_bench({a}, merged);
+  const std::string settings = testing::read_text(merged / "sweep.json");
+
+  // A target of another sweep's settings: refused, its sweep.json kept.
+  BenchConfig other = config;
+  other.exploration.seed += 1;
+  const auto b = testing::fresh_dir("bench-merge-b");
+  run_bench(b, other);
+  EXPECT_THROW(merge_bench({b}, merged), std::invalid_argument);
+  EXPECT_EQ(testing::read_text(merged / "sweep.json"), settings);
+
+  // A trial of the same name with other rows in the target: refused, not replaced.
+  const auto c = testing::fresh_dir("bench-merge-c");
+  std::filesystem::copy(
+      a, c,
+      std::filesystem::copy_options::recursive | std::filesystem::copy_options::overwrite_existing);
+  std::string rows = testing::read_text(c / "trials" / (key + ".csv"));
+  rows.replace(rows.find(",1,"), 3, ",7,");  // another trial number: other rows, same key
+  testing::write_text(c / "trials" / (key + ".csv"), rows);
+  EXPECT_THROW(merge_bench({c}, merged), std::runtime_error);
+
+  // A folder without settings, and a trial file that is no trial: refused, naming the file.
+  const auto d = testing::fresh_dir("bench-merge-d");
+  std::filesystem::create_directories(d / "trials");
+  testing::write_text(d / "trials" / "x.csv", "this,is\nnot a trial\n");
+  EXPECT_THROW(merge_bench({a, d}, testing::fresh_dir("bench-merge-e")), std::runtime_error);
+  testing::write_text(d / "sweep.json", "{not json");
+  try {
+    merge_bench({a, d}, testing::fresh_dir("bench-merge-g"));
+    FAIL() << "merged a folder whose sweep.json is not JSON";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("sweep.json: not a sweep settings file: not valid JSON"),
+              std::string::npos)
+        << e.what();
+    EXPECT_EQ(std::string(e.what()).find("json.exception"), std::string::npos) << e.what();
+  }
+  testing::write_text(d / "sweep.json", settings);
+  try {
+    merge_bench({a, d}, testing::fresh_dir("bench-merge-f"));
+    FAIL() << "merged a trial file that is not one";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("x.csv: line 1 holds 2 fields"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Bench, RejectsBadShardsAndUnknownScenes) {
   BenchConfig config = tiny_sweep();
   config.shard_count = 2;
