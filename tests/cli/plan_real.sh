@@ -22,8 +22,8 @@ resolution: 0.01
 options: {table_segmentation: true, skip_non_finite: true}
 YAML
 }
-manifest milk milk_cartoon_all_small_clorox.pcd \
-  "intrinsics: {fx: 525.0, fy: 525.0, cx: 319.5, cy: 239.5, width: 640, height: 480}"
+cp "$data/milk.yaml" "$work/milk.yaml"  # the README's worked example, as shipped
+sed -i "s|file: milk_cartoon|file: $data/milk_cartoon|" "$work/milk.yaml"
 manifest mug table_scene_mug_stereo_textured.pcd "fov_deg: {horizontal: 60, vertical: 45}"
 
 for name in milk mug; do
