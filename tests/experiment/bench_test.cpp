@@ -7,6 +7,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "test_scene.hpp"
 
@@ -144,6 +145,30 @@ TEST(Bench, MergeRefusesWhatWouldMixOrReplace) {
     EXPECT_NE(std::string(e.what()).find("x.csv: line 1 holds 2 fields"), std::string::npos)
         << e.what();
   }
+}
+
+// issue 27: a sweep without --alphas and --objectives runs each method as explore does (one
+// source of the defaults): the survival reading fitted online ranking by cells, the paper's
+// method at the paper's a ranking by bits.
+TEST(Bench, EachMethodRunsItsOwnDefaultsWhenNoneAreGiven) {
+  BenchConfig config = tiny_sweep();
+  config.methods = {PlannerMethod::kSurvival, PlannerMethod::kProbabilistic,
+                    PlannerMethod::kGreedy};
+  config.trials = 1;
+  config.alphas.clear();
+  config.objectives.clear();
+  config.validate();
+  const std::vector<TrialSpec> trials = bench_trials(config);
+  ASSERT_EQ(trials.size(), 3u);
+  EXPECT_EQ(trials[0].method, PlannerMethod::kSurvival);
+  EXPECT_EQ(trials[0].alpha, default_alpha_setting(PlannerMethod::kSurvival, kTableTopAlpha));
+  EXPECT_TRUE(trials[0].alpha.automatic);
+  EXPECT_EQ(trials[0].alpha.value, kSurvivalAlpha);
+  EXPECT_EQ(trials[0].objective, GainObjective::kCells);
+  EXPECT_EQ(trials[1].alpha, (AlphaSetting{false, kTableTopAlpha}));
+  EXPECT_EQ(trials[1].objective, GainObjective::kBits);
+  EXPECT_NE(trials[0].key().find("__survival__aauto__cells__t0"), std::string::npos)
+      << trials[0].key();
 }
 
 TEST(Bench, RejectsBadShardsAndUnknownScenes) {
