@@ -80,7 +80,11 @@ grep -q "warning: $work/milk/map.ot: dropped [1-9][0-9]* of its [0-9]* known vox
 # FR-079: frontier views at a ground robot's sensor height, each in known free space.
 "$vantage" plan --map "$data/geb079.bt" --candidates frontier --sensor-height 0.5 --threads 2 \
   --no-plots --out "$work/fr079" >"$work/fr079.txt"
-grep -q "grid of" "$work/fr079.txt" || fail "fr079: the grid loaded is not said"
+grep -q "grid of 487 x 187 x 39 cells at 0.08 m" "$work/fr079.txt" || fail "fr079: the grid loaded is not said"
+grep -q "sensor: 57.0 x 43.0 deg, 0.5-3.5 m (assumed" "$work/fr079.txt" ||
+  fail "fr079: the sensor assumed is not said"
+grep -q "frontier: [0-9]* regions, [0-9]* views ([0-9]* dropped: their place is not known free)" \
+  "$work/fr079.txt" || fail "fr079: the frontier views dropped are not said"
 /usr/bin/python3 - "$work/fr079/plan.json" <<'PY'
 import json, sys
 plan = json.load(open(sys.argv[1]))
