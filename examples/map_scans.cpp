@@ -24,9 +24,9 @@ int main(int argc, char** argv) try {
 
   // Every cloud of the manifest, read from disk and added with Mapper::add_scan at its pose.
   Mapper mapper(manifest.grid, mapper_config_for(manifest));
-  map_recorded(manifest, mapper, [&](std::size_t i, const MapperUpdate& update) {
-    std::printf("cloud %zu: %zu points, %zu above the table integrated\n", i + 1, update.points,
-                update.object_points);
+  map_recorded(manifest, mapper, [&](const RecordedCloud& cloud) {
+    std::printf("cloud %zu: %zu points, %zu above the table integrated\n", cloud.index + 1,
+                cloud.update.points, cloud.update.object_points);
   });
   const CellCounts counts = mapper.grid().counts();
   std::printf("map: %zu unobserved, %zu free, %zu occupied cells\n", counts.unobserved, counts.free,

@@ -53,6 +53,27 @@ void check_commands(const CLI::App& app, int argc, char** argv) {
   }
 }
 
+/// Refuses an empty value (`--out ""`, `--alpha=`): CLI11 takes it as given, and the commands
+/// would read it as "not given" and fall back to a default.
+void check_empty_values(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view token = argv[i];
+    const std::string_view before = i > 1 ? std::string_view(argv[i - 1]) : std::string_view();
+    if (token.empty()) {
+      throw vantage::cli::UsageError(
+          before.starts_with('-')
+              ? fmt::format("{}: the value is empty (give one, or leave the option out)",
+                            vantage::printable(before, 60))
+              : std::string("an argument is empty (give a value)"));
+    }
+    if (token.starts_with("--") && token.ends_with('=')) {
+      throw vantage::cli::UsageError(
+          fmt::format("{}: the value is empty (give one, or leave the option out)",
+                      vantage::printable(token.substr(0, token.size() - 1), 60)));
+    }
+  }
+}
+
 /// CLI11's message for a parse error, said the way the rest of the tool says things.
 std::string parse_message(const CLI::ParseError& e, const CLI::App& app) {
   if (dynamic_cast<const CLI::RequiredError*>(&e) != nullptr &&
@@ -82,6 +103,7 @@ int main(int argc, char** argv) {
   vantage::perception::silence_pcl_console();  // failures are reported per scan, in one line
   try {
     check_commands(app, argc, argv);
+    check_empty_values(argc, argv);
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -57,13 +58,14 @@ int report_error(std::string_view message, int code) {
 
 void warn(std::string_view message) { logger().warn(one_line(message)); }
 
-CLI::Validator number_in(double lo, double hi, bool open_low) {
-  const std::string range = fmt::format("{}{}, {}]", open_low ? "(" : "[", lo, hi);
+CLI::Validator number_in(double lo, double hi, bool open_low, bool open_high) {
+  const std::string range =
+      fmt::format("{}{}, {}{}", open_low ? "(" : "[", lo, hi, open_high ? ")" : "]");
   return CLI::Validator(
       [=](std::string& text) -> std::string {
         const std::optional<double> value = parse_number(text);
         if (!value || !std::isfinite(*value) || *value < lo || (open_low && *value == lo) ||
-            *value > hi) {
+            *value > hi || (open_high && *value == hi)) {
           return fmt::format("must be a number in {}, got '{}'", range, printable(text, 40));
         }
         return {};
@@ -186,6 +188,11 @@ Eigen::Isometry3d parse_pose(std::string_view text, std::string_view what) {
       throw UsageError(fmt::format("{}: {} = {} m lies beyond {} m of the origin", what, "xyz"[i],
                                    v[i], kMaxWorldCoordinate));
     }
+    if (i >= 3 && std::abs(v[i]) > sim::kMaxAngleDegrees) {
+      throw UsageError(fmt::format("{}: {} = {} deg lies outside [-{}, {}]", what,
+                                   std::array{"roll", "pitch", "yaw"}[i - 3], v[i],
+                                   sim::kMaxAngleDegrees, sim::kMaxAngleDegrees));
+    }
   }
   return sim::pose_from_xyz_rpy({v[0], v[1], v[2]}, {deg2rad(v[3]), deg2rad(v[4]), deg2rad(v[5])});
 }
@@ -195,11 +202,17 @@ Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& R) {
           std::atan2(R(1, 0), R(0, 0))};
 }
 
+double unsigned_zero(double value, int decimals) {
+  return std::abs(value) < 0.5 * std::pow(10.0, -decimals) ? 0.0 : value;
+}
+
 std::string describe_pose(const Eigen::Isometry3d& T) {
   const Eigen::Vector3d t = T.translation();
   const Eigen::Vector3d rpy = roll_pitch_yaw(T.linear()) * (180.0 / std::numbers::pi);
-  return fmt::format("x {:.4f} y {:.4f} z {:.4f} m, roll {:.3f} pitch {:.3f} yaw {:.3f} deg", t.x(),
-                     t.y(), t.z(), rpy.x(), rpy.y(), rpy.z());
+  return fmt::format("x {:.4f} y {:.4f} z {:.4f} m, roll {:.3f} pitch {:.3f} yaw {:.3f} deg",
+                     unsigned_zero(t.x(), 4), unsigned_zero(t.y(), 4), unsigned_zero(t.z(), 4),
+                     unsigned_zero(rpy.x(), 3), unsigned_zero(rpy.y(), 3),
+                     unsigned_zero(rpy.z(), 3));
 }
 
 std::filesystem::path scripts_dir() {

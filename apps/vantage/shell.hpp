@@ -48,9 +48,9 @@ int report_error(std::string_view message, int code);
 /// Prints `vantage: warning: <message>` on stderr.
 void warn(std::string_view message);
 
-/// An option's value must be a finite number in [lo, hi], or (lo, hi] with `open_low`: refused
-/// by CLI11 at parse time (exit code kExitUsage) with the option named.
-CLI::Validator number_in(double lo, double hi, bool open_low = false);
+/// An option's value must be a finite number in [lo, hi], or (lo, hi] with `open_low`, [lo, hi)
+/// with `open_high`: refused by CLI11 at parse time (exit code kExitUsage) with the option named.
+CLI::Validator number_in(double lo, double hi, bool open_low = false, bool open_high = false);
 
 /// An option's value must be a whole number in [lo, hi].
 CLI::Validator whole_in(std::int64_t lo, std::int64_t hi);
@@ -89,6 +89,10 @@ Eigen::Isometry3d parse_pose(std::string_view text, std::string_view what);
 
 /// Roll, pitch and yaw of a rotation, the inverse of parse_pose's angles [rad].
 Eigen::Vector3d roll_pitch_yaw(const Eigen::Matrix3d& R);
+
+/// `value`, or 0 when it prints as zero at `decimals` places: no "-0.0" for a value a hair
+/// below zero (a yaw of -1e-15 deg).
+double unsigned_zero(double value, int decimals);
 
 /// "x 1.0000 y 0.0000 z 1.1000 m, roll 0.000 pitch 0.000 yaw 90.000 deg".
 std::string describe_pose(const Eigen::Isometry3d& T);

@@ -7,6 +7,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "test_scene.hpp"
 
@@ -88,6 +89,86 @@ TEST(Bench, RefusesToResumeAFolderWithOtherSettings) {
   run_bench(other, longer);
   EXPECT_THROW(merge_bench({dir, other}, testing::fresh_dir("bench-settings-merged")),
                std::invalid_argument);
+}
+
+// issue 27: merge never mixes, overwrites or replaces unseen, and takes only trial files.
+TEST(Bench, MergeRefusesWhatWouldMixOrReplace) {
+  BenchConfig config = tiny_sweep();
+  config.methods = {PlannerMethod::kRandom};
+  config.trials = 1;
+  config.jobs = 1;
+  const auto a = testing::fresh_dir("bench-merge-a");
+  run_bench(a, config);
+  const auto key = bench_trials(config).front().key();
+  const auto merged = testing::fresh_dir("bench-merge-out");
+  merge_bench({a}, merged);
+  const std::string settings = testing::read_text(merged / "sweep.json");
+
+  // A target of another sweep's settings: refused, its sweep.json kept.
+  BenchConfig other = config;
+  other.exploration.seed += 1;
+  const auto b = testing::fresh_dir("bench-merge-b");
+  run_bench(b, other);
+  EXPECT_THROW(merge_bench({b}, merged), std::invalid_argument);
+  EXPECT_EQ(testing::read_text(merged / "sweep.json"), settings);
+
+  // A trial of the same name with other rows in the target: refused, not replaced.
+  const auto c = testing::fresh_dir("bench-merge-c");
+  std::filesystem::copy(
+      a, c,
+      std::filesystem::copy_options::recursive | std::filesystem::copy_options::overwrite_existing);
+  std::string rows = testing::read_text(c / "trials" / (key + ".csv"));
+  rows.replace(rows.find(",1,"), 3, ",7,");  // another trial number: other rows, same key
+  testing::write_text(c / "trials" / (key + ".csv"), rows);
+  EXPECT_THROW(merge_bench({c}, merged), std::runtime_error);
+
+  // A folder without settings, and a trial file that is no trial: refused, naming the file.
+  const auto d = testing::fresh_dir("bench-merge-d");
+  std::filesystem::create_directories(d / "trials");
+  testing::write_text(d / "trials" / "x.csv", "this,is\nnot a trial\n");
+  EXPECT_THROW(merge_bench({a, d}, testing::fresh_dir("bench-merge-e")), std::runtime_error);
+  testing::write_text(d / "sweep.json", "{not json");
+  try {
+    merge_bench({a, d}, testing::fresh_dir("bench-merge-g"));
+    FAIL() << "merged a folder whose sweep.json is not JSON";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("sweep.json: not a sweep settings file: not valid JSON"),
+              std::string::npos)
+        << e.what();
+    EXPECT_EQ(std::string(e.what()).find("json.exception"), std::string::npos) << e.what();
+  }
+  testing::write_text(d / "sweep.json", settings);
+  try {
+    merge_bench({a, d}, testing::fresh_dir("bench-merge-f"));
+    FAIL() << "merged a trial file that is not one";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("x.csv: line 1 holds 2 fields"), std::string::npos)
+        << e.what();
+  }
+}
+
+// issue 27: a sweep without --alphas and --objectives runs each method as explore does (one
+// source of the defaults): the survival reading fitted online ranking by cells, the paper's
+// method at the paper's a ranking by bits.
+TEST(Bench, EachMethodRunsItsOwnDefaultsWhenNoneAreGiven) {
+  BenchConfig config = tiny_sweep();
+  config.methods = {PlannerMethod::kSurvival, PlannerMethod::kProbabilistic,
+                    PlannerMethod::kGreedy};
+  config.trials = 1;
+  config.alphas.clear();
+  config.objectives.clear();
+  config.validate();
+  const std::vector<TrialSpec> trials = bench_trials(config);
+  ASSERT_EQ(trials.size(), 3u);
+  EXPECT_EQ(trials[0].method, PlannerMethod::kSurvival);
+  EXPECT_EQ(trials[0].alpha, default_alpha_setting(PlannerMethod::kSurvival, kTableTopAlpha));
+  EXPECT_TRUE(trials[0].alpha.automatic);
+  EXPECT_EQ(trials[0].alpha.value, kSurvivalAlpha);
+  EXPECT_EQ(trials[0].objective, GainObjective::kCells);
+  EXPECT_EQ(trials[1].alpha, (AlphaSetting{false, kTableTopAlpha}));
+  EXPECT_EQ(trials[1].objective, GainObjective::kBits);
+  EXPECT_NE(trials[0].key().find("__survival__aauto__cells__t0"), std::string::npos)
+      << trials[0].key();
 }
 
 TEST(Bench, RejectsBadShardsAndUnknownScenes) {

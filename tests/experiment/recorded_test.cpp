@@ -176,6 +176,9 @@ TEST(Recorded, NanPixelsFailUnlessTheManifestSkipsThem) {
     FAIL() << "a NaN point was accepted without skip_non_finite";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("organized.pcd"), std::string::npos) << e.what();
+    // issue 27: the message points to the manifest's switch.
+    EXPECT_NE(std::string(e.what()).find("set options.skip_non_finite: true"), std::string::npos)
+        << e.what();
   }
 
   manifest.options.skip_non_finite = true;
@@ -183,7 +186,9 @@ TEST(Recorded, NanPixelsFailUnlessTheManifestSkipsThem) {
   const Manifest read = read_manifest(dir);
   EXPECT_TRUE(read.options.skip_non_finite);
   Mapper skipped(scene.grid, config);
-  map_recorded(read, skipped);
+  std::size_t non_finite = 0;
+  map_recorded(read, skipped, [&](const RecordedCloud& c) { non_finite += c.non_finite_skipped; });
+  EXPECT_EQ(non_finite, (scan.points_sensor.size() + 9) / 10);  // the callback counts them
   Mapper direct(scene.grid, config);
   direct.add_scan(scan.points_sensor, scan.T_world_sensor_true, scan.fov);
   ASSERT_EQ(skipped.grid().spec().num_cells(), direct.grid().spec().num_cells());

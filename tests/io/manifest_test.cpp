@@ -288,6 +288,39 @@ TEST_F(ManifestTest, APcdViewpointIsTheCloudsPoseWhenTheManifestGivesNone) {
   }
 }
 
+// issue 27: a frame from a depth camera on no robot has no pose; with table segmentation on, the
+// pose comes from the table when the cloud is read. Only one cloud may lack one.
+TEST_F(ManifestTest, ACloudWithoutAPoseTakesOneFromTheTable) {
+  const std::string clouds = "clouds:\n  - file: scans/a.pcd\n";
+  const std::string options = "options: {table_segmentation: true, table_height: 0.9}\n";
+  const Manifest m = read_manifest(write(kSensor + kRegion + clouds + options));
+  ASSERT_EQ(m.clouds.size(), 1u);
+  EXPECT_TRUE(m.clouds[0].pose_from_table);
+  EXPECT_FALSE(m.clouds[0].pose_from_viewpoint);
+  EXPECT_EQ(m.options.table_height, 0.9);
+  EXPECT_EQ(
+      read_manifest(write(kSensor + kRegion + clouds + "options: {table_segmentation: true}\n"))
+          .options.table_height,
+      0.75);
+  // PCL's stereo test frame: a half turn about x at the origin is no pose either.
+  test::write_file(dir_ / "scans/a.pcd", pcd_with_viewpoint("0 0 0 0 1 0 0"));
+  EXPECT_TRUE(read_manifest(write(kSensor + kRegion + clouds + options)).clouds[0].pose_from_table);
+  // Written back without a pose, it is estimated again.
+  write_manifest(dir_ / "back.yaml", m);
+  const Manifest back = read_manifest(dir_ / "back.yaml");
+  EXPECT_TRUE(back.clouds[0].pose_from_table);
+  EXPECT_EQ(back.options, m.options);
+  // Two clouds without poses: a table can place only one.
+  test::write_file(dir_ / "scans/c.pcd", pcd_with_viewpoint());
+  expect_error(kSensor + kRegion + clouds + "  - file: scans/c.pcd\n" + options, "clouds[1].pose",
+               "a.pcd and c.pcd have no pose, and a pose from the table can place only one cloud");
+  expect_error(kSensor + kRegion + clouds + "options: {table_height: .nan}\n",
+               "options.table_height", "is NaN");
+  // Without segmentation the error says how to get one.
+  expect_error(kSensor + kRegion + clouds, "clouds[0].pose",
+               "options.table_segmentation: true for a pose from the table");
+}
+
 TEST_F(ManifestTest, FolderWithoutPoses) {
   write(kSensor + kRegion, "scans/manifest.yaml");
   try {

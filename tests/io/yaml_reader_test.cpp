@@ -103,6 +103,15 @@ TEST(YamlReader, EveryMistakeIsOneLineWithFileLineAndKey) {
   }
 }
 
+// issue 27: 100,000 nested brackets are said as what they are, not yaml-cpp's "bad file".
+TEST(YamlReader, DeepNestingSaysSo) {
+  const std::string deep = "a: " + std::string(100000, '[') + std::string(100000, ']') + "\n";
+  const std::string message = error_of([&] { parse_yaml(deep, "deep.yaml"); });
+  EXPECT_NE(message.find("deep.yaml:1: not valid YAML here: nested more than"), std::string::npos)
+      << message;
+  EXPECT_EQ(message.find("bad file"), std::string::npos) << message;
+}
+
 TEST(YamlReader, AliasesStayShared) {
   // "Billion laughs": ten levels of ten aliases each would expand to 10^10 items.
   std::ostringstream text;

@@ -74,7 +74,33 @@ TEST_F(MeshFiles, MissingFileIsNamed) {
     FAIL() << "no exception";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("nowhere.ply: no such file"), std::string::npos)
+        << e.what();
+  }
+}
+
+// issue 27: a folder or a FIFO is said as what it is, not "not found"; assimp's internals stay
+// inside ("aiScene::mNumMeshes is 0").
+TEST_F(MeshFiles, PathKindsAndEmptyMeshesAreSaidPlainly) {
+  const fs::path folder = dir_ / "folder.obj";
+  fs::create_directories(folder);
+  try {
+    load_mesh(folder);
+    FAIL() << "a folder was read as a mesh";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("folder.obj: is a directory, not a file"),
+              std::string::npos)
+        << e.what();
+  }
+  const fs::path empty = dir_ / "empty.obj";
+  std::ofstream(empty) << "# no vertices, no faces\n";
+  try {
+    load_mesh(empty);
+    FAIL() << "an empty OBJ was read as a mesh";
+  } catch (const std::runtime_error& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find("aiScene"), std::string::npos) << message;
+    EXPECT_NE(message.find("empty.obj"), std::string::npos) << message;
   }
 }
 

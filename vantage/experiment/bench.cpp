@@ -66,12 +66,19 @@ nlohmann::json trial_settings(const BenchConfig& config) {
 nlohmann::json read_settings(const fs::path& dir) {
   const fs::path path = dir / kSettingsFile;
   if (!fs::exists(path)) return nullptr;
+  nlohmann::json settings;
   try {
-    return nlohmann::json::parse(read_file(path));
-  } catch (const nlohmann::json::exception& e) {
-    throw std::runtime_error(
-        fmt::format("{}: not a sweep settings file: {}", path.string(), e.what()));
+    settings = nlohmann::json::parse(read_file(path));
+  } catch (const nlohmann::json::parse_error& e) {
+    // NOTE: said without the library's "[json.exception.parse_error.101]" prefix.
+    throw std::runtime_error(fmt::format("{}: not a sweep settings file: not valid JSON at byte {}",
+                                         path.string(), e.byte));
   }
+  if (!settings.is_object()) {
+    throw std::runtime_error(
+        fmt::format("{}: not a sweep settings file: not a JSON object", path.string()));
+  }
+  return settings;
 }
 
 /// Throws std::invalid_argument naming the first setting in which `found` (from `where`) differs
@@ -142,13 +149,14 @@ std::string TrialSpec::key() const {
 void BenchConfig::validate() const {
   if (scenes.empty()) throw std::invalid_argument("bench.scenes must not be empty");
   if (methods.empty()) throw std::invalid_argument("bench.methods must not be empty");
-  if (alphas.empty()) throw std::invalid_argument("bench.alphas must not be empty");
   for (const AlphaSetting& a : alphas) {
     if (!(a.value > 0.0 && a.value <= 1.0)) {
       throw std::invalid_argument(fmt::format("bench.alphas: {} is not in (0, 1]", a.value));
     }
   }
-  if (objectives.empty()) throw std::invalid_argument("bench.objectives must not be empty");
+  if (!(paper_alpha > 0.0 && paper_alpha <= 1.0)) {
+    throw std::invalid_argument(fmt::format("bench.paper_alpha: {} is not in (0, 1]", paper_alpha));
+  }
   if (trials < 1)
     throw std::invalid_argument(fmt::format("bench.trials must be >= 1, got {}", trials));
   if (jobs < 1) throw std::invalid_argument(fmt::format("bench.jobs must be >= 1, got {}", jobs));
@@ -166,6 +174,7 @@ BenchConfig office_bench_config() {
   config.methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy, PlannerMethod::kLatombe,
                     PlannerMethod::kYamauchi, PlannerMethod::kRandom};
   config.alphas = {{false, kOfficeAlpha}, {false, 0.999}};
+  config.paper_alpha = kOfficeAlpha;
   config.trials = 5;
   config.exploration.scans = 20;
   return config;
@@ -177,10 +186,17 @@ std::vector<TrialSpec> bench_trials(const BenchConfig& config) {
     const std::string scene = sim::load_scene(source).name;
     for (const PlannerMethod method : config.methods) {
       const bool probabilistic = has_observability(method);
-      const std::vector<AlphaSetting> alphas =
-          probabilistic ? config.alphas : std::vector<AlphaSetting>{config.alphas.front()};
+      // NOTE: a method without a (greedy, ...) runs once; its alpha and objective are unused.
+      const AlphaSetting own_alpha = default_alpha_setting(method, config.paper_alpha);
+      const std::vector<AlphaSetting> alphas = probabilistic && !config.alphas.empty()
+                                                   ? config.alphas
+                                                   : std::vector<AlphaSetting>{own_alpha};
       const std::vector<GainObjective> objectives =
-          probabilistic ? config.objectives : std::vector<GainObjective>{config.objectives.front()};
+          probabilistic && !config.objectives.empty()
+              ? config.objectives
+              : std::vector<GainObjective>{probabilistic || config.objectives.empty()
+                                               ? natural_objective(method)
+                                               : config.objectives.front()};
       for (const AlphaSetting& alpha : alphas) {
         for (const GainObjective objective : objectives) {
           for (int t = 0; t < config.trials; ++t) {
@@ -261,36 +277,74 @@ void write_bench_csv(const fs::path& dir) {
   write_atomically(dir / "scans.csv", csv);
 }
 
+/// Throws std::runtime_error naming `path` unless `rows` are rows of scans.csv: at least one,
+/// each with the header's number of fields.
+void require_trial_rows(const std::string& rows, const fs::path& path) {
+  const auto fields = std::count(kScansCsvHeader.begin(), kScansCsvHeader.end(), ',') + 1;
+  std::istringstream lines(rows);
+  std::string line;
+  std::size_t n = 0;
+  while (std::getline(lines, line)) {
+    ++n;
+    const auto found = std::count(line.begin(), line.end(), ',') + 1;
+    if (found != fields) {
+      throw std::runtime_error(fmt::format(
+          "{}: line {} holds {} fields, not the {} of a scans.csv row: not a trial file",
+          path.string(), n, found, fields));
+    }
+  }
+  if (n == 0) throw std::runtime_error(fmt::format("{}: empty, not a trial file", path.string()));
+}
+
 void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
   if (dirs.empty()) throw std::invalid_argument("bench merge needs at least one folder");
+  // NOTE: the target takes part like a source: its settings and its trials must agree with what
+  // is merged into it, so nothing of it is replaced unseen.
+  std::vector<fs::path> all = dirs;
+  std::error_code error;
+  const bool target_is_source = std::any_of(dirs.begin(), dirs.end(), [&](const fs::path& dir) {
+    return fs::equivalent(dir, out, error);
+  });
+  if (!target_is_source && fs::exists(out)) all.push_back(out);
   std::map<std::string, std::string> trials;
-  nlohmann::json settings = nullptr;  // of the first folder that has them; all must agree
-  for (const fs::path& dir : dirs) {
-    if (const nlohmann::json found = read_settings(dir); !found.is_null()) {
-      if (settings.is_null()) {
-        settings = found;
-      } else {
-        require_same_settings(found, settings, dir / kSettingsFile,
-                              "only folders run with the same settings can be merged");
-      }
+  nlohmann::json settings = nullptr;  // of the first folder; all must agree
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    const fs::path& dir = all[k];
+    const bool target = k == dirs.size();
+    const nlohmann::json found = read_settings(dir);
+    if (found.is_null() && !(target && trial_files(dir).empty())) {
+      throw std::runtime_error(fmt::format(
+          "{}: no {}, so the settings its trials were run with are unknown; only sweeps run with "
+          "the same settings can be merged",
+          dir.string(), kSettingsFile));
+    }
+    if (settings.is_null()) {
+      settings = found;
+    } else if (!found.is_null()) {
+      // NOTE: both ways, so a setting one folder has and the other lacks is a difference too.
+      const std::string remedy = "only sweeps run with the same settings can be merged";
+      require_same_settings(found, settings, dir / kSettingsFile, remedy);
+      require_same_settings(settings, found, all.front() / kSettingsFile, remedy);
     }
     const auto files = trial_files(dir);
-    if (files.empty()) {
+    if (files.empty() && !target) {
       throw std::runtime_error(fmt::format("{}: no trials/ with trial files", dir.string()));
     }
     for (const auto& [key, path] : files) {
       const std::string rows = read_file(path);
+      require_trial_rows(rows, path);
       const auto [it, inserted] = trials.emplace(key, rows);
       if (!inserted && it->second != rows) {
-        throw std::runtime_error(
-            fmt::format("{}: trial {} differs from the same trial in "
-                        "another folder",
-                        path.string(), key));
+        throw std::runtime_error(fmt::format(
+            "{}: trial {} differs from the same trial in another folder{}", path.string(), key,
+            target ? " (the --out folder's would be replaced)" : ""));
       }
     }
   }
   fs::create_directories(out / "trials");
-  if (!settings.is_null()) write_atomically(out / kSettingsFile, settings.dump(2) + "\n");
+  if (!settings.is_null() && read_settings(out).is_null()) {
+    write_atomically(out / kSettingsFile, settings.dump(2) + "\n");
+  }
   for (const auto& [key, rows] : trials) write_atomically(out / "trials" / (key + ".csv"), rows);
   write_bench_csv(out);
 }

@@ -33,10 +33,13 @@ struct BenchConfig {
   std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
   std::vector<PlannerMethod> methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy,
                                         PlannerMethod::kRandom};
-  /// a settings for the probabilistic method (a value, or auto); one trial set each.
+  /// a settings for the probabilistic and survival methods (a value, or auto); one trial set
+  /// each. Empty: each method's own, as explore runs it (default_alpha_setting with paper_alpha).
   std::vector<AlphaSetting> alphas = {AlphaSetting{false, kTableTopAlpha}};
-  /// What the probabilistic method ranks by; one trial set per alpha and objective.
+  /// What they rank by; one trial set per alpha and objective. Empty: each method's own
+  /// (natural_objective: cells for survival, bits for probabilistic).
   std::vector<GainObjective> objectives = {GainObjective::kBits};
+  double paper_alpha = kTableTopAlpha;  ///< the paper's a for the sweep's kind (§5.1, §5.2)
   int trials = 10;
   ExplorationConfig exploration;  ///< method, alpha, start and seed are set per trial
   bool mapper_from_scene = true;  ///< table segmentation where the scene has a table

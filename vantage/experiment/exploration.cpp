@@ -170,7 +170,7 @@ class Explorer {
       record.coverage = coverage(mapper_.grid(), truth_.observable);
 
       bool stop = k == config_.scans;
-      if (stop) result_.stop_reason = cat("took all ", config_.scans, " scans");
+      if (stop) result_.stop_reason = "took every scan asked for";
       if (!stop) {
         const auto u = static_cast<std::uint64_t>(k);
         next = office_ ? plan_stop(k, stream_seed(config_.seed, u, 3))
@@ -529,6 +529,11 @@ perception::PoseSigma odometry_prior(const sim::PoseNoise& noise) {
   prior.y = std::max(noise.y, kFloor);
   prior.yaw = std::max(noise.yaw, kFloor);
   return prior;
+}
+
+AlphaSetting default_alpha_setting(PlannerMethod method, double paper) {
+  return method == PlannerMethod::kSurvival ? AlphaSetting{true, kSurvivalAlpha}
+                                            : AlphaSetting{false, default_alpha(method, paper)};
 }
 
 MapperConfig default_mapper_config(const sim::Scene& scene) {

@@ -190,6 +190,11 @@ ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& conf
 /// point per cell and registered where it overlaps the map, at the map's resolution.
 MapperConfig default_mapper_config(const sim::Scene& scene);
 
+/// The a a method explores with when none is given, the one source of explore's and bench's
+/// defaults: the survival reading fitted online from kSurvivalAlpha (auto, with
+/// survival_fit_config), the others the paper's a for the scene's kind, `paper`.
+AlphaSetting default_alpha_setting(PlannerMethod method, double paper);
+
 /// The registration prior of a robot whose believed pose errs by `noise` (sigmas of x, y, yaw).
 perception::PoseSigma odometry_prior(const sim::PoseNoise& noise);
 

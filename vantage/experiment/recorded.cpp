@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <numbers>
 #include <stdexcept>
 
 #include "vantage/io/cloud_io.hpp"
@@ -21,15 +22,42 @@ void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback&
   const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(manifest.frame).transpose();
   for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
     const ManifestCloud& cloud = manifest.clouds[i];
-    PointCloud points =
-        read_point_cloud(cloud.file, {.skip_non_finite = manifest.options.skip_non_finite});
+    RecordedCloud recorded;
+    recorded.index = i;
+    CloudReadStats stats;
+    PointCloud points;
+    try {
+      points = read_point_cloud(cloud.file, {.skip_non_finite = manifest.options.skip_non_finite},
+                                &stats);
+    } catch (const NonFinitePointError& e) {
+      throw std::runtime_error(fmt::format(
+          "{} (an organized RGB-D cloud marks pixels without depth so: set "
+          "options.skip_non_finite: "
+          "true in {} to drop them)",
+          e.what(), manifest.file.empty() ? "the manifest" : manifest.file.filename().string()));
+    }
+    recorded.non_finite_skipped = stats.non_finite_skipped;
     for (Eigen::Vector3d& p : points) p = R_sensor_cloud * p;
     try {
-      const MapperUpdate update = mapper.add_scan(points, cloud.T_world_sensor, manifest.fov);
-      if (on_cloud) on_cloud(i, update);
+      Eigen::Isometry3d T_world_sensor = cloud.T_world_sensor;
+      if (cloud.pose_from_table) {
+        perception::TablePoseConfig table;
+        table.table_height = manifest.options.table_height;
+        table.table = mapper.config().table;
+        recorded.table_pose = perception::estimate_table_pose(points, table);
+        if (!recorded.table_pose) {
+          throw std::runtime_error(fmt::format(
+              "no pose given, and no table to take one from: no plane of {} or more points lies "
+              "below the sensor within {:.0f} deg of its up axis (give the cloud a pose)",
+              table.table.min_inliers, table.max_tilt * 180.0 / std::numbers::pi));
+        }
+        T_world_sensor = recorded.table_pose->T_world_sensor;
+      }
+      recorded.update = mapper.add_scan(points, T_world_sensor, manifest.fov);
     } catch (const std::exception& e) {
       throw std::runtime_error(fmt::format("{}: {}", cloud.file.string(), e.what()));
     }
+    if (on_cloud) on_cloud(recorded);
   }
 }
 

@@ -5,7 +5,9 @@
 
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
+#include <numbers>
 
+#include "vantage/gain/metrics.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/cloud_io.hpp"
 #include "vantage/io/map_files.hpp"
@@ -198,6 +200,32 @@ void write_floor_map(const std::filesystem::path& path, const sim::Scene& scene,
 
 }  // namespace
 
+GainUnits gain_units(const PlannerConfig& planner) {
+  if (is_volumetric_metric(gain_method_of(planner.method))) return {"metric", "metric", "metric"};
+  if (has_observability(planner.method)) {
+    const std::string_view objective = to_string(planner.objective);
+    return {"bits", objective, objective};
+  }
+  if (planner.method == PlannerMethod::kYamauchi) return {"cells", "-m", "cells"};
+  return {"cells", "cells", "cells"};
+}
+
+json sensor_json(const SensorFov& fov) {
+  constexpr double kDeg = 180.0 / std::numbers::pi;
+  return {{"horizontal_fov_deg", fov.h_fov * kDeg},
+          {"vertical_fov_deg", fov.v_fov * kDeg},
+          {"min_range_m", fov.min_range},
+          {"max_range_m", fov.max_range}};
+}
+
+json units_json(const GainUnits& units) {
+  return {{"predicted_gain", units.predicted_gain},
+          {"score", units.score},
+          {"predicted_cells", "cells"},
+          {"greedy_gain", "cells"},
+          {"travel", "m"}};
+}
+
 RunLabel run_label(std::string scene, const ExplorationConfig& config) {
   return {std::move(scene), config.planner.method,
           AlphaSetting{config.auto_alpha, config.planner.gain.alpha}, config.planner.objective,
@@ -270,6 +298,10 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
       {"predicted_gain", has_observability(config.planner.method) ? "bits" : "cells"},
       {"greedy_predicted_gain", "cells"},
       {"predicted_cells", "cells"}};
+  const GainUnits units = gain_units(config.planner);
+  run["units"] = units_json(units);
+  run["objective"] = units.objective;
+  run["sensor"] = sensor_json(fov);
   write_atomically(dir / "run.json", run.dump(2) + "\n");
 
   write_map_files(dir, grid);  // map.ot (lossless), map.bt, map_top.csv

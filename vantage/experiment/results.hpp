@@ -4,6 +4,7 @@
 /// OctoMap tree, the registered object cloud, and the data its pictures are drawn from.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -28,6 +29,27 @@ inline constexpr std::string_view kScansCsvHeader =
     "pose_error_before_m,pose_error_after_m,pose_error_final_m,register_seconds,segment_seconds,"
     "integrate_seconds,reference_seconds,displacement_before_m,displacement_after_m,"
     "displacement_final_m";
+
+/// The units a method's numbers are in, the one source of plan.json's and run.json's `units`
+/// and of the terminal's (docs/model.md, "Bits are not cells").
+struct GainUnits {
+  std::string_view predicted_gain;  ///< the method's own gain: bits, cells or metric
+  std::string_view score;           ///< what it ranks by: bits, cells, metric or -m (yamauchi)
+  /// What the gain ranks by: the probabilistic and survival methods' objective (bits or
+  /// cells); cells for the methods that count cells; metric for the field's metrics.
+  std::string_view objective;
+};
+
+/// The units of `planner`'s method under its objective.
+GainUnits gain_units(const PlannerConfig& planner);
+
+/// The sensor as plan.json and run.json record it: horizontal_fov_deg, vertical_fov_deg,
+/// min_range_m, max_range_m.
+nlohmann::json sensor_json(const SensorFov& fov);
+
+/// plan.json's and run.json's `units`: predicted_gain, score, predicted_cells, greedy_gain,
+/// travel (and the rest a caller adds).
+nlohmann::json units_json(const GainUnits& units);
 
 /// Which run a row belongs to.
 struct RunLabel {

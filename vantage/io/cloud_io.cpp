@@ -74,28 +74,48 @@ void check_finite(const PointCloud& cloud) {
 
 }  // namespace
 
-PointCloud read_point_cloud(const fs::path& path, const CloudReadOptions& options) {
+PointCloud read_point_cloud(const fs::path& path, const CloudReadOptions& options,
+                            CloudReadStats* stats) {
   const Format format = format_of(path);
+  PointCloud cloud;
   try {
     const std::string bytes = read_file_bytes(path);
-    PointCloud cloud = format == Format::kPcd ? detail::parse_pcd(bytes) : parse_ply_cloud(bytes);
+    cloud = format == Format::kPcd ? detail::parse_pcd(bytes) : parse_ply_cloud(bytes);
     if (options.skip_non_finite) {
-      std::erase_if(cloud, [](const Eigen::Vector3d& p) { return !p.allFinite(); });
+      const std::size_t skipped =
+          std::erase_if(cloud, [](const Eigen::Vector3d& p) { return !p.allFinite(); });
+      if (stats) stats->non_finite_skipped = skipped;
       if (cloud.empty()) throw FormatError("no point has finite coordinates");
     }
-    check_finite(cloud);
-    return cloud;
   } catch (const FormatError& e) {
     throw std::runtime_error(cat(path.string(), ": ", e.what()));
   }
+  try {
+    check_finite(cloud);
+  } catch (const FormatError& e) {
+    throw NonFinitePointError(cat(path.string(), ": ", e.what()));
+  }
+  return cloud;
 }
+
+namespace {
+
+/// Whether a VIEWPOINT is one that writers put there by default: the identity, or the half turn
+/// about x at the origin (qw 0, qx 1), both with no translation.
+bool is_unset_viewpoint(const Eigen::Isometry3d& pose) {
+  Eigen::Isometry3d half_turn = Eigen::Isometry3d::Identity();
+  half_turn.linear() = Eigen::Vector3d(1.0, -1.0, -1.0).asDiagonal();
+  return pose.isApprox(Eigen::Isometry3d::Identity(), 1e-12) || pose.isApprox(half_turn, 1e-12);
+}
+
+}  // namespace
 
 std::optional<Eigen::Isometry3d> read_cloud_viewpoint(const fs::path& path) {
   if (format_of(path) != Format::kPcd) return std::nullopt;
   try {
     const std::optional<Eigen::Isometry3d> pose =
         detail::parse_pcd_viewpoint(read_file_bytes(path, kHeaderBytes));
-    if (pose && pose->isApprox(Eigen::Isometry3d::Identity(), 1e-12)) return std::nullopt;
+    if (pose && is_unset_viewpoint(*pose)) return std::nullopt;
     return pose;
   } catch (const FormatError& e) {
     throw std::runtime_error(cat(path.string(), ": ", e.what()));

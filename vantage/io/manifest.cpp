@@ -231,7 +231,15 @@ Manifest read_manifest(const fs::path& path) {
 
   // Options.
   if (const auto options = root.get("options")) {
-    options->allow_keys({"table_segmentation", "icp", "integration", "skip_non_finite"});
+    options->allow_keys(
+        {"table_segmentation", "icp", "integration", "skip_non_finite", "table_height"});
+    if (const auto n = options->get("table_height")) {
+      manifest.options.table_height = n->number();
+      if (std::abs(manifest.options.table_height) > kMaxWorldCoordinate) {
+        n->fail(cat("must lie within ", kMaxWorldCoordinate, " m of 0, got ",
+                    manifest.options.table_height));
+      }
+    }
     if (const auto n = options->get("skip_non_finite")) {
       manifest.options.skip_non_finite = n->boolean();
     }
@@ -367,6 +375,7 @@ Manifest read_manifest(const fs::path& path) {
       }
     }
   } else {
+    std::optional<std::size_t> from_table;  // the cloud whose pose comes from the table
     for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
       const std::string key = cat("clouds[", i, "].pose");
       if (entries[i] && entries[i]->has("pose")) {
@@ -376,10 +385,27 @@ Manifest read_manifest(const fs::path& path) {
       // A PCD file may carry its own pose (VIEWPOINT), as PCL and strands' nbv_planning record it.
       const std::optional<Eigen::Isometry3d> viewpoint =
           read_cloud_viewpoint(manifest.clouds[i].file);
+      const std::string name = manifest.clouds[i].file.filename().string();
+      if (!viewpoint && manifest.options.table_segmentation) {
+        // NOTE: a pose from the table places the cloud on its own; two such clouds would each
+        // define the world, and disagree.
+        if (from_table) {
+          at_entry(i).fail_as(
+              key, cat("missing: clouds ", manifest.clouds[*from_table].file.filename().string(),
+                       " and ", name,
+                       " have no pose, and a pose from the table can place only one cloud (give "
+                       "poses, or a trajectory)"));
+        }
+        from_table = i;
+        manifest.clouds[i].pose_from_table = true;
+        continue;
+      }
       if (!viewpoint) {
-        at_entry(i).fail_as(key, cat("missing: cloud ", manifest.clouds[i].file.filename().string(),
-                                     " has no pose (give a pose per cloud, a trajectory, or a "
-                                     "VIEWPOINT other than the identity in the PCD file)"));
+        at_entry(i).fail_as(key,
+                            cat("missing: cloud ", name,
+                                " has no pose (give a pose per cloud, a trajectory, a "
+                                "VIEWPOINT other than the identity in the PCD file, or "
+                                "options.table_segmentation: true for a pose from the table)"));
       }
       manifest.clouds[i].T_world_cloud = *viewpoint;
       manifest.clouds[i].pose_from_viewpoint = true;
@@ -406,14 +432,16 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
     fs::path file = fs::absolute(cloud.file).lexically_relative(folder);
     if (file.empty()) file = fs::absolute(cloud.file);
     out << YAML::Key << "file" << YAML::Value << file.generic_string();
-    out << YAML::Key << "pose" << YAML::Value << YAML::BeginSeq;
-    const Eigen::Matrix4d m = cloud.T_world_cloud.matrix();
-    for (int r = 0; r < 4; ++r) {
-      out << YAML::Flow << YAML::BeginSeq;
-      for (int c = 0; c < 4; ++c) out << m(r, c);
+    if (!cloud.pose_from_table) {  // no pose: read back, it is estimated from the table again
+      out << YAML::Key << "pose" << YAML::Value << YAML::BeginSeq;
+      const Eigen::Matrix4d m = cloud.T_world_cloud.matrix();
+      for (int r = 0; r < 4; ++r) {
+        out << YAML::Flow << YAML::BeginSeq;
+        for (int c = 0; c < 4; ++c) out << m(r, c);
+        out << YAML::EndSeq;
+      }
       out << YAML::EndSeq;
     }
-    out << YAML::EndSeq;
     if (cloud.stamp) out << YAML::Key << "stamp" << YAML::Value << *cloud.stamp;
     out << YAML::EndMap;
   }
@@ -457,6 +485,7 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
   out << YAML::Key << "integration" << YAML::Value
       << std::string(to_string(manifest.options.integration));
   out << YAML::Key << "skip_non_finite" << YAML::Value << manifest.options.skip_non_finite;
+  out << YAML::Key << "table_height" << YAML::Value << manifest.options.table_height;
   out << YAML::EndMap;
   out << YAML::EndMap;
   if (!out.good()) throw std::runtime_error(cat(path.string(), ": ", out.GetLastError()));

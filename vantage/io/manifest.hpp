@@ -65,6 +65,9 @@ struct ManifestCloud {
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
   std::optional<double> stamp;       ///< [s], when given or used for matching
   bool pose_from_viewpoint = false;  ///< the pose came from the PCD file's VIEWPOINT
+  /// No pose was given: with table segmentation on, the pose is estimated from the table when the
+  /// cloud is read (perception::estimate_table_pose); the poses above are the identity till then.
+  bool pose_from_table = false;
 };
 
 /// Processing switches the manifest sets.
@@ -75,6 +78,8 @@ struct ManifestOptions {
   /// Drop points with a non-finite coordinate instead of failing: organized RGB-D clouds mark
   /// pixels without depth with NaN. Off by default, so a corrupt cloud never passes silently.
   bool skip_non_finite = false;
+  /// [m] the world z of the table's top in the table frame a pose from the table is given in.
+  double table_height = 0.75;
   bool operator==(const ManifestOptions&) const = default;
 };
 

@@ -1,5 +1,6 @@
 #include "vantage/io/yaml_reader.hpp"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
 #include <yaml-cpp/yaml.h>
 
@@ -323,6 +324,11 @@ YamlField parse_yaml(std::string_view text, const std::string& source) {
       throw_error(source, line, "", "a second YAML document (after '---'): the file must hold one");
     }
     root = YAML::Load(owned);
+  } catch (const YAML::DeepRecursion& e) {
+    // NOTE: yaml-cpp gives this one the message "bad file".
+    throw_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, "",
+                cat("not valid YAML here: nested more than ", e.depth() - 1,
+                    " levels deep (no manifest or scene needs more than a few)"));
   } catch (const YAML::Exception& e) {
     throw_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, "",
                 cat("not valid YAML: ", printable(e.msg, 200)));

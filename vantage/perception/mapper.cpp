@@ -148,11 +148,13 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
                           ? thin_to_cells(part.points_sensor, T_guess_part, grid_.spec())
                           : part.points_sensor;
     update.points += part.points_sensor.size();
+    update.thinned_points += kept.size();
     update.seconds_integrate += seconds_since(start);
     start = std::chrono::steady_clock::now();
     if (config_.segment_table) {
       const perception::TableSegmentation table =
           perception::segment_table(transform(T_guess_part, kept), config_.table);
+      update.table_views += table.found ? 1 : 0;
       PointCloud objects;
       objects.reserve(table.object_indices.size());
       for (const std::size_t i : table.object_indices) objects.push_back(kept[i]);

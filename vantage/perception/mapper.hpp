@@ -79,8 +79,12 @@ struct MapperUpdate {
   /// What registration found: the solved pose whether or not it passed, the posterior's sigma,
   /// the pairs; default (kEmptyMap) when it did not run.
   perception::RegistrationResult registration_result;
-  std::size_t points = 0;         ///< points in the scan
-  std::size_t object_points = 0;  ///< points integrated (after thinning and table segmentation)
+  std::size_t points = 0;          ///< points in the scan
+  std::size_t object_points = 0;   ///< points integrated (after thinning and table segmentation)
+  std::size_t thinned_points = 0;  ///< points left by thinning, before table segmentation
+  /// Views whose table segmentation found the table (segmentation on); a view without one
+  /// integrates no points.
+  std::size_t table_views = 0;
   /// Where the points integrated lie, in the scan's frame (the first view's sensor): with the
   /// true pose, how far a pose error moved what went into the map (perception::pose_error).
   perception::PointSpread object_spread;

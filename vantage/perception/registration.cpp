@@ -516,6 +516,8 @@ PoseError pose_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b) {
 PoseError pose_error(const Eigen::Isometry3d& a, const Eigen::Isometry3d& b,
                      const PointSpread& points_at_b) {
   PoseError error = pose_error(a, b);
+  // NOTE: a pose is no error of itself; a b^-1 rounds to a hair off the identity (2e-16 m).
+  if (a.matrix() == b.matrix()) return {0.0, 0.0, 0.0};
   // A point q placed by b lands at E q = R q + t under a, E = a b^-1, so E q - q = A q + t with
   // A = R - I, whose mean square over the points is tr(A Σ Aᵀ) + |A μ + t|².
   const Eigen::Isometry3d E = a * b.inverse();

@@ -17,6 +17,21 @@ std::size_t choose_best(std::span<const double> gains) {
   return best;
 }
 
+std::size_t choose_best(std::span<const double> scores, std::span<const double> tie_break) {
+  if (scores.size() != tie_break.size()) {
+    throw std::invalid_argument(cat("choose_best: ", scores.size(), " scores but ",
+                                    tie_break.size(), " tie-breaking values"));
+  }
+  std::size_t best = choose_best(scores);
+  for (std::size_t i = 0; i < scores.size(); ++i) {
+    if (std::isnan(tie_break[i])) {
+      throw std::invalid_argument(cat("tie-breaking value of view ", i, " is NaN"));
+    }
+    if (scores[i] == scores[best] && tie_break[i] > tie_break[best]) best = i;
+  }
+  return best;
+}
+
 std::size_t choose_random(std::size_t n, std::uint64_t seed) {
   if (n == 0) throw std::invalid_argument("no candidate views to choose from");
   // NOTE: SplitMix64 rather than a std distribution, whose output differs between standard

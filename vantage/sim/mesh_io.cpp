@@ -9,9 +9,12 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <new>
 #include <optional>
 #include <span>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 #include <type_traits>
 
 #include "vantage/io/format_parsing.hpp"
@@ -201,22 +204,46 @@ constexpr BuiltinModel kBuiltinModels[] = {
     {"teapot", "teapot/teapot.js", true},
 };
 
+/// Throws std::runtime_error saying why `path` is no mesh file to read: missing, a folder, a
+/// FIFO... (not "not found" for all of them).
+void require_readable(const std::filesystem::path& path) {
+  if (const std::string why = not_a_readable_file(path); !why.empty()) {
+    throw std::runtime_error(cat("mesh file ", path.string(), ": ", why));
+  }
+}
+
+/// Assimp's error said without its internals: its validation names its own structures
+/// ("aiScene::mNumMeshes is 0").
+std::string assimp_reason(std::string_view message) {
+  if (message.find("mNumMeshes is 0") != std::string_view::npos) return "it holds no mesh";
+  if (message.find("aiScene::") != std::string_view::npos ||
+      message.find("aiMesh::") != std::string_view::npos ||
+      message.find("Validation") != std::string_view::npos) {
+    return "its data is malformed (not a mesh of triangles or polygons)";
+  }
+  return printable(message, 200);
+}
+
 }  // namespace
 
 TriangleMesh load_mesh(const std::filesystem::path& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
-    throw std::runtime_error(cat("mesh file ", path.string(), " not found"));
-  }
+  require_readable(path);
   if (has_extension(path, ".ply")) return checked(read_ply(path), path);
   Assimp::Importer importer;
   // NOTE: no post-processing but validation: Debian's assimp 5.2 aborts in its triangulation
   // step on some truncated files, so polygons are split into fans here instead.
-  const aiScene* scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+  const aiScene* scene = nullptr;
+  try {
+    scene = importer.ReadFile(path.string(), aiProcess_ValidateDataStructure);
+  } catch (const std::bad_alloc&) {
+    throw std::runtime_error(cat("mesh file ", path.string(),
+                                 " cannot be read: it claims more data than memory holds "
+                                 "(a malformed or truncated file)"));
+  }
   if (scene == nullptr || scene->mRootNode == nullptr ||
       (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) != 0) {
-    throw std::runtime_error(
-        cat("mesh file ", path.string(), " cannot be read: ", importer.GetErrorString()));
+    throw std::runtime_error(cat("mesh file ", path.string(),
+                                 " cannot be read: ", assimp_reason(importer.GetErrorString())));
   }
   TriangleMesh mesh;
   collect(*scene, *scene->mRootNode, aiMatrix4x4(), mesh);
@@ -224,10 +251,7 @@ TriangleMesh load_mesh(const std::filesystem::path& path) {
 }
 
 TriangleMesh load_js_mesh(const std::filesystem::path& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) {
-    throw std::runtime_error(cat("mesh file ", path.string(), " not found"));
-  }
+  require_readable(path);
   const std::string text = read_text(path);
   JsArrayReader reader(text, path);
   auto find_array = [&](std::string_view name) {

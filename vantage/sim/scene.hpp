@@ -105,4 +105,8 @@ Scene parse_scene(const std::string& yaml_text, const std::string& source,
 /// RPY pose from [x, y, z, roll, pitch, yaw] [m, rad]: R = Rz(yaw) Ry(pitch) Rx(roll).
 Eigen::Isometry3d pose_from_xyz_rpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy);
 
+/// The largest roll, pitch or yaw a pose is given with [deg]: a turn either way; more is a typo
+/// (1e300 deg is no angle a person means), refused rather than wrapped.
+inline constexpr double kMaxAngleDegrees = 360.0;
+
 }  // namespace vantage::sim

@@ -1,6 +1,7 @@
 // The scene file: YAML (docs/scenes.md), read by io's one strict YAML reader into a Scene.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -58,7 +59,15 @@ Eigen::Isometry3d parse_pose(const YamlField& f) {
     f.fail("must be [x, y, z] or [x, y, z, roll_deg, pitch_deg, yaw_deg]");
   }
   Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
-  if (v.size() == 6) rpy = {deg2rad(v[3]), deg2rad(v[4]), deg2rad(v[5])};
+  if (v.size() == 6) {
+    for (std::size_t i = 3; i < 6; ++i) {
+      if (!(std::abs(v[i]) <= kMaxAngleDegrees)) {
+        f.fail(cat(std::array{"roll", "pitch", "yaw"}[i - 3], " ", v[i], " deg lies outside [-",
+                   kMaxAngleDegrees, ", ", kMaxAngleDegrees, "]"));
+      }
+    }
+    rpy = {deg2rad(v[3]), deg2rad(v[4]), deg2rad(v[5])};
+  }
   return pose_from_xyz_rpy({v[0], v[1], v[2]}, rpy);
 }
 

@@ -2,8 +2,10 @@
 /// @file
 /// Runs work on a given number of threads, without global thread-pool state.
 
+#include <tbb/info.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <stdexcept>
 #include <utility>
 
@@ -11,7 +13,9 @@
 
 namespace vantage {
 
-/// Runs `work` inside a TBB arena of `num_threads` threads (0 = all cores).
+/// Runs `work` inside a TBB arena of `num_threads` threads (0 = all cores), at most as many as
+/// the machine has cores: TBB ignores more and prints its own warning on stderr (results do not
+/// depend on the count).
 template <typename Work>
 void run_with_threads(int num_threads, Work&& work) {
   if (num_threads < 0) {
@@ -21,7 +25,7 @@ void run_with_threads(int num_threads, Work&& work) {
     std::forward<Work>(work)();
     return;
   }
-  tbb::task_arena arena(num_threads);
+  tbb::task_arena arena(std::min(num_threads, tbb::info::default_concurrency()));
   arena.execute(std::forward<Work>(work));
 }
 

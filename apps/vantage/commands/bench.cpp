@@ -5,9 +5,11 @@
 
 #include <fmt/core.h>
 
+#include <array>
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands/commands.hpp"
@@ -25,8 +27,8 @@ namespace fs = std::filesystem;
 struct BenchOptions {
   std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
   std::vector<std::string> methods = {"probabilistic", "greedy", "random"};
-  std::string alphas = fmt::format("{}", kTableTopAlpha);
-  std::string objectives = "bits";
+  std::string alphas;      ///< empty: each method's own, as explore runs it
+  std::string objectives;  ///< empty: each method's own
   int trials = 10;
   int scans = 10;
   std::uint64_t seed = 1;
@@ -75,8 +77,10 @@ BenchConfig bench_config(const BenchOptions& o) {
   for (const std::string& m : o.methods) config.methods.push_back(parse_planner_method(m));
   // NOTE: auto starts from the literal a of the sweep's kind (§5.1, §5.2).
   const double prior = o.kind == "office" ? kOfficeAlpha : kTableTopAlpha;
+  config.paper_alpha = prior;
   config.alphas.clear();
-  for (const std::string& a : split_list(o.alphas)) {
+  for (const std::string& a :
+       o.alphas.empty() ? std::vector<std::string>{} : split_list(o.alphas)) {
     try {
       config.alphas.push_back(parse_alpha_setting(a, prior));
     } catch (const std::invalid_argument& e) {
@@ -84,7 +88,8 @@ BenchConfig bench_config(const BenchOptions& o) {
     }
   }
   config.objectives.clear();
-  for (const std::string& name : split_list(o.objectives)) {
+  for (const std::string& name :
+       o.objectives.empty() ? std::vector<std::string>{} : split_list(o.objectives)) {
     config.objectives.push_back(parse_gain_objective(name));
   }
   config.trials = o.trials;
@@ -142,10 +147,13 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
                               "number in (0, 1] or auto; survival's auto has its own grid and "
                               "prior, {})",
                               kSurvivalAlpha))
-      ->capture_default_str();
+      ->default_str(o->alphas.empty() ? "each method's own, as explore: auto for survival, the "
+                                        "paper's a for probabilistic"
+                                      : o->alphas);
   cmd->add_option("--objectives", o->objectives,
-                  "what the probabilistic method ranks by, one trial set each: bits,cells")
-      ->capture_default_str();
+                  "what the probabilistic and survival methods rank by, one trial set each: "
+                  "bits,cells")
+      ->default_str("each method's own: cells for survival, bits for probabilistic");
   cmd->add_option("--trials", o->trials, trials_help)
       ->check(whole_in(1, kMaxScans))
       ->capture_default_str();
@@ -173,7 +181,20 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   o->mapping.add_to(*cmd);
   // A sweep runs trials in parallel; one thread per trial unless told otherwise.
   cmd->get_option("--threads")->default_val(1);
-  cmd->callback([o] { run(*o); });
+  // NOTE: a sweep takes lists; the single-valued options explore and plan take would be accepted
+  // and ignored, so they are hidden and refused.
+  constexpr std::array<std::pair<const char*, const char*>, 3> kLists = {
+      {{"--method", "--methods"}, {"--alpha", "--alphas"}, {"--objective", "--objectives"}}};
+  for (const auto& [single, list] : kLists) cmd->get_option(single)->group("");
+  cmd->callback([o, cmd, kLists] {
+    for (const auto& [single, list] : kLists) {
+      if (cmd->count(single) > 0) {
+        throw UsageError(fmt::format(
+            "{} is explore's and plan's: a sweep takes {} (a comma-separated list)", single, list));
+      }
+    }
+    run(*o);
+  });
 }
 
 }  // namespace

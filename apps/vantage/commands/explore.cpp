@@ -48,13 +48,15 @@ fs::path default_out(const ExploreOptions& o) {
                                            o.planning.method, fmt::localtime(now));
 }
 
-void print_scan(const ScanRecord& r, int total) {
+void print_scan(const ScanRecord& r, int total, bool ranks_by_bits) {
   // NOTE: in cells, the unit of the actual gain beside it (docs/model.md, "Bits are not cells");
-  // the paper's bits are in scans.csv and run.json.
+  // a run that ranks by bits shows them first, the number it chose by (run.json: units, objective).
+  const std::string bits =
+      ranks_by_bits ? fmt::format("{:7.0f} bits ", r.predicted_gain.value_or(0.0)) : "";
   const std::string predicted =
-      r.predicted_cells ? fmt::format("{:7.0f} cells (greedy {:7.0f})", *r.predicted_cells,
+      r.predicted_cells ? fmt::format("{}{:7.0f} cells (greedy {:7.0f})", bits, *r.predicted_cells,
                                       r.greedy_predicted_gain.value_or(0.0))
-                        : fmt::format("{:>7} {:>21}", "-", "");
+                        : fmt::format("{:>7} {:>{}}", "-", "", 21 + bits.size());
   const double seconds = r.seconds.scan + r.seconds.register_scan + r.seconds.segment +
                          r.seconds.integrate + r.seconds.plan;
   const std::string travel =
@@ -84,8 +86,8 @@ void run(const ExploreOptions& o) {
   const bool survival = config.planner.method == PlannerMethod::kSurvival;
   // NOTE: the survival reading is fitted online unless told an a: the configuration the sweeps
   // show best (RESULTS.md); --method probabilistic is the paper's literal one.
-  const AlphaSetting alpha = o.planning.alpha.empty() && survival
-                                 ? AlphaSetting{true, kSurvivalAlpha}
+  const AlphaSetting alpha = o.planning.alpha.empty()
+                                 ? default_alpha_setting(config.planner.method, paper)
                                  : o.planning.alpha_setting(literal);
   config.auto_alpha = alpha.automatic;
   if (survival) config.observability = survival_fit_config();
@@ -126,7 +128,10 @@ void run(const ExploreOptions& o) {
   }
   Mapper mapper(scene.grid, config.mapper);
   const ExplorationResult result =
-      explore(scene, config, mapper, o.quiet ? ScanCallback{} : ScanCallback(print_scan));
+      explore(scene, config, mapper,
+              o.quiet ? ScanCallback{} : ScanCallback([&](const ScanRecord& r, int total) {
+                print_scan(r, total, gain_units(config.planner).score == "bits");
+              }));
 
   write_folder_atomically(out, [&](const fs::path& dir) {
     write_run_files(dir, scene, config, result, mapper);

@@ -40,7 +40,7 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
         ->capture_default_str();
   }
   cmd.add_option("--epsilon", epsilon, "early stop of a ray's model, in [0, 0.5)")
-      ->check(number_in(0.0, 0.5))
+      ->check(number_in(0.0, 0.5, /*open_low=*/false, /*open_high=*/true))
       ->capture_default_str();
   cmd.add_option("--lambda", lambda, "latombe's travel penalty [1/m]")
       ->check(number_in(0.0, 1e3))

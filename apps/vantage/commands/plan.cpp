@@ -20,6 +20,7 @@
 #include "commands/options.hpp"
 #include "shell.hpp"
 #include "vantage/experiment/recorded.hpp"
+#include "vantage/experiment/results.hpp"
 #include "vantage/gain/metrics.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/map_files.hpp"
@@ -42,9 +43,11 @@ struct PlanOptions {
   std::string candidates = "ring";
   double radius = 0.0;  // 0: from the ROI
   double height = std::numeric_limits<double>::quiet_NaN();
-  int views = 0;  // 0: 10 ring positions / 50 sphere views
+  std::string sensor_height;  // frontier candidates: H or MIN,MAX [m]; empty: any height
+  int views = 0;              // 0: 10 ring positions / 50 sphere views
   std::string fov_deg = "57,43";
   std::string range = "0.5,3.5";
+  bool sensor_given = false;  // --fov-deg or --range on the command line
   PlanningOptions planning;
   std::string pose;  // x,y,z,roll,pitch,yaw of the robot's sensor now
   std::string out;
@@ -54,30 +57,9 @@ struct PlanOptions {
   std::uint64_t max_memory = 0;  // 0: what the machine has available
 };
 
-/// plan.json's format: 2 added version, units, the robot's pose, travel and yaw.
-constexpr int kPlanJsonVersion = 2;
-
-/// What a plan's numbers count (docs/model.md: bits are not cells). The probabilistic method
-/// predicts information (eq. 4, bits); greedy, random and latombe count cells (latombe discounted
-/// by travel); yamauchi maximises minus the travel distance.
-struct PlanUnits {
-  std::string_view predicted_gain;
-  std::string_view score;
-};
-
-PlanUnits units_of(PlannerMethod method) {
-  // docs/model.md "The field's metrics": each in its own unit.
-  if (is_volumetric_metric(gain_method_of(method))) return {"metric", "metric"};
-  switch (method) {
-    case PlannerMethod::kProbabilistic:
-    case PlannerMethod::kSurvival:
-      return {"bits", "bits"};
-    case PlannerMethod::kYamauchi:
-      return {"cells", "-m"};
-    default:
-      return {"cells", "cells"};
-  }
-}
+/// plan.json's format: 2 added version, units, the robot's pose, travel and yaw; 3 the sensor,
+/// the clouds, units per objective and the estimated flag.
+constexpr int kPlanJsonVersion = 3;
 
 bool needs_pose(PlannerMethod method) {
   return method == PlannerMethod::kLatombe || method == PlannerMethod::kYamauchi;
@@ -97,8 +79,9 @@ double yaw_deg(const Eigen::Isometry3d& T) {
 std::string pose_argument(const Eigen::Isometry3d& T) {
   const Eigen::Vector3d t = T.translation();
   const Eigen::Vector3d rpy = roll_pitch_yaw(T.linear()) * (180.0 / std::numbers::pi);
-  return fmt::format("{:.4f},{:.4f},{:.4f},{:.3f},{:.3f},{:.3f}", t.x(), t.y(), t.z(), rpy.x(),
-                     rpy.y(), rpy.z());
+  return fmt::format("{:.4f},{:.4f},{:.4f},{:.3f},{:.3f},{:.3f}", unsigned_zero(t.x(), 4),
+                     unsigned_zero(t.y(), 4), unsigned_zero(t.z(), 4), unsigned_zero(rpy.x(), 3),
+                     unsigned_zero(rpy.y(), 3), unsigned_zero(rpy.z(), 3));
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -125,20 +108,70 @@ SensorFov fov_from_options(const PlanOptions& o) {
   return result;
 }
 
-/// Four level views (yaw 0, 90, 180, 270 degrees) at the centroid of every frontier region.
-std::vector<Eigen::Isometry3d> frontier_poses(const OccupancyGrid& grid) {
+/// --sensor-height: one height, or a range min,max [m].
+std::optional<std::pair<double, double>> sensor_band(const PlanOptions& o) {
+  if (o.sensor_height.empty()) return std::nullopt;
+  const std::vector<double> v = parse_numbers(o.sensor_height, "--sensor-height");
+  if (v.size() > 2) throw UsageError("--sensor-height takes a height or a range: h, or min,max");
+  for (const double h : v) {
+    if (!std::isfinite(h) || std::abs(h) > kMaxWorldCoordinate) {
+      throw UsageError(
+          fmt::format("--sensor-height: {} m is not a height within {} m", h, kMaxWorldCoordinate));
+    }
+  }
+  const double lo = v.front(), hi = v.back();
+  if (lo > hi) throw UsageError(fmt::format("--sensor-height: min {} exceeds max {}", lo, hi));
+  return std::pair{lo, hi};
+}
+
+/// Frontier candidates with what was left out.
+struct FrontierViews {
   std::vector<Eigen::Isometry3d> poses;
-  for (const FrontierRegion& region : frontier_regions(grid, FrontierConfig{})) {
+  std::size_t regions = 0;
+  std::size_t dropped = 0;  ///< views whose place is not known free (unknown or occupied)
+};
+
+/// Four level views (yaw 0, 90, 180, 270 degrees) at the centroid of every frontier region; with
+/// a sensor band, frontier cells are taken in the band (the layers holding min..max) and each
+/// view is put at a height within it. A view whose place is not a known free cell is dropped:
+/// a robot cannot stand in unknown or occupied space.
+FrontierViews frontier_poses(const OccupancyGrid& grid,
+                             const std::optional<std::pair<double, double>>& band) {
+  FrontierConfig config;
+  const double half = 0.5 * grid.spec().resolution;
+  if (band) {
+    config.min_z = band->first - half;
+    config.max_z = band->second + half;
+  }
+  FrontierViews views;
+  const std::vector<FrontierRegion> regions = frontier_regions(grid, config);
+  views.regions = regions.size();
+  for (const FrontierRegion& region : regions) {
+    Eigen::Vector3d place = region.centroid;
+    if (band) place.z() = std::clamp(place.z(), band->first, band->second);
+    const std::optional<Index3> cell = grid.spec().find(place);
+    if (!cell || grid.state(grid.spec().linear(*cell)) != CellState::kFree) {
+      views.dropped += 4;
+      continue;
+    }
     for (int k = 0; k < 4; ++k) {
       Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
       pose.linear() = Eigen::AngleAxisd(k * std::numbers::pi / 2.0, Eigen::Vector3d::UnitZ())
                           .toRotationMatrix();
-      pose.translation() = region.centroid;
-      poses.push_back(pose);
+      pose.translation() = place;
+      views.poses.push_back(pose);
     }
   }
-  if (poses.empty()) throw std::runtime_error("the map has no frontier regions to plan from");
-  return poses;
+  if (views.poses.empty()) {
+    throw std::runtime_error(
+        regions.empty()
+            ? std::string(band ? "the map has no frontier regions at --sensor-height to plan from"
+                               : "the map has no frontier regions to plan from")
+            : fmt::format("none of the {} frontier regions' centroids lies in a known free cell "
+                          "(try --sensor-height)",
+                          regions.size()));
+  }
+  return views;
 }
 
 std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen::AlignedBox3d& roi,
@@ -160,19 +193,45 @@ std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen
     sphere.views = o.views > 0 ? o.views : 50;
     return sphere_poses(sphere);
   }
-  if (o.candidates == "frontier") return frontier_poses(grid);
+  if (o.candidates == "frontier") {
+    const FrontierViews views = frontier_poses(grid, sensor_band(o));
+    if (!o.json_only) {
+      fmt::print("frontier: {} regions, {} views{}\n", views.regions, views.poses.size(),
+                 views.dropped > 0
+                     ? fmt::format(" ({} dropped: their place is not known free)", views.dropped)
+                     : "");
+    }
+    return views.poses;
+  }
   return read_candidate_poses(o.candidates, frame);  // run() checked that the file exists
+}
+
+/// The ICP column of a cloud's line.
+std::string registration_note(const RecordedCloud& c, bool icp, bool first) {
+  if (!icp) return "";
+  if (c.update.registered) return "  (ICP corrected)";
+  // NOTE: the first cloud of a map defines its frame; there is nothing to register it against.
+  if (first) return "  (first cloud: nothing to register against)";
+  return "  (ICP kept the pose)";
+}
+
+/// The segmentation column of a cloud's line: whether the table was found, what it removed.
+std::string segmentation_note(const RecordedCloud& c) {
+  const MapperUpdate& u = c.update;
+  if (u.table_views == 0) return "  table: none found";
+  return fmt::format("  table: found, {} of {} points removed", u.thinned_points - u.object_points,
+                     u.thinned_points);
 }
 
 void run(const PlanOptions& o) {
   if (o.input.empty() && o.map.empty()) {
-    throw std::invalid_argument("give a manifest or data folder, or --map FILE.bt|.ot, or both");
+    throw UsageError("give a manifest or data folder, or --map FILE.bt|.ot, or both");
   }
   // NOTE: everything the command line alone can refuse is refused before any mapping.
   if (o.planning.alpha_setting().automatic) {
     // NOTE: auto fits a to a run's own predictions and outcomes, scan after scan; one decision
     // from recorded clouds has none to fit to.
-    throw std::invalid_argument(
+    throw UsageError(
         "--alpha auto fits a over an exploration's scans (explore, bench); plan takes a number");
   }
   PlannerConfig planner = o.planning.planner_config();
@@ -180,7 +239,11 @@ void run(const PlanOptions& o) {
   // NOTE: the pruned search's choice is the exhaustive exact one's, proven; the candidates it
   // never evaluated are listed with their upper bounds, marked as estimates.
   planner.search = DecisionSearch::kPruned;
-  const PlanUnits units = units_of(planner.method);
+  const GainUnits units = gain_units(planner);
+  if (!o.sensor_height.empty() && o.candidates != "frontier") {
+    throw UsageError("--sensor-height places frontier candidates: give --candidates frontier");
+  }
+  (void)sensor_band(o);  // throws for a bad --sensor-height
   const fs::path dir = out_dir(o);
   if (fs::exists(dir) && !fs::is_empty(dir)) {
     throw std::invalid_argument(fmt::format("--out {} exists and is not empty", dir.string()));
@@ -191,7 +254,7 @@ void run(const PlanOptions& o) {
     robot = parse_pose(o.pose, "--pose");
     robot_source = "--pose";
   } else if (needs_pose(planner.method) && o.input.empty()) {
-    throw std::invalid_argument(
+    throw UsageError(
         fmt::format("--method {} weighs travel and needs the robot's pose: give --pose "
                     "x,y,z,roll,pitch,yaw or a manifest (its last cloud's pose is used)",
                     to_string(planner.method)));
@@ -200,10 +263,18 @@ void run(const PlanOptions& o) {
   if (o.input.empty()) fov_from_options(o);  // throws for a bad --fov-deg or --range
   const bool named_candidates =
       o.candidates == "ring" || o.candidates == "sphere" || o.candidates == "frontier";
-  if (!named_candidates && !fs::exists(o.candidates)) {
-    throw std::invalid_argument(
-        fmt::format("--candidates '{}' is neither ring, sphere, frontier nor an existing pose file",
-                    o.candidates));
+  if (!named_candidates) {
+    std::error_code error;
+    if (fs::is_directory(o.candidates, error)) {
+      throw UsageError(fmt::format(
+          "--candidates '{}' is a folder: give ring, sphere, frontier or a pose file (TUM format)",
+          o.candidates));
+    }
+    if (!fs::exists(o.candidates, error)) {
+      throw UsageError(fmt::format(
+          "--candidates '{}' is neither ring, sphere, frontier nor an existing pose file",
+          o.candidates));
+    }
   }
 
   const auto start = std::chrono::steady_clock::now();
@@ -211,6 +282,12 @@ void run(const PlanOptions& o) {
   if (!o.input.empty()) manifest = read_manifest(o.input);
   const SensorFov fov = manifest ? manifest->fov : fov_from_options(o);
   const CloudFrame frame = manifest ? manifest->frame : CloudFrame::kOptical;
+  if (!manifest && !o.json_only) {
+    fmt::print("sensor: {:.1f} x {:.1f} deg, {}-{} m{}\n", fov.h_fov * 180.0 / std::numbers::pi,
+               fov.v_fov * 180.0 / std::numbers::pi, fov.min_range, fov.max_range,
+               o.sensor_given ? " (--fov-deg, --range)"
+                              : " (assumed: the --fov-deg and --range defaults, a Kinect's)");
+  }
 
   MapperConfig mapper_config = manifest ? mapper_config_for(*manifest) : MapperConfig{};
   mapper_config.integration.num_threads = o.planning.threads;
@@ -237,6 +314,22 @@ void run(const PlanOptions& o) {
     if (!manifest) import.check_grid = [&](const GridSpec& spec) { check_grid(spec, o.map);
   };
   OctomapImport imported = read_octomap(o.map, import);
+  const GridSpec& loaded = imported.grid.spec();
+  if (!o.json_only) {
+    fmt::print(
+        "map: {} ({} {}, {} known voxels) into {} grid of {} x {} x {} cells at {} m from "
+        "({:.4g}, {:.4g}, {:.4g})\n",
+        o.map, to_string(imported.format), imported.tree_type, imported.known_voxels,
+        manifest ? "the manifest's" : "its own", loaded.dims.x(), loaded.dims.y(), loaded.dims.z(),
+        loaded.resolution, loaded.origin.x(), loaded.origin.y(), loaded.origin.z());
+  }
+  if (imported.cropped_voxels > 0) {
+    // NOTE: a map from another grid keeps what lies inside the manifest's; what it drops is
+    // said, never silent.
+    warn(fmt::format(
+        "{}: dropped {} of its {} known voxels, which lie outside the manifest's grid (its roi)",
+        o.map, imported.cropped_voxels, imported.cropped_voxels + imported.known_voxels));
+  }
   mapper.emplace(std::move(imported.grid), mapper_config);
 }
 else {
@@ -249,28 +342,49 @@ if (!o.map.empty() && manifest && mapper_config.register_scans && !o.json_only) 
       o.map);
 }
 if (manifest) {
-  map_recorded(*manifest, *mapper, [&](std::size_t i, const MapperUpdate& u) {
+  map_recorded(*manifest, *mapper, [&](const RecordedCloud& c) {
+    const std::size_t i = c.index;
+    const MapperUpdate& u = c.update;
+    const ManifestCloud& cloud = manifest->clouds[i];
     // NOTE: the pose the cloud was integrated at (ICP-corrected), wherever it came from.
     if (o.pose.empty()) {
       robot = u.T_world_sensor;
-      robot_source = "the last cloud's pose";
+      robot_source =
+          c.table_pose ? "the last cloud's pose, from the table" : "the last cloud's pose";
     }
-    if (u.object_points > 0 && u.integration.points_inside == 0) {
+    if (mapper_config.segment_table && u.table_views == 0 && u.thinned_points > 0) {
+      warn(fmt::format(
+          "{}: table segmentation found no table, so nothing was mapped from its {} points "
+          "(check the pose's up axis, or set options.table_segmentation: false)",
+          cloud.file.string(), u.points));
+    } else if (u.object_points > 0 && u.integration.points_inside == 0) {
       // NOTE: a warning, not an error: the frustum's free space was still mapped, and a later
       // cloud may map the region.
       warn(fmt::format(
           "{}: nothing was mapped from its points: none of the {} lies inside the roi (behind "
           "the sensor, or far from the roi? check the pose, frame and roi)",
-          manifest->clouds[i].file.string(), u.object_points));
+          cloud.file.string(), u.object_points));
     }
-    if (!o.json_only) {
-      fmt::print("cloud {}/{}  {}  {} points  {} cells seen{}{}\n", i + 1, manifest->clouds.size(),
-                 manifest->clouds[i].file.filename().string(), u.points,
-                 u.integration.left_unobserved.size(),
-                 manifest->clouds[i].pose_from_viewpoint ? "  (pose from its VIEWPOINT)" : "",
-                 mapper_config.register_scans
-                     ? (u.registered ? "  (ICP corrected)" : "  (ICP kept the pose)")
-                     : "");
+    if (o.json_only) return;
+    fmt::print("cloud {}/{}  {}  {} points{}  {} cells seen{}{}{}{}\n", i + 1,
+               manifest->clouds.size(), cloud.file.filename().string(), u.points,
+               c.non_finite_skipped > 0
+                   ? fmt::format(" ({} non-finite skipped)", c.non_finite_skipped)
+                   : "",
+               u.integration.left_unobserved.size(),
+               cloud.pose_from_viewpoint ? "  (pose from its VIEWPOINT)" : "",
+               c.table_pose ? "  (pose from the table)" : "",
+               mapper_config.segment_table ? segmentation_note(c) : "",
+               registration_note(c, mapper_config.register_scans, mapper->scans() == 1));
+    if (c.table_pose) {
+      const perception::TablePose& t = *c.table_pose;
+      fmt::print(
+          "  pose from the table: the sensor {:.3f} m above the table's top (z = {} m), "
+          "looking {:.1f} deg below level; the table's objects above the origin, x along the "
+          "view\n  at {}\n  as --pose: {}\n",
+          t.height_above_table, manifest->options.table_height,
+          unsigned_zero(t.tilt * 180.0 / std::numbers::pi, 1), describe_pose(t.T_world_sensor),
+          pose_argument(t.T_world_sensor));
     }
   });
 }
@@ -294,6 +408,9 @@ for (const Eigen::Isometry3d& pose : poses) {
   candidates.push_back({Frustum(pose, fov), travel});
 }
 const Plan plan = plan_next_view(grid, candidates, planner, /*seed=*/1);
+const auto estimated = [&](std::size_t i) {
+  return i < plan.estimated.size() && plan.estimated[i];
+};
 
 // Best first (for random, the drawn one), then by score; ties keep the candidates' order.
 std::vector<std::size_t> ranking(candidates.size());
@@ -310,39 +427,39 @@ auto nbv = [&](std::size_t i) {
   T_world_cloud.linear() = poses[i].linear() * R_sensor_cloud;
   json j = {{"index", i},
             {"sensor", pose_json(poses[i])},
-            {"yaw", yaw_deg(poses[i])},
+            {"yaw", unsigned_zero(yaw_deg(poses[i]), 9)},
             {"cloud_frame", pose_json(T_world_cloud)},
             {"predicted_gain", plan.gains[i].gain},
             {"predicted_cells", plan.gains[i].cells},
             {"greedy_gain", plan.greedy_gains[i]},
             {"score", plan.scores[i]}};
   if (robot) j["travel"] = candidates[i].travel;
+  if (estimated(i)) j["estimated"] = true;
   return j;
 };
+const std::size_t clouds = manifest ? manifest->clouds.size() : 0;
+json units_out = units_json(units);
+units_out["position"] = "m";
+units_out["yaw"] = "deg";
+units_out["seconds"] = "s";
 json out = {{"version", kPlanJsonVersion},
             {"vantage_version", VANTAGE_VERSION},
-            {"units",
-             {{"position", "m"},
-              {"yaw", "deg"},
-              {"predicted_gain", units.predicted_gain},
-              {"predicted_cells", "cells"},
-              {"greedy_gain", "cells"},
-              {"score", units.score},
-              {"travel", "m"},
-              {"seconds", "s"}}},
+            {"units", units_out},
             {"robot", robot ? json{{"sensor", pose_json(*robot)}, {"from", robot_source}} : json()},
             {"next_best_view", nbv(plan.best)},
             {"method", to_string(planner.method)},
             {"alpha", planner.gain.alpha},
-            {"objective", to_string(planner.objective)},
+            {"objective", units.objective},
             {"evaluation", to_string(planner.gain.evaluation)},
+            {"sensor", sensor_json(fov)},
+            {"clouds", clouds},
             {"frames", {{"sensor", "x forward, y left, z up"}, {"cloud_frame", to_string(frame)}}},
             {"map",
              {{"grid",
                {{"origin", {spec.origin.x(), spec.origin.y(), spec.origin.z()}},
                 {"resolution", spec.resolution},
                 {"dims", {spec.dims.x(), spec.dims.y(), spec.dims.z()}}}},
-              {"clouds", manifest ? manifest->clouds.size() : 0},
+              {"clouds", clouds},
               {"unobserved", counts.unobserved},
               {"free", counts.free},
               {"occupied", counts.occupied}}},
@@ -361,35 +478,45 @@ if (o.json_only) {
   fmt::print("{}\n", out.dump(2));
   return;
 }
-const bool show_score =
-    planner.method == PlannerMethod::kLatombe || planner.method == PlannerMethod::kYamauchi;
 // NOTE: the probabilistic method also predicts in cells (E, docs/model.md), the number its
-// prediction error is measured in; greedy's gain already is a count of cells.
+// prediction error is measured in; greedy's gain already is a count of cells. The score column
+// is what the method ranks by, in its unit, the same number as plan.json's score.
 const bool show_cells = has_observability(planner.method);
 const std::string gain_header = fmt::format("predicted gain [{}]", units.predicted_gain);
 const std::string cells_header = "predicted seen [cells]";
 const std::string score_header = fmt::format("score [{}]", units.score);
-fmt::print("\n{:>4} {:>5} {:>26} {:>9} {:>{}}{} {:>19}{}{}\n", "rank", "view", "position [m]",
-           "yaw [deg]", gain_header, gain_header.size(),
+fmt::print("\n{:>4} {:>5} {:>26} {:>9} {:>{}}{} {:>19}{} {:>{}}\n", "rank", "view", "position [m]",
+           "yaw [deg]", gain_header, gain_header.size() + 1,
            show_cells ? fmt::format(" {}", cells_header) : "", "greedy gain [cells]",
-           robot ? fmt::format(" {:>10}", "travel [m]") : "",
-           show_score ? fmt::format(" {:>{}}", score_header, score_header.size()) : "");
+           robot ? fmt::format(" {:>10}", "travel [m]") : "", score_header, score_header.size());
+const bool any_estimated =
+    std::any_of(ranking.begin(), ranking.end(), [&](std::size_t i) { return estimated(i); });
 for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top); ++r) {
   const std::size_t i = ranking[r];
   const Eigen::Vector3d p = poses[i].translation();
-  fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {:>{}.1f}{} {:>19.1f}{}{}\n", r + 1, i,
-             fmt::format("({:.3f}, {:.3f}, {:.3f})", p.x(), p.y(), p.z()), yaw_deg(poses[i]),
-             plan.gains[i].gain, gain_header.size(),
-             show_cells ? fmt::format(" {:>{}.1f}", plan.gains[i].cells, cells_header.size()) : "",
+  // NOTE: '~' marks a gain the search estimated instead of evaluating (plan.json: estimated).
+  const char* mark = estimated(i) ? "~" : " ";
+  fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {}{:>{}.1f}{} {:>19.1f}{} {:>{}.3f}\n", r + 1, i,
+             fmt::format("({:.3f}, {:.3f}, {:.3f})", unsigned_zero(p.x(), 3),
+                         unsigned_zero(p.y(), 3), unsigned_zero(p.z(), 3)),
+             unsigned_zero(yaw_deg(poses[i]), 1), mark, plan.gains[i].gain, gain_header.size(),
+             show_cells
+                 ? fmt::format(" {}{:>{}.1f}", mark, plan.gains[i].cells, cells_header.size() - 1)
+                 : "",
              plan.greedy_gains[i], robot ? fmt::format(" {:>10.3f}", candidates[i].travel) : "",
-             show_score ? fmt::format(" {:>{}.3f}", plan.scores[i], score_header.size()) : "");
+             plan.scores[i], score_header.size());
 }
+if (any_estimated)
+  fmt::print("~ an estimate: the search dropped this view without evaluating it\n");
 fmt::print(
-    "\nnext best view: candidate {} ({} method{}), decided in {:.3f} s\n"
+    "\nnext best view: candidate {} ({} method{}), score {:.1f} {}, decided in {:.3f} s\n"
     "  at {}\n  as --pose: {}\n",
     plan.best, to_string(planner.method),
-    has_observability(planner.method) ? fmt::format(", a = {}", planner.gain.alpha) : "",
-    plan.seconds, describe_pose(poses[plan.best]), pose_argument(poses[plan.best]));
+    has_observability(planner.method)
+        ? fmt::format(", a = {}, ranked by {}", planner.gain.alpha, units.objective)
+        : "",
+    plan.scores[plan.best], units.score, plan.seconds, describe_pose(poses[plan.best]),
+    pose_argument(poses[plan.best]));
 if (robot) fmt::print("robot at {} ({})\n", describe_pose(*robot), robot_source);
 fmt::print("map: {} unobserved, {} free, {} occupied cells\nresults: {}/plan.json, map.ot{}\n",
            counts.unobserved, counts.free, counts.occupied, dir.string(),
@@ -412,6 +539,10 @@ void add_plan_command(CLI::App& app) {
       ->check(number_in(0.0, kMaxWorldCoordinate, /*open_low=*/true));
   cmd->add_option("--height", o->height, "ring height [m] (default: 0.3 m above the ROI)")
       ->check(number_in(-kMaxWorldCoordinate, kMaxWorldCoordinate));
+  cmd->add_option("--sensor-height", o->sensor_height,
+                  "frontier candidates: the robot's sensor height [m], h or a range min,max (a "
+                  "ground robot's); frontier cells are taken in that band and each view placed "
+                  "in it (default: any height)");
   cmd->add_option("--views", o->views, "ring positions (x3 yaw offsets) or sphere views")
       ->check(whole_in(1, kMaxIndex));
   cmd->add_option("--fov-deg", o->fov_deg, "h,v field of view without a manifest [deg]")
@@ -435,10 +566,15 @@ void add_plan_command(CLI::App& app) {
       "unobserved cell holds 1 bit, a view turning it known is credited less) and its predicted "
       "seen is the expected number of unobserved cells the view sees [cells]; greedy, random "
       "and latombe count cells (latombe's score: greedy gain x exp(-lambda x travel)); yamauchi "
-      "scores minus the travel [m]. Travel is the straight line from --pose [m]. Writes "
+      "scores minus the travel [m]. The score column is what the method ranks by, in its unit "
+      "(the survival reading: cells, --objective bits|cells); '~' marks an estimated gain. Travel "
+      "is the straight line from --pose [m]. Writes "
       "plan.json, map.ot (lossless, for --map), map.bt (viewers), map.ply (occupied red, "
       "unobserved yellow) and map.png.");
-  cmd->callback([o] { run(*o); });
+  cmd->callback([o, cmd] {
+    o->sensor_given = cmd->count("--fov-deg") > 0 || cmd->count("--range") > 0;
+    run(*o);
+  });
 }
 
 }  // namespace vantage::cli

@@ -62,14 +62,15 @@ struct RayOptions {
   double alpha = kTableTopAlpha;
   std::string cells;
   int scenario = 0;
+  bool use_scenario = false;  ///< --scenario was given (0 is a wrong value, not "none")
   std::string csv_path;
   std::string plot_path;
 };
 
 void run(const RayOptions& options) {
   const RayModel model = from_options([&] { return RayModel(options.alpha); });
-  const std::vector<double> cells = options.scenario != 0 ? scenario_cells(options.scenario)
-                                                          : parse_numbers(options.cells, "--cells");
+  const std::vector<double> cells = options.use_scenario ? scenario_cells(options.scenario)
+                                                         : parse_numbers(options.cells, "--cells");
   const std::string csv = from_options([&] { return to_csv(model.trace(cells)); });
   if (!options.csv_path.empty()) check_output_file(options.csv_path, "--csv");
   if (!options.plot_path.empty()) check_output_file(options.plot_path, "--plot");
@@ -79,8 +80,8 @@ void run(const RayOptions& options) {
     const TemporaryFile data(".csv");
     write_atomically(data.path(), csv);
     const std::string title =
-        options.scenario != 0 ? fmt::format("Scenario #{}, a = {}", options.scenario, options.alpha)
-                              : fmt::format("a = {}", options.alpha);
+        options.use_scenario ? fmt::format("Scenario #{}, a = {}", options.scenario, options.alpha)
+                             : fmt::format("a = {}", options.alpha);
     run_plot_script("plot_ray.py", {data.path().string(), options.plot_path, title});
     fmt::print(stderr, "picture: {}\n", options.plot_path);
   }
@@ -107,6 +108,7 @@ void add_ray_command(CLI::App& app) {
     if (cells->count() == 0 && scenario->count() == 0) {
       throw UsageError("give the ray with --cells p0,...,pM or --scenario 1..4");
     }
+    options->use_scenario = scenario->count() > 0;
     run(*options);
   });
 }

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -55,8 +56,17 @@ void run(const ScanOptions& o) {
     throw UsageError(
         fmt::format("--frame must be sensor or world, got '{}'", printable(o.frame, 40)));
   }
+  // NOTE: a sensor's name is the command line's; the scene is a file's.
+  std::optional<sim::SensorConfig> replacement;
+  if (!o.sensor.empty()) {
+    try {
+      replacement = sim::builtin_sensor(o.sensor);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(fmt::format("--sensor: {}", e.what()));
+    }
+  }
   sim::Scene scene = sim::load_scene(o.scene);
-  if (!o.sensor.empty()) scene.sensor = sim::builtin_sensor(o.sensor);
+  if (replacement) scene.sensor = *replacement;
   const Eigen::Isometry3d pose = chosen_pose(o, scene);
   const sim::World world(std::move(scene), sim::WorldConfig{o.threads});
 
