@@ -291,7 +291,7 @@ BENCHMARK(BM_DecisionAtScale)
     ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {3}, {2}})
     ->ArgsProduct({{0, 1, 2, 5}, {0}, {2}})
     ->ArgNames({"case", "search", "threads"})
-    ->Iterations(3)
+    ->Iterations(1)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -58,6 +58,24 @@ TEST(Planner, LatombeTradesGainForTravelAndYamauchiTakesTheNearest) {
   EXPECT_EQ(plan_next_view(s.grid, s.candidates, config).best, 3u);
 }
 
+// Of views at the nearest place, Yamauchi takes the one that sees the most, not the first
+// (issue 27: a heading that saw 0 cells won over one at the same spot that saw 13,653).
+TEST(Planner, YamauchiBreaksTiesOnTravelByGain) {
+  HalfKnownBlock s;
+  // From -y (travel 1 m): a heading away from the block first, then one towards it.
+  const Eigen::Vector3d eye = s.candidates[3].view.origin();
+  const SensorFov fov = s.candidates[3].view.fov();
+  std::vector<Candidate> spot = {
+      {Frustum(look_at(eye, eye + Eigen::Vector3d(0.0, -1.0, 0.0)), fov), 1.0, true},
+      {Frustum(look_at(eye, Eigen::Vector3d::Zero()), fov), 1.0, true}};
+  PlannerConfig config;
+  config.method = PlannerMethod::kYamauchi;
+  const Plan plan = plan_next_view(s.grid, spot, config);
+  EXPECT_EQ(plan.greedy_gains[0], 0.0);
+  EXPECT_GT(plan.greedy_gains[1], 0.0);
+  EXPECT_EQ(plan.best, 1u);
+}
+
 // A candidate of several views (an office stop's sweep) scores and predicts the sum of its
 // views' values, so it beats each of them alone; Yamauchi still scores its travel once.
 TEST(Planner, ACandidateOfSeveralViewsSumsThem) {

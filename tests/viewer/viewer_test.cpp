@@ -392,6 +392,14 @@ TEST_F(ViewerTest, AGridBeyondTheMemoryBudgetIsRefusedBeforeItIsAllocated) {
       << error;
 }
 
+TEST_F(ViewerTest, DimsBeyondAnIntAreRefusedNotWrapped) {
+  json run = run_json();
+  run["scene"]["grid"]["dims"] = {4294967328ULL, 32, 17};  // once read as 32 (issue 27)
+  write_file(tmp_ / "run" / "run.json", run.dump());
+  const std::string error = view_error(tmp_ / "run", config_);
+  EXPECT_NE(error.find("dims[0] is out of range"), std::string::npos) << error;
+}
+
 TEST_F(ViewerTest, TextFromTheFolderCannotCloseThePagesScripts) {
   json run = run_json();
   run["scene"]["name"] = "a</script><script>alert(1)</script>";

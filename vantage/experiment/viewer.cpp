@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -64,6 +65,12 @@ class Field {
   }
   int integer() const {
     if (!value_->is_number_integer()) fail("is not an integer");
+    // NOTE: get<int> of 4294967328 wraps to 32; a value outside int's range is an error.
+    const bool fits = value_->is_number_unsigned()
+                          ? value_->get<std::uint64_t>() <= std::numeric_limits<int>::max()
+                          : value_->get<std::int64_t>() >= std::numeric_limits<int>::min() &&
+                                value_->get<std::int64_t>() <= std::numeric_limits<int>::max();
+    if (!fits) fail("is out of range");
     return value_->get<int>();
   }
   std::string text() const {

@@ -490,7 +490,8 @@ std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec&
             if (possible) open += blocks.open[oct][i];
           }
           open = std::min(open, blocks.open_any[i]);  // a cell counts once
-          if ((kind == BoundKind::kEntropy ? blocks.unobserved[i] : open) == 0) continue;
+          const bool all = kind == BoundKind::kEntropy || kind == BoundKind::kAllCells;
+          if ((all ? blocks.unobserved[i] : open) == 0) continue;
           const Index3 lo = b * kBlock;
           const Index3 hi = (lo.array() + kBlock).min(spec.dims.array());
           if (!may_meet(view, spec.origin + lo.cast<double>() * spec.resolution,
@@ -505,6 +506,9 @@ std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec&
             }
             case BoundKind::kCount:
               sum += open;
+              break;
+            case BoundKind::kAllCells:
+              sum += blocks.unobserved[i];
               break;
             case BoundKind::kSurvivalBits:
               sum += blocks.open_entropy[i];

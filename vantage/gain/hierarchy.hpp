@@ -90,6 +90,7 @@ std::vector<ViewGain> count_view_gains(const GainMap& map, const ClassBlocks* bl
 enum class BoundKind {
   kSurvivalCells,  ///< the survival reading's expected cells seen [cells]
   kCount,          ///< greedy's count [cells]
+  kAllCells,       ///< any per-target value in [0, 1], such as the paper's v_M [cells]
   kSurvivalBits,   ///< the survival reading's eq. (4) gain, at most H(p) of a reachable cell [bits]
   kEntropy,        ///< any per-target gain at most H(p), such as the paper's eq. (4) [bits]
 };

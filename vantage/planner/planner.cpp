@@ -88,11 +88,15 @@ Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidate
   GainConfig gain = config.gain;
   gain.method = gain_method_of(config.method);
   const bool counts = gain.method == GainMethod::kGreedy;
-  const detail::PrunedScore score = counts ? detail::PrunedScore::kGreedy
-                                           : (config.method == PlannerMethod::kSurvival &&
-                                                      config.objective == GainObjective::kCells
-                                                  ? detail::PrunedScore::kSurvivalCells
-                                                  : detail::PrunedScore::kBits);
+  // NOTE: what the method ranks by decides the score; the paper's model's cells have no
+  // reachability to prune by (its visibility never reaches 0).
+  detail::PrunedScore score = detail::PrunedScore::kBits;
+  if (counts) {
+    score = detail::PrunedScore::kGreedy;
+  } else if (config.objective == GainObjective::kCells) {
+    score = config.method == PlannerMethod::kSurvival ? detail::PrunedScore::kSurvivalCells
+                                                      : detail::PrunedScore::kModelCells;
+  }
   std::vector<double> factor;
   if (config.method == PlannerMethod::kLatombe) {
     for (const Candidate& c : candidates) factor.push_back(std::exp(-config.lambda * c.travel));
@@ -324,7 +328,8 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
     case PlannerMethod::kYamauchi:
       plan.scores.clear();
       for (const Candidate& c : candidates) plan.scores.push_back(-c.travel);
-      plan.best = choose_best(plan.scores);
+      // NOTE: of the views at the nearest place, the one that sees the most (issue 27).
+      plan.best = choose_best(plan.scores, plan.greedy_gains);
       break;
     default:  // probabilistic, greedy and the metrics: the highest score
       plan.scores = views.sums(view_scores);

@@ -90,6 +90,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
         gains = count_view_gains(map, &blocks, views, CountRule::kGreedy, config);
         break;
       case PrunedScore::kBits:
+      case PrunedScore::kModelCells:
         gains = exact_view_gains(map, views, config);
         break;
     }

@@ -22,6 +22,7 @@ enum class PrunedScore {
   kSurvivalCells,  ///< the survival reading's expected cells seen [cells]
   kGreedy,         ///< greedy's count [cells], times the candidate's factor (Latombe)
   kBits,           ///< eq. (4)'s gain under config.method (probabilistic or survival) [bits]
+  kModelCells,     ///< the paper's model's expected cells seen, sum of v_M [cells]
 };
 
 /// What the pruned search found.

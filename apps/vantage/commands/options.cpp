@@ -7,6 +7,7 @@
 
 #include "shell.hpp"
 #include "vantage/experiment/exploration.hpp"
+#include "vantage/util/memory.hpp"
 
 namespace vantage::cli {
 
@@ -96,7 +97,7 @@ MapperConfig MappingOptions::mapper_config(const sim::Scene& scene) const {
 double grid_bytes_per_cell(int threads) {
   const int n =
       threads > 0 ? threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  return kGridBytesPerCell + kThreadBytesPerCell * n;
+  return mapping_bytes_per_cell(n);
 }
 
 void add_memory_option(CLI::App& cmd, std::uint64_t& bytes) {

@@ -56,17 +56,12 @@ inline constexpr int kMaxIndex = 1000000;
 /// --threads/-j: 0 (all cores) .. kMaxThreads.
 void add_threads_option(CLI::App& cmd, int& threads, const std::string& description);
 
-/// Bytes a grid cell costs plan and explore at their peak, measured (docs/robustness.md,
-/// "Memory"): the grid's log-odds, the snapshot, stamps and tables of gain evaluation,
-/// integration and hole filling, with the registration's checkpoint (a second copy of the
-/// log-odds, 4 B, held while a scan is pending; MapperConfig::reregister_window) on top
-/// (kGridBytesPerCell), and each thread's own stamps (kThreadBytesPerCell), rounded up.
-inline constexpr double kGridBytesPerCell = 20.0;
-inline constexpr double kThreadBytesPerCell = 5.0;
 /// The ground truth's: a byte of occupancy a cell and the surface lists, with room to spare.
 inline constexpr double kGroundTruthBytesPerCell = 8.0;
 
-/// Bytes a cell costs a run of `threads` threads (0 = all cores).
+/// Bytes a cell costs plan and explore at their peak with `threads` threads (0 = all cores):
+/// the measured figure of vantage::mapping_bytes_per_cell (vantage/util/memory.hpp,
+/// docs/robustness.md "Memory").
 double grid_bytes_per_cell(int threads);
 /// What a run holds besides its grid: code, scene meshes, the sensor's images [bytes].
 inline constexpr double kFixedRunBytes = 200.0 * 1024 * 1024;

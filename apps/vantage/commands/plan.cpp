@@ -179,11 +179,10 @@ std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen
   const Eigen::Vector3d center = roi.center();
   const double half_diagonal = 0.5 * roi.sizes().head<2>().norm();
   if (o.candidates == "ring") {
-    RingConfig ring;
-    ring.center = center;
-    ring.radius = o.radius > 0.0 ? o.radius : std::max(1.0, 1.5 * half_diagonal);
-    ring.height = std::isnan(o.height) ? roi.max().z() + 0.3 : o.height;
-    ring.positions = o.views > 0 ? o.views : 10;
+    RingConfig ring = default_ring(roi);  // the rule vt.ring_candidates shares
+    if (o.radius > 0.0) ring.radius = o.radius;
+    if (!std::isnan(o.height)) ring.height = o.height;
+    if (o.views > 0) ring.positions = o.views;
     return ring_poses(ring);
   }
   if (o.candidates == "sphere") {
