@@ -95,4 +95,24 @@ if heights != {0.5} or len(plan["candidates"]) < 20:
 if plan["clouds"] != 0:
     sys.exit(f"FAIL: fr079: clouds {plan['clouds']} for --map alone")
 PY
+# The pruned search on FR-079 (Latombe): the candidates it never evaluated are marked, in the
+# table (~) and in plan.json, and none of their bounds beats the chosen view's exact score.
+"$vantage" plan --map "$data/geb079.bt" --candidates frontier --sensor-height 0.5 --threads 2 \
+  --method latombe --pose 0,0,0.5,0,0,0 --top 5000 --no-plots --out "$work/fr079_latombe" \
+  >"$work/fr079_latombe.txt"
+grep -q "^ *[0-9]* .*~" "$work/fr079_latombe.txt" || fail "fr079 latombe: no estimate marked ~"
+/usr/bin/python3 - "$work/fr079_latombe/plan.json" <<'PY'
+import json, sys
+plan = json.load(open(sys.argv[1]))
+best = plan["next_best_view"]
+candidates = plan["candidates"]
+estimated = [c for c in candidates if c.get("estimated")]
+if not estimated or len(estimated) == len(candidates):
+    sys.exit(f"FAIL: fr079 latombe: {len(estimated)} of {len(candidates)} estimated")
+chosen = [c for c in candidates if c["index"] == best["index"]]
+if len(chosen) != 1 or chosen[0].get("estimated"):
+    sys.exit("FAIL: fr079 latombe: the chosen view was not evaluated")
+if max(c["score"] for c in estimated) > best["score"]:
+    sys.exit("FAIL: fr079 latombe: a bound left unevaluated beats the chosen score")
+PY
 echo "ok: milk, mug and fr079 planned"

@@ -506,7 +506,9 @@ for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top
              plan.scores[i], score_header.size());
 }
 if (any_estimated)
-  fmt::print("~ an estimate: the search dropped this view without evaluating it\n");
+  fmt::print(
+      "~ not evaluated: the search's upper bound on this view's gain and score, below the "
+      "chosen view's score\n");
 fmt::print(
     "\nnext best view: candidate {} ({} method{}), score {:.1f} {}, decided in {:.3f} s\n"
     "  at {}\n  as --pose: {}\n",
