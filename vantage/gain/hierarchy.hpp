@@ -79,7 +79,8 @@ enum class CountRule { kSurvivalCells, kGreedy };
 
 /// Every view's count under `rule`, each unobserved cell in a view's frustum on its own ray,
 /// exactly as exact_view_gains computes ViewGain::cells for the survival reading and greedy (the
-/// same cells, the same sums in the same order, so bit for bit). With `blocks`, a ray crosses a
+/// same cells, the same sums in the same order, so bit for bit). With `blocks` (made for these
+/// views), a target no walk of its ray's octant reaches counts 0 uncast, and a ray crosses a
 /// block of one class in one step: free costs nothing, occupied ends it, unobserved multiplies by
 /// alpha^k (the hierarchical walk); without, it goes cell by cell (the reference).
 std::vector<ViewGain> count_view_gains(const GainMap& map, const ClassBlocks* blocks,
@@ -96,7 +97,7 @@ enum class BoundKind {
 };
 
 /// An upper bound on each view's sum, from the blocks its frustum may touch: their unobserved
-/// cells (reachable ones, but for kEntropy), each weighted for kSurvivalCells by alpha^n with n a
+/// cells (reachable ones, but for kEntropy and kAllCells), each weighted for kSurvivalCells by alpha^n with n a
 /// lower bound on the unobserved cells before it on any ray from the view's origin (its depth in
 /// unobserved space on the origin's side). The views must be among those `blocks` was made for.
 std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec& spec,
