@@ -77,6 +77,19 @@ sed -e 's/min: \[-0.4, -0.4, 0.7\]/min: [-0.2, -0.2, 0.7]/' "$work/milk.yaml" >"
 grep -q "warning: $work/milk/map.ot: dropped [1-9][0-9]* of its [0-9]* known voxels" \
   "$work/milk_small.err" || fail "the voxels dropped from --map are not said: $(cat "$work/milk_small.err")"
 
+# An arm's hemisphere of views (issue 26) over the small ROI: hundreds of views on three radii
+# around the ROI's centre (0.1, 0.1, 0.9), all above it.
+"$vantage" plan "$work/milk_small.yaml" --candidates hemisphere --method greedy --threads 2 \
+  --no-plots --out "$work/hemisphere" >/dev/null
+/usr/bin/python3 - "$work/hemisphere/plan.json" <<'PY'
+import json, math, sys
+plan = json.load(open(sys.argv[1]))
+positions = [c["sensor"]["position"] for c in plan["candidates"]]
+radii = {round(math.dist(p, (0.1, 0.1, 0.9)), 6) for p in positions}
+if len(positions) < 100 or radii != {0.75, 1.0, 1.25} or min(p[2] for p in positions) <= 0.9:
+    sys.exit(f"FAIL: hemisphere: {len(positions)} views, radii {sorted(radii)[:5]}")
+PY
+
 # FR-079: frontier views at a ground robot's sensor height, each in known free space.
 "$vantage" plan --map "$data/geb079.bt" --candidates frontier --sensor-height 0.5 --threads 2 \
   --no-plots --out "$work/fr079" >"$work/fr079.txt"

@@ -28,6 +28,7 @@
 #include "vantage/io/ply_export.hpp"
 #include "vantage/util/memory.hpp"
 #include "vantage/views/frontier.hpp"
+#include "vantage/views/hemisphere.hpp"
 #include "vantage/views/ring.hpp"
 #include "vantage/views/sphere.hpp"
 
@@ -192,6 +193,14 @@ std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen
     sphere.views = o.views > 0 ? o.views : 50;
     return sphere_poses(sphere);
   }
+  if (o.candidates == "hemisphere") {
+    // NOTE: an arm's views (issue 26): rings at 0.75, 1 and 1.25 times the ring's radius.
+    HemisphereConfig hemisphere;
+    hemisphere.center = center;
+    const double radius = o.radius > 0.0 ? o.radius : default_ring(roi).radius;
+    hemisphere.radii = {0.75 * radius, radius, 1.25 * radius};
+    return hemisphere_poses(hemisphere);
+  }
   if (o.candidates == "frontier") {
     const FrontierViews views = frontier_poses(grid, sensor_band(o));
     if (!o.json_only) {
@@ -260,18 +269,20 @@ void run(const PlanOptions& o) {
   }
 
   if (o.input.empty()) fov_from_options(o);  // throws for a bad --fov-deg or --range
-  const bool named_candidates =
-      o.candidates == "ring" || o.candidates == "sphere" || o.candidates == "frontier";
+  const bool named_candidates = o.candidates == "ring" || o.candidates == "sphere" ||
+                                o.candidates == "hemisphere" || o.candidates == "frontier";
   if (!named_candidates) {
     std::error_code error;
     if (fs::is_directory(o.candidates, error)) {
       throw UsageError(fmt::format(
-          "--candidates '{}' is a folder: give ring, sphere, frontier or a pose file (TUM format)",
+          "--candidates '{}' is a folder: give ring, sphere, hemisphere, frontier or a pose file "
+          "(TUM format)",
           o.candidates));
     }
     if (!fs::exists(o.candidates, error)) {
       throw UsageError(fmt::format(
-          "--candidates '{}' is neither ring, sphere, frontier nor an existing pose file",
+          "--candidates '{}' is neither ring, sphere, hemisphere, frontier nor an existing pose "
+          "file",
           o.candidates));
     }
   }
@@ -533,10 +544,12 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("input", o->input, "manifest YAML, or a folder holding manifest.yaml");
   cmd->add_option("--map", o->map, "start from this OctoMap (.bt or .ot)");
   cmd->add_option("--candidates,-c", o->candidates,
-                  "ring, sphere, frontier (4 level views at each frontier region's "
-                  "centroid), or a TUM-format file of candidate poses")
+                  "ring, sphere, hemisphere (an arm's views: rings at several radii and elevations "
+                  "looking at the ROI's centre), frontier (4 level views at each frontier "
+                  "region's centroid), or a TUM-format file of candidate poses")
       ->capture_default_str();
-  cmd->add_option("--radius", o->radius, "ring/sphere radius [m] (default: from the ROI)")
+  cmd->add_option("--radius", o->radius,
+                  "ring/sphere radius, the hemisphere's middle one [m] (default: from the ROI)")
       ->check(number_in(0.0, kMaxWorldCoordinate, /*open_low=*/true));
   cmd->add_option("--height", o->height, "ring height [m] (default: 0.3 m above the ROI)")
       ->check(number_in(-kMaxWorldCoordinate, kMaxWorldCoordinate));

@@ -1,0 +1,35 @@
+#pragma once
+/// @file
+/// Candidate views for an arm-mounted sensor (issue 26): rings of views over a table at several
+/// radii and elevations, each looking at the region of interest's centre, kept where the arm
+/// can reach them. Travel between them is the sensor's straight-line path.
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <vector>
+
+namespace vantage {
+
+/// The hemisphere of views and the arm's reach.
+struct HemisphereConfig {
+  Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< point every view looks at [m]
+  std::vector<double> radii = {0.6, 0.8, 1.0};       ///< distances from the centre [m]
+  double min_elevation = 0.2617993877991494;  ///< lowest ring above the centre's horizon, 15° [rad]
+  double max_elevation = 1.3089969389957472;  ///< highest ring, 75° [rad]
+  int elevations = 4;                         ///< rings per radius, evenly spaced in elevation
+  /// Arc between neighbouring views of a ring: a ring of radius r cos(e) holds
+  /// ceil(2 pi r cos(e) / spacing) views, at least 3 [m].
+  double spacing = 0.15;
+  Eigen::Vector3d base = Eigen::Vector3d::Zero();  ///< the arm's base [m]
+  /// Views farther than this from `base` are dropped (infinity: every view is reachable) [m].
+  double reach = std::numeric_limits<double>::infinity();
+
+  /// Throws std::invalid_argument naming the field.
+  void validate() const;
+};
+
+/// The reachable views, ordered by radius, then elevation (low to high), then azimuth (from +x,
+/// counter-clockwise), each looking at the centre with its y axis level.
+std::vector<Eigen::Isometry3d> hemisphere_poses(const HemisphereConfig& config);
+
+}  // namespace vantage
