@@ -21,7 +21,6 @@
 #include "shell.hpp"
 #include "vantage/experiment/recorded.hpp"
 #include "vantage/experiment/results.hpp"
-#include "vantage/gain/metrics.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/map_files.hpp"
 #include "vantage/io/octomap_io.hpp"
