@@ -194,12 +194,15 @@ TEST(Hierarchy, BoundsHoldForEveryView) {
         view_upper_bounds(blocks, grid.spec(), map, views, BoundKind::kEntropy, alpha);
     const auto open_bits =
         view_upper_bounds(blocks, grid.spec(), map, views, BoundKind::kSurvivalBits, alpha);
+    const auto all_cells =
+        view_upper_bounds(blocks, grid.spec(), map, views, BoundKind::kAllCells, alpha);
     config.method = GainMethod::kProbabilistic;
     const auto paper = exact_view_gains(map, views, config);
     for (std::size_t v = 0; v < views.size(); ++v) {
       EXPECT_GE(cells[v], exact[v].cells) << "view " << v << " a " << alpha;
       EXPECT_GE(open_bits[v], exact[v].gain) << "view " << v << " a " << alpha;
       EXPECT_GE(bits[v], paper[v].gain) << "view " << v << " a " << alpha;
+      EXPECT_GE(all_cells[v], paper[v].cells) << "view " << v << " a " << alpha;
     }
   }
   GainConfig greedy;

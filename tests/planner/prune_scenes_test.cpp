@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -77,17 +78,18 @@ std::vector<double> exact_scores(const OccupancyGrid& grid, const std::vector<Ca
 
 void check_state(const std::string& state, const OccupancyGrid& grid,
                  const std::vector<Candidate>& cands, const Reference& reference,
-                 PlannerMethod method, bool two_threads = false) {
+                 PlannerMethod method, bool two_threads = false,
+                 std::optional<GainObjective> objective = std::nullopt) {
   PlannerConfig config;
   config.method = method;
-  config.objective = natural_objective(method);
+  config.objective = objective.value_or(natural_objective(method));
   config.gain.alpha = method == PlannerMethod::kSurvival ? kSurvivalAlpha : kTableTopAlpha;
   config.search = DecisionSearch::kPruned;
   config.gain.num_threads = 1;
   const std::vector<double> exact = exact_scores(grid, cands, reference, config);
   const std::size_t best = choose_best(exact);
   const Plan plan = plan_next_view(grid, cands, config);
-  const std::string what = cat(state, ", ", to_string(method));
+  const std::string what = cat(state, ", ", to_string(method), ", ", to_string(config.objective));
   ASSERT_EQ(plan.scores.size(), cands.size()) << what;
   EXPECT_EQ(plan.best, best) << what;
   EXPECT_EQ(plan.scores[plan.best], exact[best]) << what;
@@ -135,7 +137,11 @@ TEST_P(PrunedDecision, ChoosesWhatExhaustiveExactSearchChooses) {
     check_state(state, grid, ring, reference, PlannerMethod::kGreedy);
     check_state(state, grid, ring, reference, PlannerMethod::kLatombe);
     // NOTE: the paper's model has no cheap exact reference; once, where its search is cheapest.
-    if (k == 5) check_state(state, grid, ring, reference, PlannerMethod::kProbabilistic);
+    if (k == 5) {
+      check_state(state, grid, ring, reference, PlannerMethod::kProbabilistic);
+      check_state(state, grid, ring, reference, PlannerMethod::kProbabilistic, false,
+                  GainObjective::kCells);
+    }
     if (k == 0) {
       SphereConfig sphere;
       sphere.center = scene.ring.center;

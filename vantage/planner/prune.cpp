@@ -32,6 +32,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
   start = std::chrono::steady_clock::now();
   const BoundKind kind = score == PrunedScore::kSurvivalCells     ? BoundKind::kSurvivalCells
                          : score == PrunedScore::kGreedy          ? BoundKind::kCount
+                         : score == PrunedScore::kModelCells      ? BoundKind::kAllCells
                          : config.method == GainMethod::kSurvival ? BoundKind::kSurvivalBits
                                                                   : BoundKind::kEntropy;
   const std::vector<double> view_bounds =
