@@ -7,6 +7,7 @@
 // decision").
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -268,7 +269,12 @@ void BM_DecisionAtScale(benchmark::State& bench) {
   std::vector<Frustum> views;
   for (const Candidate& c : s.candidates) views.push_back(c.view);
   const GainMap map(s.grid);
+  const auto summary_start = std::chrono::steady_clock::now();
   const ClassBlocks blocks = summarize_classes(map, views);
+  bench.counters["summary_ms"] =
+      1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - summary_start).count();
+  bench.counters["summary_of_grid"] =  // the summary's bytes over the grid's (4 a cell)
+      static_cast<double>(blocks.bytes()) / (4.0 * static_cast<double>(s.grid.size()));
   GainConfig gain = config.gain;
   gain.method = gain_method_of(config.method);
   const bool greedy = gain.method == GainMethod::kGreedy;

@@ -89,7 +89,9 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
   const std::vector<double> exact = exact_scores(grid, cands, reference, config);
   const std::size_t best = choose_best(exact);
   const Plan plan = plan_next_view(grid, cands, config);
-  const std::string what = cat(state, ", ", to_string(method), ", ", to_string(config.objective));
+  const std::string what =
+      cat(state, ", ", to_string(method),
+          has_observability(method) ? cat(", ", to_string(config.objective)) : std::string());
   ASSERT_EQ(plan.scores.size(), cands.size()) << what;
   EXPECT_EQ(plan.best, best) << what;
   EXPECT_EQ(plan.scores[plan.best], exact[best]) << what;

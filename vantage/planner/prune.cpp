@@ -1,7 +1,6 @@
 #include "vantage/planner/prune.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <limits>
 #include <numeric>
 
@@ -9,14 +8,6 @@
 #include "vantage/gain/hierarchy.hpp"
 
 namespace vantage::detail {
-namespace {
-
-double since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
-
 Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> frusta,
                          std::span<const std::size_t> first, std::span<const double> factor,
                          const GainConfig& config, PrunedScore score) {
@@ -24,12 +15,8 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
   const std::size_t n = first.size() - 1;
   const auto factor_of = [&](std::size_t c) { return factor.empty() ? 1.0 : factor[c]; };
   Pruning out;
-  auto start = std::chrono::steady_clock::now();
   const GainMap map(grid, config.num_threads);
   const ClassBlocks blocks = summarize_classes(map, frusta, config.num_threads);
-  out.summary_seconds = since(start);
-
-  start = std::chrono::steady_clock::now();
   const BoundKind kind = score == PrunedScore::kSurvivalCells     ? BoundKind::kSurvivalCells
                          : score == PrunedScore::kGreedy          ? BoundKind::kCount
                          : score == PrunedScore::kModelCells      ? BoundKind::kAllCells
@@ -50,7 +37,6 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
     (score == PrunedScore::kBits ? out.gains[c].gain : out.gains[c].cells) = raw;
     if (score == PrunedScore::kGreedy) out.gains[c].gain = raw;
   }
-  out.bound_seconds = since(start);
 
   // Best first: the highest bound, ties to the lower index, as choose_best breaks them.
   std::vector<std::size_t> order(n);
@@ -61,8 +47,14 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
   bool found = false;
   // Single-view candidates by origin: views from one origin share each target's ray
   // (exact_view_gains), so the candidates of an origin still in the race are evaluated together.
-  const auto origin_of = [&](std::size_t c) { return frusta[first[c]].origin(); };
   const auto single = [&](std::size_t c) { return first[c + 1] - first[c] == 1; };
+  std::vector<Frustum> first_views;
+  for (std::size_t c = 0; c < n; ++c) first_views.push_back(frusta[first[c]]);
+  const std::vector<std::vector<std::size_t>> by_origin = views_by_origin(first_views);
+  std::vector<std::size_t> group_of(n);
+  for (std::size_t g = 0; g < by_origin.size(); ++g) {
+    for (const std::size_t c : by_origin[g]) group_of[c] = g;
+  }
   for (const std::size_t c : order) {
     if (!out.estimated[c]) continue;  // evaluated with another of its origin
     // NOTE: bounds are in descending order, so once one cannot beat the best, none after can.
@@ -70,9 +62,8 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
     if (found && out.scores[c] == best && c > out.best) continue;
     std::vector<std::size_t> batch{c};
     if (single(c)) {
-      for (const std::size_t o : order) {
-        if (o != c && out.estimated[o] && single(o) && origin_of(o) == origin_of(c) &&
-            (!found || out.scores[o] >= best)) {
+      for (const std::size_t o : by_origin[group_of[c]]) {
+        if (o != c && out.estimated[o] && single(o) && (!found || out.scores[o] >= best)) {
           batch.push_back(o);
         }
       }
