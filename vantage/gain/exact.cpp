@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <stdexcept>
 
+#include "vantage/gain/detail/target_predictors.hpp"
 #include "vantage/gain/detail/target_sums.hpp"
 #include "vantage/gain/metrics.hpp"
 #include "vantage/gain/ray_model.hpp"
@@ -23,95 +24,6 @@ namespace {
 
 using detail::longest_ray;
 using detail::sum_by_origin;
-
-/// Cell values read straight from the grid, for one-off rays where a snapshot would cost more
-/// than it saves.
-struct GridCells {
-  const OccupancyGrid& grid;
-  const GridSpec& spec() const { return grid.spec(); }
-  GainMap::Value value(std::size_t i) const {
-    GainMap::Value v;
-    v.p = grid.probability(i);
-    v.entropy = entropy_bits(v.p);
-    v.state = grid.state(i);
-    return v;
-  }
-};
-
-/// Gain and visibility of the target cell on its ray from `origin` under `Model`; 0 when the ray
-/// stops early (visibility below `epsilon`) before it. `Cells` is GainMap or GridCells.
-template <typename Model, typename Cells>
-TargetPrediction ray_gain(const Cells& map, const RayTables<Model>& tables,
-                          const Eigen::Vector3d& origin, const Index3& target, double epsilon) {
-  const GridSpec& spec = map.spec();
-  const std::size_t target_linear = spec.linear(target);
-  RayOdds state;
-  double p_prev = 0.0;
-  TargetPrediction prediction;
-  bool first = true;
-  traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int m) {
-    const auto cell = map.value(linear);
-    if (first) {
-      state = tables.enter(m, cell.p);
-      first = false;
-    } else {
-      tables.step(state, m, p_prev, cell.p);
-    }
-    p_prev = cell.p;
-    if (linear == target_linear) {
-      prediction.gain = cell.entropy - entropy_bits(state.posterior());  // eq. (4)
-      prediction.seen = state.visibility();  // v_M: c_M's own occupancy does not update it
-      return false;
-    }
-    // The fast mode's early stop: a ray stops once it is hidden.
-    return !state.hidden(epsilon);
-  });
-  return prediction;
-}
-
-/// Gain and visibility of the target under the survival reading (survival.hpp); 0 once the ray
-/// is stopped (visibility below `epsilon`) before it. Walks the cells TargetWalk takes, as
-/// count_view_gains does (hierarchy.hpp), so the two agree bit for bit.
-template <typename Cells>
-TargetPrediction survival_ray_gain(const Cells& map, const SurvivalModel& model,
-                                   const Eigen::Vector3d& origin, const Index3& target,
-                                   double epsilon) {
-  const GridSpec& spec = map.spec();
-  TargetWalk walk(spec, origin, target);
-  if (!walk.entered()) return {};
-  GainMap::Value cell = map.value(walk.linear());
-  SurvivalModel::State state = model.enter(walk.m(), cell);
-  while (!walk.at_target()) {
-    if (!(state.visibility >= epsilon && state.visibility > 0.0)) return {};
-    walk.advance();
-    const GainMap::Value next = map.value(walk.linear());
-    model.step(state, cell, next);
-    cell = next;
-  }
-  return SurvivalModel::predict(state, cell);
-}
-
-/// Whether nothing occludes the target (the simple greedy gain): 1 or 0, in bits and in cells.
-/// Walks the cells TargetWalk takes, as count_view_gains does (hierarchy.hpp).
-template <typename Cells>
-TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin,
-                             const Index3& target) {
-  const GridSpec& spec = map.spec();
-  TargetWalk walk(spec, origin, target);
-  if (walk.entered()) {
-    for (; !walk.at_target(); walk.advance()) {
-      if (occludes(map.value(walk.linear()).state)) return {0.0, 0.0};
-    }
-  }
-  return {1.0, 1.0};
-}
-
-/// The tables for rays from every view's origin.
-template <typename Model>
-RayTables<Model> tables_for(const GridSpec& spec, std::span<const Frustum> views,
-                            const OccupancyParams& params, double alpha) {
-  return RayTables<Model>(alpha, params.p_min, longest_ray(spec, views));
-}
 
 /// Unobserved cells before the target on its ray, or -1 when an occupied cell lies before it
 /// (the cells TargetWalk takes, as the survival reading's exact evaluation).
@@ -207,24 +119,13 @@ std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frust
                                        const GainConfig& config, int outside_sample) {
   config.validate();
   require_model_method(config, "exact_view_gains");
-  if (config.method == GainMethod::kGreedy) {
-    return sum_by_origin(map, views, config.num_threads, outside_sample,
-                         [&](const Eigen::Vector3d& origin, const Index3& target) {
-                           return greedy_gain(map, origin, target);
-                         });
-  }
-  if (config.method == GainMethod::kSurvival) {
-    const SurvivalModel model(config.alpha, map.params().p_min, longest_ray(map.spec(), views));
-    return sum_by_origin(map, views, config.num_threads, outside_sample,
-                         [&](const Eigen::Vector3d& origin, const Index3& target) {
-                           return survival_ray_gain(map, model, origin, target, config.epsilon);
-                         });
-  }
-  const RayTables<Model> tables = tables_for<Model>(map.spec(), views, map.params(), config.alpha);
-  return sum_by_origin(map, views, config.num_threads, outside_sample,
-                       [&](const Eigen::Vector3d& origin, const Index3& target) {
-                         return ray_gain(map, tables, origin, target, config.epsilon);
-                       });
+  return detail::with_predictor<Model>(
+      config, map.params().p_min, longest_ray(map.spec(), views), [&](const auto& predict) {
+        return sum_by_origin(map, views, config.num_threads, outside_sample,
+                             [&](const Eigen::Vector3d& origin, const Index3& target) {
+                               return predict(map, origin, target);
+                             });
+      });
 }
 
 template std::vector<ViewGain> exact_view_gains<PaperModel>(const GainMap&,
@@ -252,16 +153,11 @@ std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const F
                                            std::span<const std::uint32_t> cells,
                                            const GainConfig& config) {
   config.validate();
-  const bool survival = config.method == GainMethod::kSurvival;
-  if (config.method != GainMethod::kProbabilistic && !survival) {
-    throw std::invalid_argument(
-        cat("sampled_view_gains: gain.method must be probabilistic or survival, got ",
-            to_string(config.method)));
+  if (!method_traits(config.method).sampled) {
+    throw std::invalid_argument(cat("sampled_view_gains: gain.method ", to_string(config.method),
+                                    " has no sampled estimates"));
   }
   const GridSpec& spec = map.spec();
-  const RayTables<PaperModel> tables =
-      tables_for<PaperModel>(spec, views, map.params(), config.alpha);
-  const SurvivalModel survival_model(config.alpha, map.params().p_min, longest_ray(spec, views));
   // NOTE: as in exact_view_gains, views from one origin share each cell's ray. Work is cut into
   // (group, chunk of cells) slots that are summed in order afterwards, so a few views still
   // spread over all threads and the sums do not depend on them.
@@ -271,42 +167,43 @@ std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const F
   constexpr std::size_t kChunk = 512;
   const std::size_t chunks = (cells.size() + kChunk - 1) / kChunk;
   std::vector<SampleSums> slots(views.size() * chunks);  // [view][chunk]
-  run_with_threads(config.num_threads, [&] {
-    tbb::parallel_for(std::size_t{0}, groups.size() * chunks, [&](std::size_t slot) {
-      const std::vector<std::size_t>& members = groups[slot / chunks];
-      const std::size_t chunk = slot % chunks;
-      const std::size_t begin = chunk * kChunk;
-      const std::size_t end = std::min(cells.size(), begin + kChunk);
-      const Eigen::Vector3d origin = views[members.front()].origin();
-      std::vector<std::size_t> holding;  // the members whose frustum holds the cell
-      for (std::size_t i = begin; i < end; ++i) {
-        if (map.value(cells[i]).state != CellState::kUnobserved) continue;
-        const Index3 cell = spec.unravel(cells[i]);
-        const Eigen::Vector3d center = spec.center(cell);
-        holding.clear();
-        for (const std::size_t v : members) {
-          const CellBox& box = boxes[v];
-          if ((cell.array() >= box.lo.array()).all() && (cell.array() <= box.hi.array()).all() &&
-              views[v].contains(center)) {
-            holding.push_back(v);
-          }
-        }
-        if (holding.empty()) continue;
-        const TargetPrediction p =
-            survival ? survival_ray_gain(map, survival_model, origin, cell, config.epsilon)
-                     : ray_gain(map, tables, origin, cell, config.epsilon);
-        for (const std::size_t v : holding) {
-          SampleSums& sum = slots[v * chunks + chunk];
-          sum.gain += p.gain;
-          sum.gain_sq += p.gain * p.gain;
-          sum.cells += p.seen;
-          sum.cells_sq += p.seen * p.seen;
-          ++sum.targets;
-          sum.shared += holding.size() > 1 ? 1 : 0;
-        }
-      }
-    });
-  });
+  detail::with_predictor(
+      config, map.params().p_min, longest_ray(spec, views), [&](const auto& predict) {
+        run_with_threads(config.num_threads, [&] {
+          tbb::parallel_for(std::size_t{0}, groups.size() * chunks, [&](std::size_t slot) {
+            const std::vector<std::size_t>& members = groups[slot / chunks];
+            const std::size_t chunk = slot % chunks;
+            const std::size_t begin = chunk * kChunk;
+            const std::size_t end = std::min(cells.size(), begin + kChunk);
+            const Eigen::Vector3d origin = views[members.front()].origin();
+            std::vector<std::size_t> holding;  // the members whose frustum holds the cell
+            for (std::size_t i = begin; i < end; ++i) {
+              if (map.value(cells[i]).state != CellState::kUnobserved) continue;
+              const Index3 cell = spec.unravel(cells[i]);
+              const Eigen::Vector3d center = spec.center(cell);
+              holding.clear();
+              for (const std::size_t v : members) {
+                const CellBox& box = boxes[v];
+                if ((cell.array() >= box.lo.array()).all() &&
+                    (cell.array() <= box.hi.array()).all() && views[v].contains(center)) {
+                  holding.push_back(v);
+                }
+              }
+              if (holding.empty()) continue;
+              const TargetPrediction p = predict(map, origin, cell);
+              for (const std::size_t v : holding) {
+                SampleSums& sum = slots[v * chunks + chunk];
+                sum.gain += p.gain;
+                sum.gain_sq += p.gain * p.gain;
+                sum.cells += p.seen;
+                sum.cells_sq += p.seen * p.seen;
+                ++sum.targets;
+                sum.shared += holding.size() > 1 ? 1 : 0;
+              }
+            }
+          });
+        });
+      });
   std::vector<SampleSums> sums(views.size());
   for (std::size_t v = 0; v < views.size(); ++v) {
     for (std::size_t c = 0; c < chunks; ++c) {
@@ -333,16 +230,11 @@ double exact_cell_gain(const OccupancyGrid& grid, const Eigen::Vector3d& origin,
     throw std::out_of_range(cat("target cell (", target.x(), ", ", target.y(), ", ", target.z(),
                                 ") is outside the grid"));
   }
-  const GridCells cells{grid};
-  if (config.method == GainMethod::kGreedy) return greedy_gain(cells, origin, target).gain;
-  if (config.method == GainMethod::kSurvival) {
-    const SurvivalModel model(config.alpha, grid.params().p_min,
-                              max_ray_cells(grid.spec(), origin));
-    return survival_ray_gain(cells, model, origin, target, 0.0).gain;
-  }
-  const RayTables<PaperModel> tables(config.alpha, grid.params().p_min,
-                                     max_ray_cells(grid.spec(), origin));
-  return ray_gain(cells, tables, origin, target, 0.0).gain;
+  GainConfig literal = config;
+  literal.epsilon = 0.0;  // one ray, taken to its end
+  return detail::with_predictor(
+      literal, grid.params().p_min, max_ray_cells(grid.spec(), origin),
+      [&](const auto& predict) { return predict(detail::GridCells{grid}, origin, target).gain; });
 }
 
 }  // namespace vantage

@@ -8,6 +8,7 @@
 
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/fast_cast.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/gain/metrics.hpp"
 #include "vantage/util/parallel.hpp"
 
@@ -111,8 +112,8 @@ std::vector<ViewGain> fast_view_gains(const GainMap& map, std::span<const Frustu
                                       const GainConfig& config) {
   config.validate();
   require_model_method(config, "fast_view_gains");
-  // NOTE: greedy and the survival reading have only the exact evaluation.
-  if (config.method == GainMethod::kGreedy || config.method == GainMethod::kSurvival) {
+  // NOTE: only the paper's model has rays cast outward (methods.hpp, fast_mode).
+  if (!method_traits(config.method).fast_mode) {
     return exact_view_gains<Model>(map, views, config);
   }
   std::vector<ViewGain> gains;

@@ -7,6 +7,7 @@
 
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/fast.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/gain/metrics.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"
@@ -67,9 +68,7 @@ double exact_steps(const GainMap& map, std::span<const Frustum> views) {
 /// The cheaper of the two evaluations on one snapshot.
 std::vector<ViewGain> cheapest_view_gains(const GainMap& map, std::span<const Frustum> views,
                                           const GainConfig& config) {
-  if (config.method == GainMethod::kGreedy || config.method == GainMethod::kSurvival) {
-    return exact_view_gains(map, views, config);
-  }
+  if (!method_traits(config.method).fast_mode) return exact_view_gains(map, views, config);
   std::vector<ViewGain> gains;
   run_with_threads(config.num_threads, [&] {
     const detail::FastPlan plan = detail::plan_rays(map, views, config);
@@ -84,26 +83,9 @@ std::vector<ViewGain> cheapest_view_gains(const GainMap& map, std::span<const Fr
 
 }  // namespace
 
-constexpr EnumNames<GainMethod, 10> kMethodNames = {
-    {{GainMethod::kProbabilistic, "probabilistic"},
-     {GainMethod::kSurvival, "survival"},
-     {GainMethod::kGreedy, "greedy"},
-     {GainMethod::kOcclusionAware, "occlusion-aware"},
-     {GainMethod::kUnobservedVoxel, "unobserved-voxel"},
-     {GainMethod::kRearSideVoxel, "rear-side-voxel"},
-     {GainMethod::kRearSideEntropy, "rear-side-entropy"},
-     {GainMethod::kProximityCount, "proximity-count"},
-     {GainMethod::kAverageEntropy, "average-entropy"},
-     {GainMethod::kAreaFactor, "area-factor"}}};
 constexpr EnumNames<GainEvaluation, 3> kEvaluationNames = {{{GainEvaluation::kExact, "exact"},
                                                             {GainEvaluation::kFast, "fast"},
                                                             {GainEvaluation::kAuto, "auto"}}};
-
-std::string_view to_string(GainMethod method) { return name_of(method, kMethodNames); }
-
-GainMethod parse_gain_method(std::string_view name) {
-  return value_named(name, kMethodNames, "gain method");
-}
 
 std::string_view to_string(GainEvaluation evaluation) {
   return name_of(evaluation, kEvaluationNames);

@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "vantage/gain/exact.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -34,7 +35,7 @@ AlphaSetting parse_alpha_setting(std::string_view text, double prior) {
 std::vector<double> expected_cells_by_alpha(const OccupancyGrid& grid,
                                             std::span<const Frustum> views, GainConfig config,
                                             std::span<const double> alphas) {
-  if (config.method == GainMethod::kSurvival) {
+  if (method_traits(config.method).ray == TargetRay::kSurvival) {
     return survival_cells_by_alpha(grid, views, alphas, config.num_threads);
   }
   config.method = GainMethod::kProbabilistic;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "vantage/gain/exact.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/prune.hpp"
 #include "vantage/planner/screen.hpp"
@@ -56,8 +57,7 @@ std::vector<double> gains_of(const OccupancyGrid& grid, const Views& views, Gain
   std::vector<double> values;
   values.reserve(gains.size());
   // NOTE: greedy's gain is its count of cells; only the probabilistic method's differ.
-  const bool cells = objective == GainObjective::kCells &&
-                     (method == GainMethod::kProbabilistic || method == GainMethod::kSurvival);
+  const bool cells = objective == GainObjective::kCells && method_traits(method).has_objective;
   for (const ViewGain& g : gains) values.push_back(cells ? g.cells : g.gain);
   if (per_candidate != nullptr) {
     per_candidate->assign(views.first.size() - 1, ViewGain{});
@@ -75,6 +75,16 @@ double since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// Greedy's count on the candidates' poses, the reference of the other methods' predictions
+/// (Fig. 11), and its time.
+void add_greedy_reference(const OccupancyGrid& grid, const Views& views, const GainConfig& gain,
+                          Plan& plan) {
+  const auto start = std::chrono::steady_clock::now();
+  plan.greedy_gains =
+      views.sums(gains_of(grid, views, gain, GainMethod::kGreedy, GainObjective::kCells));
+  plan.reference_seconds = since(start);
+}
+
 /// Whether the pruned search serves the method (PlannerConfig::search).
 bool prunable(PlannerMethod method) {
   return method == PlannerMethod::kSurvival || method == PlannerMethod::kProbabilistic ||
@@ -87,7 +97,7 @@ Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidate
                  std::chrono::steady_clock::time_point start) {
   GainConfig gain = config.gain;
   gain.method = gain_method_of(config.method);
-  const bool counts = gain.method == GainMethod::kGreedy;
+  const bool counts = method_traits(gain.method).counts;
   // NOTE: what the method ranks by decides the score; the paper's model's cells have no
   // reachability to prune by (its visibility never reaches 0).
   detail::PrunedScore score = detail::PrunedScore::kBits;
@@ -129,10 +139,7 @@ Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidate
     plan.prediction_seconds = since(predict_start);
   }
   if (config.greedy_reference && !counts) {
-    const auto reference_start = std::chrono::steady_clock::now();
-    plan.greedy_gains =
-        views.sums(gains_of(grid, views, config.gain, GainMethod::kGreedy, GainObjective::kCells));
-    plan.reference_seconds = since(reference_start);
+    add_greedy_reference(grid, views, config.gain, plan);
     plan.seconds += plan.reference_seconds;  // as the other searches count it
   }
   return plan;
@@ -140,69 +147,33 @@ Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidate
 
 }  // namespace
 
-std::string_view to_string(PlannerMethod method) {
-  switch (method) {
-    case PlannerMethod::kProbabilistic:
-      return "probabilistic";
-    case PlannerMethod::kSurvival:
-      return "survival";
-    case PlannerMethod::kGreedy:
-      return "greedy";
-    case PlannerMethod::kRandom:
-      return "random";
-    case PlannerMethod::kLatombe:
-      return "latombe";
-    case PlannerMethod::kYamauchi:
-      return "yamauchi";
-    default:
-      return to_string(gain_method_of(method));
-  }
-}
+// NOTE: the planner's own strategies, then one per gain method it scores by, named as the gain
+// method is (methods.hpp); the rows' order is the order names are listed in messages.
+constexpr EnumNames<PlannerMethod, 13> kPlannerMethodNames = {{
+    {PlannerMethod::kProbabilistic, "probabilistic"},
+    {PlannerMethod::kSurvival, "survival"},
+    {PlannerMethod::kGreedy, "greedy"},
+    {PlannerMethod::kRandom, "random"},
+    {PlannerMethod::kLatombe, "latombe"},
+    {PlannerMethod::kYamauchi, "yamauchi"},
+    {PlannerMethod::kOcclusionAware, "occlusion-aware"},
+    {PlannerMethod::kUnobservedVoxel, "unobserved-voxel"},
+    {PlannerMethod::kRearSideVoxel, "rear-side-voxel"},
+    {PlannerMethod::kRearSideEntropy, "rear-side-entropy"},
+    {PlannerMethod::kProximityCount, "proximity-count"},
+    {PlannerMethod::kAverageEntropy, "average-entropy"},
+    {PlannerMethod::kAreaFactor, "area-factor"},
+}};
+
+std::string_view to_string(PlannerMethod method) { return name_of(method, kPlannerMethodNames); }
 
 GainMethod gain_method_of(PlannerMethod method) {
-  switch (method) {
-    case PlannerMethod::kProbabilistic:
-      return GainMethod::kProbabilistic;
-    case PlannerMethod::kSurvival:
-      return GainMethod::kSurvival;
-    case PlannerMethod::kOcclusionAware:
-      return GainMethod::kOcclusionAware;
-    case PlannerMethod::kUnobservedVoxel:
-      return GainMethod::kUnobservedVoxel;
-    case PlannerMethod::kRearSideVoxel:
-      return GainMethod::kRearSideVoxel;
-    case PlannerMethod::kRearSideEntropy:
-      return GainMethod::kRearSideEntropy;
-    case PlannerMethod::kProximityCount:
-      return GainMethod::kProximityCount;
-    case PlannerMethod::kAverageEntropy:
-      return GainMethod::kAverageEntropy;
-    case PlannerMethod::kAreaFactor:
-      return GainMethod::kAreaFactor;
-    case PlannerMethod::kGreedy:
-    case PlannerMethod::kRandom:
-    case PlannerMethod::kLatombe:
-    case PlannerMethod::kYamauchi:
-      break;
-  }
-  return GainMethod::kGreedy;
+  // NOTE: random, latombe and yamauchi report (latombe: and weigh) greedy's count.
+  return find_gain_method(to_string(method)).value_or(GainMethod::kGreedy);
 }
 
 PlannerMethod parse_planner_method(std::string_view name) {
-  for (const PlannerMethod m :
-       {PlannerMethod::kProbabilistic, PlannerMethod::kSurvival, PlannerMethod::kGreedy,
-        PlannerMethod::kRandom, PlannerMethod::kLatombe, PlannerMethod::kYamauchi,
-        PlannerMethod::kOcclusionAware, PlannerMethod::kUnobservedVoxel,
-        PlannerMethod::kRearSideVoxel, PlannerMethod::kRearSideEntropy,
-        PlannerMethod::kProximityCount, PlannerMethod::kAverageEntropy,
-        PlannerMethod::kAreaFactor}) {
-    if (name == to_string(m)) return m;
-  }
-  throw std::invalid_argument(cat(
-      "unknown method '", name,
-      "' (expected probabilistic, survival, greedy, random, latombe, yamauchi, occlusion-aware, "
-      "unobserved-voxel, rear-side-voxel, rear-side-entropy, proximity-count, "
-      "average-entropy or area-factor)"));
+  return value_named(name, kPlannerMethodNames, "method");
 }
 
 std::string_view to_string(DecisionSearch search) {
@@ -241,7 +212,7 @@ GainObjective natural_objective(PlannerMethod method) {
 }
 
 bool has_observability(PlannerMethod method) {
-  return method == PlannerMethod::kProbabilistic || method == PlannerMethod::kSurvival;
+  return method_traits(gain_method_of(method)).has_objective;
 }
 
 void PlannerConfig::validate() const {
@@ -286,27 +257,17 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
     plan.best = choose_best(full);
     plan.evaluated =
         static_cast<std::size_t>(std::count(plan.estimated.begin(), plan.estimated.end(), false));
-    if (config.greedy_reference) {
-      const auto reference_start = std::chrono::steady_clock::now();
-      plan.greedy_gains = views.sums(
-          gains_of(grid, views, config.gain, GainMethod::kGreedy, GainObjective::kCells));
-      plan.reference_seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start).count();
-    }
-    plan.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (config.greedy_reference) add_greedy_reference(grid, views, config.gain, plan);
+    plan.seconds = since(start);
     return plan;
   }
   std::vector<double> view_scores =
       gains_of(grid, views, config.gain, scored_by,
                probabilistic ? config.objective : GainObjective::kCells, &plan.gains);
-  if (scored_by == GainMethod::kGreedy) {
+  if (method_traits(scored_by).counts) {
     plan.greedy_gains = views.sums(view_scores);
   } else if (config.greedy_reference) {
-    const auto reference_start = std::chrono::steady_clock::now();
-    plan.greedy_gains =
-        views.sums(gains_of(grid, views, config.gain, GainMethod::kGreedy, GainObjective::kCells));
-    plan.reference_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - reference_start).count();
+    add_greedy_reference(grid, views, config.gain, plan);
   }
 
   // NOTE: a score is summed over the candidate's views (Latombe: each view's gain times the

@@ -6,6 +6,7 @@
 
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/methods.hpp"
 
 namespace vantage::detail {
 Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> frusta,
@@ -17,11 +18,12 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
   Pruning out;
   const GainMap map(grid, config.num_threads);
   const ClassBlocks blocks = summarize_classes(map, frusta, config.num_threads);
-  const BoundKind kind = score == PrunedScore::kSurvivalCells     ? BoundKind::kSurvivalCells
-                         : score == PrunedScore::kGreedy          ? BoundKind::kCount
-                         : score == PrunedScore::kModelCells      ? BoundKind::kAllCells
-                         : config.method == GainMethod::kSurvival ? BoundKind::kSurvivalBits
-                                                                  : BoundKind::kEntropy;
+  const BoundKind kind = score == PrunedScore::kSurvivalCells ? BoundKind::kSurvivalCells
+                         : score == PrunedScore::kGreedy      ? BoundKind::kCount
+                         : score == PrunedScore::kModelCells  ? BoundKind::kAllCells
+                         : method_traits(config.method).ray == TargetRay::kSurvival
+                             ? BoundKind::kSurvivalBits
+                             : BoundKind::kEntropy;
   const std::vector<double> view_bounds =
       view_upper_bounds(blocks, map.spec(), map, frusta, kind, config.alpha);
   out.gains.assign(n, ViewGain{});

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "vantage/gain/exact.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/util/parallel.hpp"
 
@@ -138,9 +139,8 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
   }
   // NOTE: an exact evaluation (the survival reading's only one) has evaluated the samples'
   // cells of the candidates left exactly already: only the cells outside them remain.
-  const bool reuse = ran > 0 && (config.method == GainMethod::kSurvival ||
-                                 (config.method == GainMethod::kProbabilistic &&
-                                  config.evaluation == GainEvaluation::kExact));
+  const bool reuse = ran > 0 && (!method_traits(config.method).fast_mode ||
+                                 config.evaluation == GainEvaluation::kExact);
   const std::vector<ViewGain> full =
       reuse ? exact_view_gains(*map, views, config, kStageBits[ran - 1])
             : evaluate_views(grid, views, config);

@@ -1,0 +1,158 @@
+#pragma once
+/// @file
+/// The target models' rays (methods.hpp, MethodKind::kTargetModel): what one target cell's ray
+/// predicts under each model, and `with_predictor`, which hands the one `GainConfig::method` names
+/// to a traversal strategy (exact.cpp sums them per view; the screened search samples them). A
+/// predictor is a small value with
+///   template <typename Cells>
+///   TargetPrediction operator()(const Cells&, const Eigen::Vector3d& origin, const Index3& target)
+///   const;
+/// `Cells` is GainMap or GridCells.
+
+#include <Eigen/Core>
+#include <cstddef>
+
+#include "vantage/gain/methods.hpp"
+#include "vantage/gain/model.hpp"
+#include "vantage/gain/ray_model.hpp"
+#include "vantage/gain/snapshot.hpp"
+#include "vantage/gain/survival.hpp"
+#include "vantage/gain/target_ray.hpp"
+#include "vantage/map/line_of_sight.hpp"
+#include "vantage/map/occupancy_grid.hpp"
+#include "vantage/map/traversal.hpp"
+
+namespace vantage::detail {
+
+/// Cell values read straight from the grid, for one-off rays where a snapshot would cost more
+/// than it saves.
+struct GridCells {
+  const OccupancyGrid& grid;
+  const GridSpec& spec() const { return grid.spec(); }
+  GainMap::Value value(std::size_t i) const {
+    GainMap::Value v;
+    v.p = grid.probability(i);
+    v.entropy = entropy_bits(v.p);
+    v.state = grid.state(i);
+    return v;
+  }
+};
+
+/// Gain and visibility of the target cell on its ray from `origin` under `Model`; 0 when the ray
+/// stops early (visibility below `epsilon`) before it. `Cells` is GainMap or GridCells.
+template <typename Model, typename Cells>
+TargetPrediction ray_gain(const Cells& map, const RayTables<Model>& tables,
+                          const Eigen::Vector3d& origin, const Index3& target, double epsilon) {
+  const GridSpec& spec = map.spec();
+  const std::size_t target_linear = spec.linear(target);
+  RayOdds state;
+  double p_prev = 0.0;
+  TargetPrediction prediction;
+  bool first = true;
+  traverse(spec, origin, spec.center(target), [&](const Index3&, std::size_t linear, int m) {
+    const auto cell = map.value(linear);
+    if (first) {
+      state = tables.enter(m, cell.p);
+      first = false;
+    } else {
+      tables.step(state, m, p_prev, cell.p);
+    }
+    p_prev = cell.p;
+    if (linear == target_linear) {
+      prediction.gain = cell.entropy - entropy_bits(state.posterior());  // eq. (4)
+      prediction.seen = state.visibility();  // v_M: c_M's own occupancy does not update it
+      return false;
+    }
+    // The fast mode's early stop: a ray stops once it is hidden.
+    return !state.hidden(epsilon);
+  });
+  return prediction;
+}
+
+/// Gain and visibility of the target under the survival reading (survival.hpp); 0 once the ray
+/// is stopped (visibility below `epsilon`) before it. Walks the cells TargetWalk takes, as
+/// count_view_gains does (hierarchy.hpp), so the two agree bit for bit.
+template <typename Cells>
+TargetPrediction survival_ray_gain(const Cells& map, const SurvivalModel& model,
+                                   const Eigen::Vector3d& origin, const Index3& target,
+                                   double epsilon) {
+  const GridSpec& spec = map.spec();
+  TargetWalk walk(spec, origin, target);
+  if (!walk.entered()) return {};
+  GainMap::Value cell = map.value(walk.linear());
+  SurvivalModel::State state = model.enter(walk.m(), cell);
+  while (!walk.at_target()) {
+    if (!(state.visibility >= epsilon && state.visibility > 0.0)) return {};
+    walk.advance();
+    const GainMap::Value next = map.value(walk.linear());
+    model.step(state, cell, next);
+    cell = next;
+  }
+  return SurvivalModel::predict(state, cell);
+}
+
+/// Whether nothing occludes the target (the simple greedy gain): 1 or 0, in bits and in cells.
+/// Walks the cells TargetWalk takes, as count_view_gains does (hierarchy.hpp).
+template <typename Cells>
+TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin,
+                             const Index3& target) {
+  const GridSpec& spec = map.spec();
+  TargetWalk walk(spec, origin, target);
+  if (walk.entered()) {
+    for (; !walk.at_target(); walk.advance()) {
+      if (occludes(map.value(walk.linear()).state)) return {0.0, 0.0};
+    }
+  }
+  return {1.0, 1.0};
+}
+
+/// The paper's model (or `Model`, model.hpp) on the target's ray.
+template <typename Model>
+struct PaperPredictor {
+  RayTables<Model> tables;
+  double epsilon;
+  template <typename Cells>
+  TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
+                              const Index3& target) const {
+    return ray_gain(map, tables, origin, target, epsilon);
+  }
+};
+
+/// The survival reading on the target's ray.
+struct SurvivalPredictor {
+  SurvivalModel model;
+  double epsilon;
+  template <typename Cells>
+  TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
+                              const Index3& target) const {
+    return survival_ray_gain(map, model, origin, target, epsilon);
+  }
+};
+
+/// Simple greedy: whether the target's ray is unblocked.
+struct UnblockedPredictor {
+  template <typename Cells>
+  TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
+                              const Index3& target) const {
+    return greedy_gain(map, origin, target);
+  }
+};
+
+/// Calls `f` with the predictor of `config.method`'s ray, for rays of at most `longest` cells from
+/// a map with minimum probability `p_min`; returns what `f` returns. The one switch over the
+/// target models.
+template <typename Model = PaperModel, typename F>
+decltype(auto) with_predictor(const GainConfig& config, double p_min, int longest, F&& f) {
+  switch (method_traits(config.method).ray) {
+    case TargetRay::kUnblocked:
+      return f(UnblockedPredictor{});
+    case TargetRay::kSurvival:
+      return f(SurvivalPredictor{SurvivalModel(config.alpha, p_min, longest), config.epsilon});
+    case TargetRay::kPaper:
+    case TargetRay::kNone:
+      break;
+  }
+  return f(PaperPredictor<Model>{RayTables<Model>(config.alpha, p_min, longest), config.epsilon});
+}
+
+}  // namespace vantage::detail

@@ -1,0 +1,82 @@
+#include "vantage/gain/methods.hpp"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+#include "vantage/gain/detail/metric_rays.hpp"
+#include "vantage/gain/metrics/area_factor.hpp"
+#include "vantage/gain/metrics/average_entropy.hpp"
+#include "vantage/gain/metrics/occlusion_aware.hpp"
+#include "vantage/gain/metrics/proximity_count.hpp"
+#include "vantage/gain/metrics/rear_side_entropy.hpp"
+#include "vantage/gain/metrics/rear_side_voxel.hpp"
+#include "vantage/gain/metrics/unobserved_voxel.hpp"
+#include "vantage/util/text.hpp"
+
+namespace vantage {
+namespace {
+
+using detail::all_views;
+
+constexpr MethodTraits target_model(GainMethod method, std::string_view name, TargetRay ray,
+                                    bool has_objective, bool counts, bool fast_mode, bool sampled) {
+  return {method, name,   MethodKind::kTargetModel, ray, has_objective, counts, fast_mode, sampled,
+          false,  nullptr};
+}
+
+constexpr MethodTraits metric(GainMethod method, std::string_view name, MetricFn evaluate,
+                              bool needs_distances = false) {
+  return {method, name,  MethodKind::kMetric, TargetRay::kNone, false, false,
+          false,  false, needs_distances,     evaluate};
+}
+
+// NOTE: the rows' order is the order names are listed in messages.
+constexpr std::array kMethods = {
+    //           method                        name             ray  objective counts fast sampled
+    target_model(GainMethod::kProbabilistic, "probabilistic", TargetRay::kPaper, true, false, true,
+                 true),
+    target_model(GainMethod::kSurvival, "survival", TargetRay::kSurvival, true, false, false, true),
+    target_model(GainMethod::kGreedy, "greedy", TargetRay::kUnblocked, false, true, false, false),
+    metric(GainMethod::kOcclusionAware, "occlusion-aware", &all_views<OcclusionAware>),
+    metric(GainMethod::kUnobservedVoxel, "unobserved-voxel", &all_views<UnobservedVoxel>),
+    metric(GainMethod::kRearSideVoxel, "rear-side-voxel", &all_views<RearSideVoxel>),
+    metric(GainMethod::kRearSideEntropy, "rear-side-entropy", &all_views<RearSideEntropy>),
+    metric(GainMethod::kProximityCount, "proximity-count", &all_views<ProximityCount>, true),
+    metric(GainMethod::kAverageEntropy, "average-entropy", &all_views<AverageEntropy>),
+    metric(GainMethod::kAreaFactor, "area-factor", &all_views<AreaFactor>, true),
+};
+
+}  // namespace
+
+const MethodTraits& method_traits(GainMethod method) {
+  const auto it = std::find_if(kMethods.begin(), kMethods.end(),
+                               [&](const MethodTraits& t) { return t.method == method; });
+  if (it == kMethods.end()) {
+    throw std::invalid_argument(
+        cat("gain method ", static_cast<int>(method), " is not registered"));
+  }
+  return *it;
+}
+
+std::span<const MethodTraits> gain_methods() { return kMethods; }
+
+std::optional<GainMethod> find_gain_method(std::string_view name) {
+  for (const MethodTraits& t : kMethods) {
+    if (t.name == name) return t.method;
+  }
+  return std::nullopt;
+}
+
+std::string_view to_string(GainMethod method) { return method_traits(method).name; }
+
+GainMethod parse_gain_method(std::string_view name) {
+  if (const std::optional<GainMethod> method = find_gain_method(name)) return *method;
+  std::string expected;
+  for (std::size_t i = 0; i < kMethods.size(); ++i) {
+    expected += cat(i == 0 ? "" : (i + 1 == kMethods.size() ? " or " : ", "), kMethods[i].name);
+  }
+  throw std::invalid_argument(cat("unknown gain method '", name, "' (expected ", expected, ")"));
+}
+
+}  // namespace vantage

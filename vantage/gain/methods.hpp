@@ -1,0 +1,72 @@
+#pragma once
+/// @file
+/// The gain methods' one registry: each GainMethod's name and what the rest of the library asks
+/// of it, so that no other file switches on the method. Adding a method takes its own file (a
+/// target predictor in detail/target_predictors.hpp's shape, or a metric under gain/metrics/) and
+/// one row in methods.cpp.
+
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "vantage/gain/view_gain.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage {
+
+namespace detail {
+struct MetricContext;
+}  // namespace detail
+
+/// How a method values a view.
+enum class MethodKind {
+  /// A prediction per unobserved target cell in the frustum, each on its own ray from the sensor
+  /// (docs/model.md "One view"): exact.hpp, and fast.hpp for the paper's model.
+  kTargetModel,
+  /// A sum over the cells the view's pinhole rays cross (metrics.hpp).
+  kMetric,
+};
+
+/// The ray a target model walks to each target (detail/target_predictors.hpp).
+enum class TargetRay {
+  kPaper,      ///< the paper's visibility HMM and occupancy filter (model.hpp)
+  kSurvival,   ///< the survival reading of it (survival.hpp)
+  kUnblocked,  ///< 1 if nothing occupied lies before the target, else 0 (simple greedy)
+  kNone,       ///< a metric
+};
+
+/// A metric's evaluation of every view (detail/metric_rays.hpp).
+using MetricFn = std::vector<ViewGain> (*)(const detail::MetricContext&, std::span<const Frustum>,
+                                           int num_threads);
+
+/// What the library asks of a gain method.
+struct MethodTraits {
+  GainMethod method;
+  std::string_view name;  ///< as the CLI, the files and the plots spell it
+  MethodKind kind;
+  TargetRay ray;  ///< kNone for a metric
+  /// Ranks by bits or by expected cells as GainObjective says, and has the observability
+  /// parameter a; the others have one score, their gain.
+  bool has_objective;
+  /// Its gain is a count of cells, the same in bits and in cells: integer sums, and the
+  /// hierarchical count (hierarchy.hpp) serves it.
+  bool counts;
+  /// Has the fast evaluation (rays cast outward, fast.hpp); the other target models take the
+  /// exact one for kFast and kAuto.
+  bool fast_mode;
+  /// The screened search's sampled estimates (sampled_view_gains) serve it.
+  bool sampled;
+  /// A metric that reads each cell's distance to the nearest occupied cell.
+  bool needs_distances;
+  MetricFn metric;  ///< a metric's evaluation; nullptr for a target model
+};
+
+/// The traits of `method`.
+const MethodTraits& method_traits(GainMethod method);
+/// Every method, in the enum's order.
+std::span<const MethodTraits> gain_methods();
+/// The method named `name`, if one is.
+std::optional<GainMethod> find_gain_method(std::string_view name);
+
+}  // namespace vantage

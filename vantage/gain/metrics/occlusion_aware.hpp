@@ -1,0 +1,22 @@
+#pragma once
+/// @file
+/// One of the field's volumetric metrics (metrics.hpp, docs/model.md "The field's metrics"),
+/// as a metric type of detail/metric_rays.hpp; registered in gain/methods.cpp.
+
+#include "vantage/gain/detail/metric_rays.hpp"
+
+namespace vantage {
+
+/// Occlusion aware: I_o(x) = P_v(x) I(x), P_v(x_n) = prod_{i<n} (1 - P_o(x_i)) (docs/model.md,
+/// eq. M1): every cell's entropy weighted by the chance that it is seen.
+struct OcclusionAware {
+  double sum = 0.0;
+  void begin_ray() {}
+  void cell(const RayCell& c, Stamp& s) {
+    if (c.in_range && s.take(c.linear)) sum += c.visibility * c.value.entropy;
+  }
+  void end_ray(bool, Stamp&) {}
+  double value(double) const { return sum; }
+};
+
+}  // namespace vantage

@@ -1,0 +1,25 @@
+#pragma once
+/// @file
+/// One of the field's volumetric metrics (metrics.hpp, docs/model.md "The field's metrics"),
+/// as a metric type of detail/metric_rays.hpp; registered in gain/methods.cpp.
+
+#include "vantage/gain/detail/metric_rays.hpp"
+#include "vantage/gain/metrics.hpp"
+
+namespace vantage {
+
+/// Proximity count: I_p(x) = D - d(x) for an unobserved cell x within distance d(x) <= D of an
+/// occupied cell, else 0 (eq. M5): unobserved cells near a surface, the nearer the more.
+struct ProximityCount {
+  double sum = 0.0;
+  void begin_ray() {}
+  void cell(const RayCell& c, Stamp& s) {
+    if (c.in_range && unknown(c) && c.near <= kProximityCells && s.take(c.linear)) {
+      sum += kProximityCells - c.near;
+    }
+  }
+  void end_ray(bool, Stamp&) {}
+  double value(double) const { return sum; }
+};
+
+}  // namespace vantage

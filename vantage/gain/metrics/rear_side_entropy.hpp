@@ -1,0 +1,32 @@
+#pragma once
+/// @file
+/// One of the field's volumetric metrics (metrics.hpp, docs/model.md "The field's metrics"),
+/// as a metric type of detail/metric_rays.hpp; registered in gain/methods.cpp.
+
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "vantage/gain/detail/metric_rays.hpp"
+
+namespace vantage {
+
+/// Rear side entropy: I_n(x) = P_v(x) I(x) for the unobserved cells on rays that end on a rear
+/// side, else 0 (eq. M4).
+struct RearSideEntropy {
+  double sum = 0.0;
+  std::vector<std::pair<std::size_t, double>> pending;  // this ray's unobserved cells, P_v I
+  void begin_ray() { pending.clear(); }
+  void cell(const RayCell& c, Stamp&) {
+    if (c.in_range && unknown(c)) pending.emplace_back(c.linear, c.visibility * c.value.entropy);
+  }
+  void end_ray(bool rear_side, Stamp& s) {
+    if (!rear_side) return;
+    for (const auto& [linear, gain] : pending) {
+      if (s.take(linear)) sum += gain;
+    }
+  }
+  double value(double) const { return sum; }
+};
+
+}  // namespace vantage

@@ -1,0 +1,27 @@
+#pragma once
+/// @file
+/// One of the field's volumetric metrics (metrics.hpp, docs/model.md "The field's metrics"),
+/// as a metric type of detail/metric_rays.hpp; registered in gain/methods.cpp.
+
+#include "vantage/gain/detail/metric_rays.hpp"
+
+namespace vantage {
+
+/// Rear side voxel: I_b(x) = 1 if x is an occupied cell that its ray reaches straight from an
+/// unobserved cell, a rear side of a surface seen before (eq. M3), else 0.
+struct RearSideVoxel {
+  double sum = 0.0;
+  bool previous_unknown = false;
+  void begin_ray() { previous_unknown = false; }
+  void cell(const RayCell& c, Stamp& s) {
+    if (c.value.state == CellState::kOccupied && previous_unknown && c.in_range &&
+        s.take(c.linear)) {
+      sum += 1.0;
+    }
+    previous_unknown = unknown(c);
+  }
+  void end_ray(bool, Stamp&) {}
+  double value(double) const { return sum; }
+};
+
+}  // namespace vantage

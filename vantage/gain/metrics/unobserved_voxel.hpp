@@ -1,0 +1,22 @@
+#pragma once
+/// @file
+/// One of the field's volumetric metrics (metrics.hpp, docs/model.md "The field's metrics"),
+/// as a metric type of detail/metric_rays.hpp; registered in gain/methods.cpp.
+
+#include "vantage/gain/detail/metric_rays.hpp"
+
+namespace vantage {
+
+/// Unobserved voxel: I_u(x) = 1 if x is unobserved, else 0 (eq. M2): the unobserved cells the
+/// rays reach.
+struct UnobservedVoxel {
+  double sum = 0.0;
+  void begin_ray() {}
+  void cell(const RayCell& c, Stamp& s) {
+    if (c.in_range && unknown(c) && s.take(c.linear)) sum += 1.0;
+  }
+  void end_ray(bool, Stamp&) {}
+  double value(double) const { return sum; }
+};
+
+}  // namespace vantage
