@@ -22,6 +22,7 @@
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/choose.hpp"
@@ -249,7 +250,9 @@ DecisionState& fr079() {
 }
 
 /// Arguments: case (0-2 tabletop-4's ring after 1, 3, 6 scans; 3, 4 sphere of 200, 1 000 views
-/// after one scan; 5 FR-079 frontier, Latombe), search (0 exhaustive exact, 3 pruned), threads.
+/// after one scan; 5 FR-079 frontier, Latombe), search (0 exhaustive exact, 3 pruned, 4 sampled
+/// at its default rate), threads. `choice_of_best`: the chosen candidate's exact score over the
+/// best exact score (1 when the choice is the exhaustive search's).
 void BM_DecisionAtScale(benchmark::State& bench) {
   const auto which = bench.range(0);
   DecisionState& s = which <= 2   ? table_top(4, which == 0 ? 1 : (which == 1 ? 3 : 6))
@@ -262,7 +265,9 @@ void BM_DecisionAtScale(benchmark::State& bench) {
   config.gain.alpha = which == 5 ? kOfficeAlpha : kSurvivalAlpha;
   config.gain.num_threads = static_cast<int>(bench.range(2));
   config.gain.evaluation = GainEvaluation::kExact;
-  config.search = bench.range(1) == 3 ? DecisionSearch::kPruned : DecisionSearch::kExhaustive;
+  config.search = bench.range(1) == 3   ? DecisionSearch::kPruned
+                  : bench.range(1) == 4 ? DecisionSearch::kSampled
+                                        : DecisionSearch::kExhaustive;
   Plan plan;
   for (auto _ : bench) plan = plan_next_view(s.grid, s.candidates, config);
   // The exhaustive exact choice, by the counts that equal exact_view_gains' bit for bit.
@@ -277,7 +282,7 @@ void BM_DecisionAtScale(benchmark::State& bench) {
       static_cast<double>(blocks.bytes()) / (4.0 * static_cast<double>(s.grid.size()));
   GainConfig gain = config.gain;
   gain.method = gain_method_of(config.method);
-  const bool greedy = gain.method == GainMethod::kGreedy;
+  const bool greedy = method_traits(gain.method).counts;
   const std::vector<ViewGain> exact = count_view_gains(
       map, &blocks, views, greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain);
   std::vector<double> scores;
@@ -289,12 +294,14 @@ void BM_DecisionAtScale(benchmark::State& bench) {
   }
   bench.counters["candidates"] = static_cast<double>(s.candidates.size());
   bench.counters["evaluated"] = static_cast<double>(plan.evaluated);
-  bench.counters["same_choice"] = plan.best == choose_best(scores) ? 1.0 : 0.0;
+  const std::size_t best = choose_best(scores);
+  bench.counters["same_choice"] = plan.best == best ? 1.0 : 0.0;
+  bench.counters["choice_of_best"] = scores[best] > 0.0 ? scores[plan.best] / scores[best] : 1.0;
   bench.counters["prediction_ms"] = 1e3 * plan.prediction_seconds;
   bench.counters["cells"] = static_cast<double>(s.grid.size());
 }
 BENCHMARK(BM_DecisionAtScale)
-    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {3}, {2}})
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5}, {3, 4}, {2}})
     ->ArgsProduct({{0, 1, 2, 5}, {0}, {2}})
     ->ArgNames({"case", "search", "threads"})
     ->Iterations(1)

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "vantage/views/ring.hpp"
 
 namespace vantage {
@@ -42,6 +44,62 @@ TEST(Planner, GainMethodsPreferTheViewOfTheUnknownHalf) {
     ASSERT_EQ(plan.greedy_gains.size(), 4u);
     EXPECT_GT(plan.gains[0].gain, plan.gains[2].gain);
   }
+}
+
+// With every unobserved cell in the sample, the sampled search's estimates are the exact sums
+// and its choice the exhaustive exact search's.
+TEST(Planner, TheSampledSearchOfEveryCellIsTheExhaustiveSearch) {
+  HalfKnownBlock s;
+  for (const PlannerMethod method : {PlannerMethod::kSurvival, PlannerMethod::kProbabilistic,
+                                     PlannerMethod::kGreedy, PlannerMethod::kLatombe}) {
+    PlannerConfig config;
+    config.method = method;
+    config.objective = natural_objective(method);
+    config.gain.evaluation = GainEvaluation::kExact;
+    config.gain.alpha = 0.99;
+    config.search = DecisionSearch::kExhaustive;
+    const Plan exact = plan_next_view(s.grid, s.candidates, config);
+    config.search = DecisionSearch::kSampled;
+    config.sample_bits = 0;
+    const Plan sampled = plan_next_view(s.grid, s.candidates, config);
+    EXPECT_EQ(sampled.best, exact.best) << to_string(method);
+    ASSERT_EQ(sampled.scores.size(), exact.scores.size());
+    for (std::size_t c = 0; c < exact.scores.size(); ++c) {
+      EXPECT_NEAR(sampled.scores[c], exact.scores[c], 1e-9 * (1.0 + exact.scores[c]))
+          << to_string(method) << " candidate " << c;
+      EXPECT_EQ(sampled.estimated[c], c != sampled.best) << to_string(method);
+    }
+    EXPECT_GT(exact.scores[exact.best], 0.0) << to_string(method);
+    EXPECT_EQ(sampled.evaluated, 1u);
+  }
+}
+
+// On a sample of one cell in four, greedy's estimates are four times whole counts, the chosen
+// candidate's report is its exact count, and nothing depends on the thread count.
+TEST(Planner, TheSampledSearchScalesItsSampleAndIsTheSameForAnyThreads) {
+  HalfKnownBlock s;
+  PlannerConfig config;
+  config.method = PlannerMethod::kGreedy;
+  config.search = DecisionSearch::kSampled;
+  config.sample_bits = 2;
+  config.gain.num_threads = 1;
+  const Plan one = plan_next_view(s.grid, s.candidates, config);
+  config.gain.num_threads = 2;
+  const Plan two = plan_next_view(s.grid, s.candidates, config);
+  EXPECT_EQ(one.best, 0u);
+  EXPECT_EQ(one.best, two.best);
+  for (std::size_t c = 0; c < one.gains.size(); ++c) {
+    EXPECT_EQ(one.gains[c].cells, two.gains[c].cells) << c;
+    if (c != one.best) {
+      EXPECT_EQ(std::fmod(one.gains[c].cells, 4.0), 0.0) << c;
+    }
+  }
+  config.search = DecisionSearch::kExhaustive;
+  const Plan exact = plan_next_view(s.grid, s.candidates, config);
+  EXPECT_EQ(one.gains[one.best].cells, exact.gains[one.best].cells);
+  EXPECT_NE(one.gains[0].cells, 0.0);
+  config.sample_bits = 17;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
 }
 
 TEST(Planner, LatombeTradesGainForTravelAndYamauchiTakesTheNearest) {

@@ -62,7 +62,7 @@ struct SampleSums {
   std::size_t shared = 0;
 };
 
-/// The exact evaluation (`config.method` probabilistic or survival) restricted to `cells`: the
+/// The exact evaluation (a method with sampled estimates, methods.hpp) restricted to `cells`: the
 /// linear indices of unobserved cells, each evaluated, for every view whose frustum holds its
 /// centre, on its own ray exactly as exact_view_gains does. Sums run in the order of `cells`, so
 /// the result is the same for any thread count. Throws std::invalid_argument for another method.

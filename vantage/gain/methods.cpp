@@ -37,7 +37,7 @@ constexpr std::array kMethods = {
     target_model(GainMethod::kProbabilistic, "probabilistic", TargetRay::kPaper, true, false, true,
                  true),
     target_model(GainMethod::kSurvival, "survival", TargetRay::kSurvival, true, false, false, true),
-    target_model(GainMethod::kGreedy, "greedy", TargetRay::kUnblocked, false, true, false, false),
+    target_model(GainMethod::kGreedy, "greedy", TargetRay::kUnblocked, false, true, false, true),
     metric(GainMethod::kOcclusionAware, "occlusion-aware", &all_views<OcclusionAware>),
     metric(GainMethod::kUnobservedVoxel, "unobserved-voxel", &all_views<UnobservedVoxel>),
     metric(GainMethod::kRearSideVoxel, "rear-side-voxel", &all_views<RearSideVoxel>),

@@ -55,7 +55,8 @@ struct MethodTraits {
   /// Has the fast evaluation (rays cast outward, fast.hpp); the other target models take the
   /// exact one for kFast and kAuto.
   bool fast_mode;
-  /// The screened search's sampled estimates (sampled_view_gains) serve it.
+  /// Sampled estimates (sampled_view_gains) serve it: the sampled search, and the screened one
+  /// for the methods with an objective.
   bool sampled;
   /// A metric that reads each cell's distance to the nearest occupied cell.
   bool needs_distances;

@@ -85,6 +85,66 @@ void add_greedy_reference(const OccupancyGrid& grid, const Views& views, const G
   plan.reference_seconds = since(start);
 }
 
+/// Candidate `c`'s exact prediction: its views' gains under `gain.method`, summed.
+ViewGain full_prediction(const OccupancyGrid& grid, const Views& views, std::size_t c,
+                         const GainConfig& gain) {
+  const std::span<const Frustum> chosen(views.frusta.data() + views.first[c],
+                                        views.first[c + 1] - views.first[c]);
+  ViewGain full;
+  for (const ViewGain& g : exact_view_gains(grid, chosen, gain)) {
+    full.gain += g.gain;
+    full.cells += g.cells;
+    full.targets += g.targets;
+  }
+  return full;
+}
+
+/// Whether the sampled search serves the method: a target model with sampled estimates, or
+/// Latombe's weighting of greedy's.
+bool samplable(PlannerMethod method) {
+  return method != PlannerMethod::kRandom && method != PlannerMethod::kYamauchi &&
+         method_traits(gain_method_of(method)).sampled;
+}
+
+/// The sampled search (screen.hpp, sample_candidates): every candidate ranked by its estimate on
+/// one hashed sample of the unobserved cells; the chosen one's exact prediction after.
+Plan plan_sampled(const OccupancyGrid& grid, std::span<const Candidate> candidates,
+                  const Views& views, const PlannerConfig& config,
+                  std::chrono::steady_clock::time_point start) {
+  GainConfig gain = config.gain;
+  gain.method = gain_method_of(config.method);
+  const bool cells =
+      config.objective == GainObjective::kCells || !method_traits(gain.method).has_objective;
+  detail::Screening sampled =
+      detail::sample_candidates(grid, views.frusta, views.first, gain, config.sample_bits);
+  Plan plan;
+  plan.gains = std::move(sampled.gains);
+  plan.estimated = std::move(sampled.estimated);
+  for (std::size_t c = 0; c < plan.gains.size(); ++c) {
+    const double value = cells ? plan.gains[c].cells : plan.gains[c].gain;
+    const double factor = config.method == PlannerMethod::kLatombe
+                              ? std::exp(-config.lambda * candidates[c].travel)
+                              : 1.0;
+    plan.scores.push_back(value * factor);
+  }
+  plan.best = choose_best(plan.scores);
+  plan.seconds = since(start);
+  // NOTE: the estimates decided; the chosen view's exact prediction is its report (and what an
+  // online fit of a compares with the scan's outcome), not part of the choice.
+  const auto predict_start = std::chrono::steady_clock::now();
+  plan.gains[plan.best] = full_prediction(grid, views, plan.best, gain);
+  plan.estimated[plan.best] = false;
+  plan.evaluated = 1;
+  plan.prediction_seconds = since(predict_start);
+  if (config.greedy_reference && !method_traits(gain.method).counts) {
+    add_greedy_reference(grid, views, config.gain, plan);
+    plan.seconds += plan.reference_seconds;  // as the other searches count it
+  } else if (method_traits(gain.method).counts) {
+    for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
+  }
+  return plan;
+}
+
 /// Whether the pruned search serves the method (PlannerConfig::search).
 bool prunable(PlannerMethod method) {
   return method == PlannerMethod::kSurvival || method == PlannerMethod::kProbabilistic ||
@@ -126,16 +186,7 @@ Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidate
   if (score == detail::PrunedScore::kSurvivalCells) {
     // NOTE: the cells decided; the bits of eq. (4) are the chosen view's report, not the choice.
     const auto predict_start = std::chrono::steady_clock::now();
-    const std::size_t b = plan.best;
-    const std::span<const Frustum> chosen(views.frusta.data() + views.first[b],
-                                          views.first[b + 1] - views.first[b]);
-    ViewGain full;
-    for (const ViewGain& g : exact_view_gains(grid, chosen, gain)) {
-      full.gain += g.gain;
-      full.cells += g.cells;
-      full.targets += g.targets;
-    }
-    plan.gains[b] = full;
+    plan.gains[plan.best] = full_prediction(grid, views, plan.best, gain);
     plan.prediction_seconds = since(predict_start);
   }
   if (config.greedy_reference && !counts) {
@@ -182,6 +233,8 @@ std::string_view to_string(DecisionSearch search) {
       return "screened";
     case DecisionSearch::kPruned:
       return "pruned";
+    case DecisionSearch::kSampled:
+      return "sampled";
     case DecisionSearch::kExhaustive:
       break;
   }
@@ -189,12 +242,12 @@ std::string_view to_string(DecisionSearch search) {
 }
 
 DecisionSearch parse_decision_search(std::string_view name) {
-  for (const DecisionSearch s :
-       {DecisionSearch::kExhaustive, DecisionSearch::kScreened, DecisionSearch::kPruned}) {
+  for (const DecisionSearch s : {DecisionSearch::kExhaustive, DecisionSearch::kScreened,
+                                 DecisionSearch::kPruned, DecisionSearch::kSampled}) {
     if (name == to_string(s)) return s;
   }
-  throw std::invalid_argument(
-      cat("unknown decision search '", name, "' (expected exhaustive, screened or pruned)"));
+  throw std::invalid_argument(cat("unknown decision search '", name,
+                                  "' (expected exhaustive, screened, pruned or sampled)"));
 }
 
 std::string_view to_string(GainObjective objective) {
@@ -220,6 +273,9 @@ void PlannerConfig::validate() const {
   if (!(lambda >= 0.0 && std::isfinite(lambda))) {
     throw std::invalid_argument(cat("planner.lambda must be >= 0, got ", lambda));
   }
+  if (sample_bits < 0 || sample_bits > 16) {
+    throw std::invalid_argument(cat("planner.sample_bits must lie in [0, 16], got ", sample_bits));
+  }
 }
 
 Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candidates,
@@ -235,6 +291,9 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   const GainMethod scored_by = gain_method_of(config.method);
   if (config.search == DecisionSearch::kPruned && prunable(config.method)) {
     return plan_pruned(grid, candidates, views, config, start);
+  }
+  if (config.search == DecisionSearch::kSampled && samplable(config.method)) {
+    return plan_sampled(grid, candidates, views, config, start);
   }
   if (probabilistic && config.search == DecisionSearch::kScreened) {
     // NOTE: only the argmax and its prediction are needed; a dropped candidate keeps its

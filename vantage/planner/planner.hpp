@@ -69,10 +69,17 @@ enum class DecisionSearch {
   /// choice, proven; Plan::gains of a candidate never evaluated is its bound. Survival,
   /// probabilistic, greedy and Latombe; the others search exhaustively.
   kPruned,
+  /// Every candidate ranked by its unbiased estimate on one hashed sample of the unobserved
+  /// cells (1 in 2^PlannerConfig::sample_bits, the same cells for every view); the chosen one is
+  /// then evaluated in full for its report. Statistical and without a guarantee: near-ties go
+  /// either way (docs/decision.md). For candidate sets of hundreds of views. Survival,
+  /// probabilistic, greedy and Latombe; the others search exhaustively.
+  kSampled,
 };
 
 std::string_view to_string(DecisionSearch search);
-/// Parses "exhaustive", "screened" or "pruned"; throws std::invalid_argument naming the value.
+/// Parses "exhaustive", "screened", "pruned" or "sampled"; throws std::invalid_argument naming the
+/// value.
 DecisionSearch parse_decision_search(std::string_view name);
 
 /// Settings of the decision.
@@ -86,6 +93,8 @@ struct PlannerConfig {
   double lambda = 0.5;  ///< kLatombe's travel penalty [1/m]
   /// How the probabilistic and survival methods search the candidates; the others evaluate all.
   DecisionSearch search = DecisionSearch::kExhaustive;
+  /// The sampled search's rate: one unobserved cell in 2^sample_bits, in [0, 16].
+  int sample_bits = 4;
   /// Also predict every candidate's greedy gain when the method uses another, so predictions can
   /// be compared on the same poses (the paper's Fig. 11).
   bool greedy_reference = false;

@@ -157,4 +157,30 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
   return out;
 }
 
+Screening sample_candidates(const OccupancyGrid& grid, std::span<const Frustum> frusta,
+                            std::span<const std::size_t> first, const GainConfig& config,
+                            int bits) {
+  const GainMap map(grid, config.num_threads);
+  std::vector<std::uint32_t> sample;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    if (map.value(i).state == CellState::kUnobserved && in_cell_sample(i, bits)) {
+      sample.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  const std::vector<SampleSums> sums = sampled_view_gains(map, frusta, sample, config);
+  const double rate = std::ldexp(1.0, bits);  // Horvitz-Thompson: rate * sum is unbiased
+  const std::size_t n = first.size() - 1;
+  Screening out;
+  out.gains.assign(n, ViewGain{});
+  out.estimated.assign(n, true);
+  for (std::size_t c = 0; c < n; ++c) {
+    for (std::size_t v = first[c]; v < first[c + 1]; ++v) {
+      out.gains[c].gain += rate * sums[v].gain;
+      out.gains[c].cells += rate * sums[v].cells;
+      out.gains[c].targets += static_cast<std::size_t>(rate) * sums[v].targets;
+    }
+  }
+  return out;
+}
+
 }  // namespace vantage::detail

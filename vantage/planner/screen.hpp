@@ -33,4 +33,11 @@ Screening screen_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
                             std::span<const std::size_t> first, const GainConfig& config,
                             bool cells_objective);
 
+/// The sampled decision (PlannerConfig::search = kSampled): every candidate's Horvitz-Thompson
+/// estimate on the unobserved cells whose hash has its top `bits` bits zero (one in 2^bits, the
+/// same cells for every view and method), all flagged estimated. `config.method` must have
+/// sampled estimates (methods.hpp).
+Screening sample_candidates(const OccupancyGrid& grid, std::span<const Frustum> frusta,
+                            std::span<const std::size_t> first, const GainConfig& config, int bits);
+
 }  // namespace vantage::detail

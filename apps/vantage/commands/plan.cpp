@@ -243,9 +243,6 @@ void run(const PlanOptions& o) {
   }
   PlannerConfig planner = o.planning.planner_config();
   planner.greedy_reference = true;
-  // NOTE: the pruned search's choice is the exhaustive exact one's, proven; the candidates it
-  // never evaluated are listed with their upper bounds, marked as estimates.
-  planner.search = DecisionSearch::kPruned;
   const GainUnits units = gain_units(planner);
   if (!o.sensor_height.empty() && o.candidates != "frontier") {
     throw UsageError("--sensor-height places frontier candidates: give --candidates frontier");
@@ -515,10 +512,13 @@ for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top
              plan.greedy_gains[i], robot ? fmt::format(" {:>10.3f}", candidates[i].travel) : "",
              plan.scores[i], score_header.size());
 }
-if (any_estimated)
-  fmt::print(
-      "~ not evaluated: the search's upper bound on this view's gain and score, below the "
-      "chosen view's score\n");
+if (any_estimated) {
+  fmt::print("{}\n", planner.search == DecisionSearch::kPruned
+                         ? "~ not evaluated: the search's upper bound on this view's gain and "
+                           "score, below the chosen view's score"
+                         : "~ not evaluated in full: the search's estimate of this view's gain "
+                           "and score");
+}
 fmt::print(
     "\nnext best view: candidate {} ({} method{}), score {:.1f} {}, decided in {:.3f} s\n"
     "  at {}\n  as --pose: {}\n",
@@ -563,7 +563,10 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("--range", o->range, "min,max range without a manifest [m]")
       ->capture_default_str();
   o->planning.method = "survival";
-  o->planning.add_to(*cmd, /*search=*/false);
+  // NOTE: the pruned search's choice is the exhaustive exact one's, proven; the candidates it
+  // never evaluated are listed with their upper bounds, marked as estimates.
+  o->planning.search = "pruned";
+  o->planning.add_to(*cmd);
   cmd->add_option("--pose", o->pose,
                   "the robot's sensor pose now, x,y,z,roll,pitch,yaw [m, deg], for the travel of "
                   "latombe and yamauchi (default: the manifest's last cloud's pose)");
