@@ -409,17 +409,19 @@ def median(values):
 
 
 def paired_measures(budget):
-    """(name, value of a trial's metrics or None to leave its pair out, format)."""
-    measures = [("AUC [cells x scans]", lambda m: m["auc"], ".0f"),
-                ("travel [m]", lambda m: m["travel"], ".2f")]
+    """(name, value of a trial's metrics or None to leave its pair out, format, the coverage
+    level whose censored trials the row counts or None)."""
+    measures = [("AUC [cells x scans]", lambda m: m["auc"], ".0f", None),
+                ("travel [m]", lambda m: m["travel"], ".2f", None)]
     for level in LEVELS:
         pct = round(100 * level)
         measures.append((f"scans to {pct}%",
                          lambda m, lv=level: budget + 1 if m[("scans_to", lv)] is None
-                         else m[("scans_to", lv)], ".1f"))
+                         else m[("scans_to", lv)], ".1f", level))
     for level in LEVELS:
         pct = round(100 * level)
-        measures.append((f"travel to {pct}% [m]", lambda m, lv=level: m[("travel_to", lv)], ".2f"))
+        measures.append((f"travel to {pct}% [m]", lambda m, lv=level: m[("travel_to", lv)], ".2f",
+                         None))
     return measures
 
 
@@ -449,16 +451,15 @@ def paired_summary(trials, budget):
     for method, setting in methods:
         mine = [m for m in trials if (m["method"], m["setting"]) == (method, setting)
                 and (m["scene"], m["trial"]) in greedy]
-        for name, value, fmt in paired_measures(budget):
+        for name, value, fmt, level in paired_measures(budget):
             pairs = [(value(m), value(greedy[(m["scene"], m["trial"])])) for m in mine]
             pairs = [(a, b) for a, b in pairs if a is not None and b is not None]
             censored = ""
-            for level in LEVELS:
-                if name.startswith("scans to") and name.endswith(f"{round(100 * level)}%"):
-                    own = sum(m[("scans_to", level)] is None for m in mine)
-                    theirs = sum(greedy[(m["scene"], m["trial"])][("scans_to", level)] is None
-                                 for m in mine)
-                    censored = f"{own} / {theirs}"
+            if level is not None:
+                own = sum(m[("scans_to", level)] is None for m in mine)
+                theirs = sum(greedy[(m["scene"], m["trial"])][("scans_to", level)] is None
+                             for m in mine)
+                censored = f"{own} / {theirs}"
             if not pairs:
                 lines.append(f"| {label(method, setting)} | {name} | 0 | - | - | - | {censored} |")
                 continue
