@@ -271,9 +271,9 @@ Pile generate_pile(const PileConfig& config) {
   std::vector<bool> carries;  // whether an object has another on top
   for (int i = 0; i < config.objects; ++i) {
     // NOTE: the shape is kept while its size and place are drawn until they fit, and drawn again
-    // only after kShapeRounds-th of the draws fail: redrawing it each time would favour the small
-    // shapes that fit anywhere. Sizes shrink as draws fail, within each round and from round to
-    // round (to 0.44 of the usual range in the last), so a crowded table still takes the pile's
+    // only after each 1 / kShapeRounds of the draws fails: redrawing it each time would favour the
+    // small shapes that fit anywhere. Sizes shrink as draws fail, within each round and from round
+    // to round (to 0.44 of the usual range in the last), so a crowded table still takes the pile's
     // last objects.
     const int round = std::max(1, config.max_attempts / kShapeRounds);
     PileShape shape = PileShape::kBox;

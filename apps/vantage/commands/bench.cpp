@@ -146,8 +146,9 @@ void run(const BenchOptions& o) {
   fmt::print("ran {} trial(s); {}\n", ran, (fs::path(o.out) / "scans.csv").string());
   if (o.plots && config.shard_count == 1) {
     run_plot_script("plot_bench.py", {o.out});
-    fmt::print("plots and summary: {}/unobserved.png, {}prediction_error.png, summary.md\n", o.out,
-               o.kind == "office" ? "unobserved_by_travel.png, " : "");
+    fmt::print(
+        "plots and summary: {}/unobserved.png, {}prediction_error.png, summary.md, trials.csv\n",
+        o.out, o.kind == "office" ? "unobserved_by_travel.png, " : "");
   }
 }
 
