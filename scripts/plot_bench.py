@@ -7,7 +7,10 @@ Reads DIR/scans.csv; writes DIR/unobserved.png (mean +- std of unobserved cells 
 method and scene), DIR/unobserved_by_travel.png (the same against the distance travelled),
 DIR/prediction_error.png (absolute error of the predicted vs the actual number of cells seen
 per scan: the probabilistic method's expected cells seen (predicted_cells) against greedy's count
-on the same poses, the paper's Fig. 11) and DIR/summary.md.
+on the same poses, the paper's Fig. 11), DIR/trials.csv (one row per trial: AUC, travel, and the
+scans and travel to reach 90 % and 95 % of the observable surface) and DIR/summary.md, which ends
+with each method's paired differences from greedy over scenes and starts, with a Wilcoxon
+signed-rank test (scipy).
 
 The probabilistic method's curves are told apart by its a setting (a number or 'auto') and its
 objective (what it ranks by: bits or cells).
@@ -19,6 +22,7 @@ import csv
 import math
 import os
 import sys
+import warnings
 from collections import defaultdict
 
 import matplotlib
@@ -260,7 +264,7 @@ def scans_to(curve, target):
     return None
 
 
-def summary(out, scenes, g):
+def summary(out, scenes, g, paired=()):
     last = max(k for by_scan in g.values() for k in by_scan)
     marks = checkpoints(last)
     lines = ["# Sweep summary", "",
@@ -316,8 +320,160 @@ def summary(out, scenes, g):
                          f" {mean_std(plan)[0]:.3f} | {travel:.1f} | {fallbacks:.1f} |"
                          f" {reach[0]} | {reach[1]} |")
         lines.append("")
+    lines += paired
     with open(os.path.join(out, "summary.md"), "w") as f:
         f.write("\n".join(lines))
+
+
+# Coverage levels whose scans and travel each trial records (shares of the observable surface).
+LEVELS = (0.90, 0.95)
+
+
+def trial_metrics(g):
+    """One dict per trial (scene, method, setting, trial): its AUC [cells x scans] (trapezoid over
+    scans 1..last, a trial that stopped early carried forward), travel [m], final coverage, and
+    for each level the first scan whose coverage reaches it and the travel up to and including
+    that scan, None when no scan of the trial reaches it (censored)."""
+    trials = []
+    for (scene, method, setting), by_scan in g.items():
+        by_trial = defaultdict(list)
+        for k in sorted(by_scan):
+            for r in by_scan[k]:
+                by_trial[r["trial"]].append(r)
+        for trial, rows in by_trial.items():
+            unobserved = [float(r["unobserved"]) for r in rows]
+            m = {"scene": scene, "method": method, "setting": setting, "trial": trial,
+                 "scans": len(rows),
+                 "auc": sum((a + b) / 2 for a, b in zip(unobserved, unobserved[1:])),
+                 "travel": sum(float(r.get("travel_m") or 0.0) for r in rows),
+                 "coverage": float(rows[-1]["coverage"])}
+            for level in LEVELS:
+                m[("scans_to", level)] = m[("travel_to", level)] = None
+                travel = 0.0
+                for r in rows:
+                    travel += float(r.get("travel_m") or 0.0)
+                    if float(r["coverage"]) >= level - 1e-12:
+                        m[("scans_to", level)] = int(r["scan"])
+                        m[("travel_to", level)] = travel
+                        break
+            trials.append(m)
+    trials.sort(key=lambda m: (m["scene"], m["method"], setting_order(m["setting"]),
+                               int(m["trial"])))
+    return trials
+
+
+def write_trials_csv(out, trials):
+    """DIR/trials.csv: one row per trial; a level not reached leaves its fields empty."""
+    def number(x, fmt):
+        return "" if x is None else format(x, fmt)
+
+    header = ["scene", "method", "alpha", "objective", "trial", "scans", "auc_cells_scans",
+              "travel_m", "coverage"]
+    for level in LEVELS:
+        header += [f"scans_to_{round(100 * level)}", f"travel_to_{round(100 * level)}_m"]
+    lines = [",".join(header)]
+    for m in trials:
+        fields = [m["scene"], m["method"], m["setting"][0], m["setting"][1], m["trial"],
+                  str(m["scans"]), f"{m['auc']:.6g}", f"{m['travel']:.6g}", f"{m['coverage']:.6g}"]
+        for level in LEVELS:
+            fields += [number(m[("scans_to", level)], "d"),
+                       number(m[("travel_to", level)], ".6g")]
+        lines.append(",".join(fields))
+    with open(os.path.join(out, "trials.csv"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def wilcoxon_p(differences):
+    """Two-sided p-value of the Wilcoxon signed-rank test of the paired differences, zero
+    differences dropped first (Wilcoxon's own treatment; dropping them here rather than through
+    zero_method lets scipy use the exact distribution for up to 50 pairs, which it refuses when
+    zeros are present); 1.0 when every difference is zero, None without differences or scipy."""
+    if not differences:
+        return None
+    nonzero = [d for d in differences if d != 0]
+    if not nonzero:
+        return 1.0
+    try:
+        from scipy.stats import wilcoxon
+    except ImportError:
+        return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # ties and small samples: scipy says so, the p stands
+        return float(wilcoxon(nonzero, alternative="two-sided").pvalue)
+
+
+def median(values):
+    v = sorted(values)
+    n = len(v)
+    return (v[n // 2] + v[(n - 1) // 2]) / 2
+
+
+def paired_measures(budget):
+    """(name, value of a trial's metrics or None to leave its pair out, format, the coverage
+    level whose censored trials the row counts or None)."""
+    measures = [("AUC [cells x scans]", lambda m: m["auc"], ".0f", None),
+                ("travel [m]", lambda m: m["travel"], ".2f", None)]
+    for level in LEVELS:
+        pct = round(100 * level)
+        measures.append((f"scans to {pct}%",
+                         lambda m, lv=level: budget + 1 if m[("scans_to", lv)] is None
+                         else m[("scans_to", lv)], ".1f", level))
+    for level in LEVELS:
+        pct = round(100 * level)
+        measures.append((f"travel to {pct}% [m]", lambda m, lv=level: m[("travel_to", lv)], ".2f",
+                         None))
+    return measures
+
+
+def paired_summary(trials, budget):
+    """summary.md's lines comparing each method with greedy, trial by trial (pairs on scene and
+    start: the same scene, the same start pose and the same sensor noise seed)."""
+    lines = ["## Paired with greedy", "",
+             "Each method against greedy on the same scene and start (a pair; scenes pooled):",
+             "median of the differences (method - greedy), the ratio of the two means (method's",
+             "mean / greedy's mean over the same pairs) and the p-value of a two-sided Wilcoxon",
+             "signed-rank test of the differences (scipy.stats.wilcoxon on the nonzero differences:",
+             "exact up to 50 pairs without ties; 1 when all are zero; '-' with no pairs). Scans to X% = the first scan whose coverage",
+             "(the observed share of the observable surface, observable = seen by the candidate",
+             f"views and starts together) reaches X%; a trial that never does within its {budget}",
+             f"scans is censored and counts as {budget + 1} scans; travel to X% = the distance",
+             "travelled up to and including that scan, and a pair in which either trial is",
+             "censored is left out of it (its pairs column says how many are left). censored =",
+             "trials of the method / of greedy that did not reach the level.", ""]
+    greedy = {(m["scene"], m["trial"]): m for m in trials if m["method"] == "greedy"}
+    if not greedy:
+        return lines + ["No greedy trials in this sweep: nothing to pair with.", ""]
+    lines += ["| method | measure | pairs | median difference | mean / greedy's |"
+              " p (Wilcoxon, two-sided) | censored |",
+              "|---|---|---|---|---|---|---|"]
+    methods = sorted({(m["method"], m["setting"]) for m in trials if m["method"] != "greedy"},
+                     key=lambda ms: (ms[0], setting_order(ms[1])))
+    for method, setting in methods:
+        mine = [m for m in trials if (m["method"], m["setting"]) == (method, setting)
+                and (m["scene"], m["trial"]) in greedy]
+        for name, value, fmt, level in paired_measures(budget):
+            pairs = [(value(m), value(greedy[(m["scene"], m["trial"])])) for m in mine]
+            pairs = [(a, b) for a, b in pairs if a is not None and b is not None]
+            censored = ""
+            if level is not None:
+                own = sum(m[("scans_to", level)] is None for m in mine)
+                theirs = sum(greedy[(m["scene"], m["trial"])][("scans_to", level)] is None
+                             for m in mine)
+                censored = f"{own} / {theirs}"
+            if not pairs:
+                lines.append(f"| {label(method, setting)} | {name} | 0 | - | - | - | {censored} |")
+                continue
+            differences = [a - b for a, b in pairs]
+            mean_greedy = sum(b for _, b in pairs) / len(pairs)
+            mean_own = sum(a for a, _ in pairs) / len(pairs)
+            ratio = f"{mean_own / mean_greedy:.3f}" if mean_greedy != 0 else "-"
+            p = wilcoxon_p(differences)
+            p_text = "-" if p is None else f"{p:.2g}"
+            lines.append(f"| {label(method, setting)} | {name} | {len(pairs)} |"
+                         f" {format(median(differences), fmt)} | {ratio} | {p_text} |"
+                         f" {censored} |")
+    lines.append("")
+    return lines
 
 
 def main(argv):
@@ -331,7 +487,10 @@ def main(argv):
     if "travel_m" in rows[0]:
         plot_unobserved_by_travel(out, scenes, g)
     plot_prediction_error(out, scenes, g)
-    summary(out, scenes, g)
+    trials = trial_metrics(g)
+    write_trials_csv(out, trials)
+    budget = max(k for by_scan in g.values() for k in by_scan)
+    summary(out, scenes, g, paired_summary(trials, budget))
 
 
 if __name__ == "__main__":

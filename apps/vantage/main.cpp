@@ -44,6 +44,10 @@ void check_commands(const CLI::App& app, int argc, char** argv) {
       if (command->check_name(std::string(token))) next = command;
     }
     if (next == nullptr) {
+      // NOTE: a command that also takes a positional (`vantage scene NAME`) reads it as that.
+      const auto positionals =
+          current->get_options([](const CLI::Option* o) { return o->get_positional(); });
+      if (!positionals.empty()) return;
       throw vantage::cli::UsageError(fmt::format("unknown command '{}' ({} takes {})",
                                                  vantage::printable(token, 60), path,
                                                  command_names(*current)));

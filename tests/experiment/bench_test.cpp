@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "test_scene.hpp"
+#include "vantage/sim/generate.hpp"
 
 namespace vantage {
 namespace {
@@ -169,6 +170,50 @@ TEST(Bench, EachMethodRunsItsOwnDefaultsWhenNoneAreGiven) {
   EXPECT_EQ(trials[1].objective, GainObjective::kBits);
   EXPECT_NE(trials[0].key().find("__survival__aauto__cells__t0"), std::string::npos)
       << trials[0].key();
+}
+
+// issue 26: --generated N expands into N piles named by objects and seed, so their trial keys
+// stay the same whatever N is (a resumed or merged sweep finds them), each source the command
+// that writes the pile, each scene file in the folder, and a changed one is refused on resume.
+TEST(Bench, GeneratedPilesHaveStableKeysAndTheirSceneFiles) {
+  BenchConfig config = tiny_sweep();
+  config.scenes.clear();
+  config.methods = {PlannerMethod::kRandom};
+  config.trials = 1;
+  config.exploration.scans = 1;
+  config.generated = 2;
+  config.pile.objects = 4;
+  config.pile.seed = 5;
+  config.validate();
+  const std::vector<TrialSpec> trials = bench_trials(config);
+  ASSERT_EQ(trials.size(), 2u);
+  EXPECT_EQ(trials[0].key(), "pile-4-s0005__random__t0");
+  EXPECT_EQ(trials[1].key(), "pile-4-s0006__random__t0");
+  EXPECT_EQ(trials[1].source, "vantage scene generate --objects 4 --seed 6");
+  BenchConfig more = config;
+  more.generated = 3;
+  EXPECT_EQ(bench_trials(more)[1].key(), trials[1].key());
+  BenchConfig none = config;
+  none.generated = 0;
+  EXPECT_THROW(none.validate(), std::invalid_argument);  // no scenes at all
+
+  const auto dir = testing::fresh_dir("bench-generated");
+  ASSERT_EQ(run_bench(dir, config), 2u);
+  const auto scene_file = dir / "scenes" / "pile-4-s0006.yaml";
+  sim::PileConfig pile = config.pile;
+  pile.seed = 6;
+  EXPECT_EQ(testing::read_text(scene_file), sim::pile_scene_yaml(sim::generate_pile(pile)));
+  EXPECT_EQ(sim::load_scene(scene_file.string()).name, "pile-4-s0006");
+  EXPECT_NE(testing::read_text(dir / "sweep.json").find("\"generated\""), std::string::npos);
+  EXPECT_EQ(testing::parse_csv(testing::read_text(dir / "scans.csv")).size(), 1u + 2u);
+
+  const auto merged = testing::fresh_dir("bench-generated-merged");
+  merge_bench({dir}, merged);
+  EXPECT_EQ(testing::read_text(merged / "scenes" / "pile-4-s0006.yaml"),
+            testing::read_text(scene_file));
+
+  testing::write_text(scene_file, testing::read_text(scene_file) + "# edited\n");
+  EXPECT_THROW(run_bench(dir, config), std::invalid_argument);
 }
 
 TEST(Bench, RejectsBadShardsAndUnknownScenes) {

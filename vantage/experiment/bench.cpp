@@ -62,6 +62,40 @@ nlohmann::json trial_settings(const BenchConfig& config) {
           {"project_stops", e.office.project_stops}};
 }
 
+/// trial_settings, and for a sweep of generated piles which ones (their names and files say the
+/// rest): a folder holds one set of piles.
+nlohmann::json sweep_settings(const BenchConfig& config) {
+  nlohmann::json settings = trial_settings(config);
+  if (config.generated > 0) {
+    settings["generated"] = {{"count", config.generated},
+                             {"objects", config.pile.objects},
+                             {"first_seed", config.pile.seed}};
+  }
+  return settings;
+}
+
+/// A sweep folder's copy of each generated pile's scene file.
+constexpr const char* kScenesFolder = "scenes";
+
+/// The scene files in a folder's scenes/, by file name.
+std::map<std::string, fs::path> scene_files(const fs::path& dir) {
+  std::map<std::string, fs::path> files;
+  const fs::path scenes = dir / kScenesFolder;
+  if (!fs::is_directory(scenes)) return files;
+  for (const auto& entry : fs::directory_iterator(scenes)) {
+    if (entry.path().extension() == ".yaml") files[entry.path().filename().string()] = entry.path();
+  }
+  return files;
+}
+
+/// The scene a trial runs in: a generated pile's, or what load_scene makes of its source.
+sim::Scene trial_scene(const TrialSpec& spec, const BenchConfig& config) {
+  for (const sim::PileConfig& pile : bench_piles(config)) {
+    if (sim::pile_name(pile) == spec.scene) return sim::pile_scene(pile);
+  }
+  return sim::load_scene(spec.source);
+}
+
 /// The settings a folder's trials were run with, or null when it has none yet.
 nlohmann::json read_settings(const fs::path& dir) {
   const fs::path path = dir / kSettingsFile;
@@ -106,7 +140,7 @@ std::map<std::string, fs::path> trial_files(const fs::path& dir) {
 }
 
 std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
-  const sim::Scene scene = sim::load_scene(spec.source);
+  const sim::Scene scene = trial_scene(spec, config);
   ExplorationConfig exploration = config.exploration;
   exploration.planner.method = spec.method;
   exploration.planner.gain.alpha = spec.alpha.value;
@@ -147,7 +181,13 @@ std::string TrialSpec::key() const {
 }
 
 void BenchConfig::validate() const {
-  if (scenes.empty()) throw std::invalid_argument("bench.scenes must not be empty");
+  if (scenes.empty() && generated == 0) {
+    throw std::invalid_argument("bench.scenes must not be empty without generated piles");
+  }
+  if (generated < 0) {
+    throw std::invalid_argument(fmt::format("bench.generated must be >= 0, got {}", generated));
+  }
+  if (generated > 0) pile.validate();
   if (methods.empty()) throw std::invalid_argument("bench.methods must not be empty");
   for (const AlphaSetting& a : alphas) {
     if (!(a.value > 0.0 && a.value <= 1.0)) {
@@ -180,10 +220,36 @@ BenchConfig office_bench_config() {
   return config;
 }
 
+std::vector<sim::PileConfig> bench_piles(const BenchConfig& config) {
+  std::vector<sim::PileConfig> piles;
+  for (int k = 0; k < config.generated; ++k) {
+    sim::PileConfig pile = config.pile;
+    pile.seed = config.pile.seed + static_cast<std::uint64_t>(k);
+    piles.push_back(pile);
+  }
+  return piles;
+}
+
 std::vector<TrialSpec> bench_trials(const BenchConfig& config) {
-  std::vector<TrialSpec> specs;
+  // (name, source) of every scene: the named ones loaded to name them, the piles named by rule.
+  std::vector<std::pair<std::string, std::string>> scenes;
   for (const std::string& source : config.scenes) {
-    const std::string scene = sim::load_scene(source).name;
+    scenes.emplace_back(sim::load_scene(source).name, source);
+  }
+  for (const sim::PileConfig& pile : bench_piles(config)) {
+    scenes.emplace_back(sim::pile_name(pile), sim::pile_command(pile));
+  }
+  std::map<std::string, std::string> named;
+  for (const auto& [scene, source] : scenes) {
+    // NOTE: trial keys start with the scene's name, so two scenes of one name would share them.
+    if (const auto [it, fresh] = named.emplace(scene, source); !fresh) {
+      throw std::invalid_argument(fmt::format(
+          "bench: scenes '{}' and '{}' are both named '{}'; a sweep's scenes need their own names",
+          it->second, source, scene));
+    }
+  }
+  std::vector<TrialSpec> specs;
+  for (const auto& [scene, source] : scenes) {
     for (const PlannerMethod method : config.methods) {
       const bool probabilistic = has_observability(method);
       // NOTE: a method without a (greedy, ...) runs once; its alpha and objective are unused.
@@ -216,12 +282,30 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
   fs::create_directories(dir / "trials");
   // NOTE: trial files are resumed by key alone, so a folder must never mix trials run with
   // different settings (12 stops and 20, say) into one scans.csv.
-  const nlohmann::json settings = trial_settings(config);
+  const nlohmann::json settings = sweep_settings(config);
   if (const nlohmann::json found = read_settings(dir); !found.is_null()) {
     require_same_settings(found, settings, dir / kSettingsFile,
                           "resume with the same settings or choose another --out");
   } else {
     write_atomically(dir / kSettingsFile, settings.dump(2) + "\n");
+  }
+  // NOTE: written before any trial, so that every trial's scene can be rerun from its file
+  // (vantage explore --scene DIR/scenes/NAME.yaml), and checked on resume: a pile this version
+  // draws differently must not share a folder with the trials of the old one.
+  for (const sim::PileConfig& pile : bench_piles(config)) {
+    const std::string text = sim::pile_scene_yaml(sim::generate_pile(pile));
+    const fs::path path = dir / kScenesFolder / (sim::pile_name(pile) + ".yaml");
+    if (fs::exists(path)) {
+      if (read_file(path) != text) {
+        throw std::invalid_argument(fmt::format(
+            "{}: differs from the pile this version generates for seed {}; its trials were run "
+            "in another pile: choose another --out",
+            path.string(), pile.seed));
+      }
+    } else {
+      fs::create_directories(path.parent_path());
+      write_atomically(path, text);
+    }
   }
   const std::map<std::string, fs::path> done = trial_files(dir);
 
@@ -307,7 +391,8 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
   });
   if (!target_is_source && fs::exists(out)) all.push_back(out);
   std::map<std::string, std::string> trials;
-  nlohmann::json settings = nullptr;  // of the first folder; all must agree
+  std::map<std::string, std::string> scenes;  // generated scene files, by file name
+  nlohmann::json settings = nullptr;          // of the first folder; all must agree
   for (std::size_t k = 0; k < all.size(); ++k) {
     const fs::path& dir = all[k];
     const bool target = k == dirs.size();
@@ -325,6 +410,13 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
       const std::string remedy = "only sweeps run with the same settings can be merged";
       require_same_settings(found, settings, dir / kSettingsFile, remedy);
       require_same_settings(settings, found, all.front() / kSettingsFile, remedy);
+    }
+    for (const auto& [name, path] : scene_files(dir)) {
+      const auto [it, inserted] = scenes.emplace(name, read_file(path));
+      if (!inserted && it->second != read_file(path)) {
+        throw std::runtime_error(fmt::format(
+            "{}: differs from the scene file of the same name in another folder", path.string()));
+      }
     }
     const auto files = trial_files(dir);
     if (files.empty() && !target) {
@@ -346,6 +438,8 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
     write_atomically(out / kSettingsFile, settings.dump(2) + "\n");
   }
   for (const auto& [key, rows] : trials) write_atomically(out / "trials" / (key + ".csv"), rows);
+  if (!scenes.empty()) fs::create_directories(out / kScenesFolder);
+  for (const auto& [name, text] : scenes) write_atomically(out / kScenesFolder / name, text);
   write_bench_csv(out);
 }
 

@@ -12,13 +12,16 @@
 
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/gain/ray_model.hpp"
+#include "vantage/sim/generate.hpp"
 
 namespace vantage {
 
 /// One trial of a sweep.
 struct TrialSpec {
-  std::string scene;   ///< the scene's name
-  std::string source;  ///< what to load it from: a built-in name or a YAML path
+  std::string scene;  ///< the scene's name
+  /// What to load it from: a built-in name or a YAML path; for a generated pile the command that
+  /// writes its scene file (sim::pile_command).
+  std::string source;
   PlannerMethod method = PlannerMethod::kProbabilistic;
   AlphaSetting alpha;                              ///< the probabilistic method's a
   GainObjective objective = GainObjective::kBits;  ///< what the probabilistic method ranks by
@@ -31,6 +34,11 @@ struct TrialSpec {
 /// Settings of a sweep.
 struct BenchConfig {
   std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
+  /// Generated piles benched after `scenes` (docs/scenes.md, "Generated piles"): this many, of
+  /// `pile.objects` objects each, with seeds pile.seed, pile.seed + 1, ...; 0: none. Each one's
+  /// scene file is written to `DIR/scenes/NAME.yaml`.
+  int generated = 0;
+  sim::PileConfig pile;  ///< the first generated pile's settings; the others differ in seed
   std::vector<PlannerMethod> methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy,
                                         PlannerMethod::kRandom};
   /// a settings for the probabilistic and survival methods (a value, or auto); one trial set
@@ -56,7 +64,11 @@ struct BenchConfig {
 /// of 5, 20 stops each.
 BenchConfig office_bench_config();
 
-/// Every trial of the sweep in its fixed order, before sharding. Loads each scene once, to name
+/// The generated piles of a sweep, in order: config.pile with seeds pile.seed + k, k < generated.
+std::vector<sim::PileConfig> bench_piles(const BenchConfig& config);
+
+/// Every trial of the sweep in its fixed order, before sharding: the named scenes', then the
+/// generated piles'. Loads each scene once, to name
 /// it; throws what load_scene throws.
 std::vector<TrialSpec> bench_trials(const BenchConfig& config);
 
@@ -70,16 +82,19 @@ struct TrialEvent {
 };
 
 /// Runs this shard's trials that `dir/trials/` does not hold yet, then writes `dir/scans.csv`
-/// from all trial files present. Returns the number of trials run now. The settings that shape a
-/// trial's rows (stops, seed, evaluation, mapping, ...) are kept in `dir/sweep.json`; resuming a
-/// folder with other settings throws std::invalid_argument naming the first that differs.
-/// `on_trial` is called from the worker threads, one call at a time.
+/// from all trial files present. The generated piles' scene files go to `dir/scenes/` first; one
+/// that is there already and differs (another version's generator) throws std::invalid_argument.
+/// Returns the number of trials run now. The settings that shape a trial's rows (stops, seed,
+/// evaluation, mapping, ...) are kept in `dir/sweep.json`; resuming a folder with other settings
+/// throws std::invalid_argument naming the first that differs. `on_trial` is called from the worker
+/// threads, one call at a time.
 std::size_t run_bench(const std::filesystem::path& dir, const BenchConfig& config,
                       const std::function<void(const TrialEvent&)>& on_trial = {});
 
-/// Joins the trial files of several sweep folders (e.g. shards) into `out/trials/` and writes
-/// `out/scans.csv`. Throws std::runtime_error when two folders hold the same trial with different
-/// contents, and std::invalid_argument when their sweep.json settings differ.
+/// Joins the trial files of several sweep folders (e.g. shards) into `out/trials/`, and their
+/// generated scene files into `out/scenes/`, and writes `out/scans.csv`. Throws std::runtime_error
+/// when two folders hold the same trial with different contents, and std::invalid_argument when
+/// their sweep.json settings differ.
 void merge_bench(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out);
 
 /// Writes `dir/scans.csv`: the header and every trial file's rows, in key order.

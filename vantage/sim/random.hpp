@@ -18,7 +18,7 @@ constexpr std::uint64_t mix64(std::uint64_t x) {
 }
 
 /// Independent random streams drawn from one seed.
-enum class RandomStream : std::uint64_t { kPose = 1, kRange = 2 };
+enum class RandomStream : std::uint64_t { kPose = 1, kRange = 2, kPile = 3 };
 
 /// Uniform in (0, 1), never 0 or 1: the k-th draw of `stream` for `seed`.
 inline double uniform_open01(std::uint64_t seed, RandomStream stream, std::uint64_t k) {

@@ -16,6 +16,7 @@
 #include "commands/options.hpp"
 #include "shell.hpp"
 #include "vantage/gain/ray_model.hpp"
+#include "vantage/sim/generate.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/util/memory.hpp"
 
@@ -42,6 +43,10 @@ struct BenchOptions {
   PlanningOptions planning;
   MappingOptions mapping;
   std::uint64_t max_memory = 0;  // 0: what the machine has available
+  int generated = 0;             ///< tabletop: generated piles, instead of --scenes unless given
+  int objects = sim::PileConfig{}.objects;
+  std::uint64_t generated_seed = 1;
+  bool scenes_given = false;  ///< --scenes was on the command line
 };
 
 /// The comma-separated items of a list option.
@@ -73,6 +78,11 @@ void parse_shard(const std::string& text, BenchConfig& config) {
 BenchConfig bench_config(const BenchOptions& o) {
   BenchConfig config;
   config.scenes = o.scenes;
+  // NOTE: --generated replaces the default scenes; named ones given with it are benched too.
+  if (o.generated > 0 && !o.scenes_given) config.scenes.clear();
+  config.generated = o.generated;
+  config.pile.objects = o.objects;
+  config.pile.seed = o.generated_seed;
   config.methods.clear();
   for (const std::string& m : o.methods) config.methods.push_back(parse_planner_method(m));
   // NOTE: auto starts from the literal a of the sweep's kind (§5.1, §5.2).
@@ -117,6 +127,10 @@ void run(const BenchOptions& o) {
   for (const std::string& name : config.scenes) {
     cells = std::max<std::uint64_t>(cells, sim::load_scene(name).grid.num_cells());
   }
+  if (config.generated > 0) {
+    cells = std::max<std::uint64_t>(cells,
+                                    sim::pile_scene(bench_piles(config).front()).grid.num_cells());
+  }
   check_memory({cells, grid_bytes_per_cell(o.planning.threads), kFixedRunBytes,
                 static_cast<std::uint64_t>(o.jobs)},
                o.max_memory, "the sweep's grids");
@@ -132,8 +146,9 @@ void run(const BenchOptions& o) {
   fmt::print("ran {} trial(s); {}\n", ran, (fs::path(o.out) / "scans.csv").string());
   if (o.plots && config.shard_count == 1) {
     run_plot_script("plot_bench.py", {o.out});
-    fmt::print("plots and summary: {}/unobserved.png, {}prediction_error.png, summary.md\n", o.out,
-               o.kind == "office" ? "unobserved_by_travel.png, " : "");
+    fmt::print(
+        "plots and summary: {}/unobserved.png, {}prediction_error.png, summary.md, trials.csv\n",
+        o.out, o.kind == "office" ? "unobserved_by_travel.png, " : "");
   }
 }
 
@@ -174,6 +189,17 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   if (o->kind == "tabletop") {
     cmd->add_flag("--revisit", o->revisit,
                   "views already taken stay candidates (the paper's loop taken literally)");
+    cmd->add_option("--generated", o->generated,
+                    "also bench this many generated piles (vantage scene generate), seeds "
+                    "--generated-seed, +1, ...; without --scenes, only them")
+        ->check(whole_in(0, kMaxScans))
+        ->capture_default_str();
+    cmd->add_option("--objects", o->objects, "objects in each generated pile")
+        ->check(whole_in(1, sim::kMaxPileObjects))
+        ->capture_default_str();
+    cmd->add_option("--generated-seed", o->generated_seed, "seed of the first generated pile")
+        ->check(seed_value())
+        ->capture_default_str();
   } else {
     cmd->add_flag("!--no-stop-projection", o->project_stops, kNoStopProjectionHelp);
   }
@@ -193,6 +219,15 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
             "{} is explore's and plan's: a sweep takes {} (a comma-separated list)", single, list));
       }
     }
+    if (o->kind == "tabletop" && o->generated == 0) {
+      for (const char* option : {"--objects", "--generated-seed"}) {
+        if (cmd->count(option) > 0) {
+          throw UsageError(
+              fmt::format("{} shapes generated piles: give --generated N too", option));
+        }
+      }
+    }
+    o->scenes_given = cmd->count("--scenes") > 0;
     run(*o);
   });
 }

@@ -15,6 +15,7 @@
 #include "commands/options.hpp"
 #include "shell.hpp"
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/sim/generate.hpp"
 #include "vantage/sim/ground_truth.hpp"
 #include "vantage/util/memory.hpp"
 
@@ -115,20 +116,57 @@ void run(const SceneOptions& o) {
   fmt::print("picture: {}\n", o.out);
 }
 
+struct GenerateOptions {
+  int objects = sim::PileConfig{}.objects;
+  std::uint64_t seed = sim::PileConfig{}.seed;
+  std::string out;
+};
+
+void generate(const GenerateOptions& o) {
+  check_output_file(o.out, "--out");
+  sim::PileConfig config;
+  config.objects = o.objects;
+  config.seed = o.seed;
+  const sim::Pile pile = from_options([&] { return sim::generate_pile(config); });
+  const std::string text = sim::pile_scene_yaml(pile);
+  write_atomically(o.out, text);
+  std::size_t stacked = 0;
+  for (const sim::PileObject& object : pile.objects) stacked += object.stands_on >= 0;
+  fmt::print("{}: {} objects ({} set on another) into {}\n", pile.name, pile.objects.size(),
+             stacked, o.out);
+}
+
 }  // namespace
 
 void add_scene_command(CLI::App& app) {
   auto o = std::make_shared<SceneOptions>();
   CLI::App* cmd = app.add_subcommand(
       "scene", "A scene's summary and top view: objects, start positions and candidate views");
-  cmd->add_option("scene", o->scene, "a built-in scene name or a scene YAML file")->required();
+  cmd->add_option("scene", o->scene, "a built-in scene name or a scene YAML file");
   cmd->add_option("--out,-o", o->out, "draw the top view into this PNG");
   cmd->add_option("--json", o->json, "also write the drawing's data to this JSON file");
   cmd->add_flag("--ground-truth", o->ground_truth,
                 "also count the truly occupied, surface and observable cells");
   add_threads_option(*cmd, o->threads, "threads (0 = all cores)");
   add_memory_option(*cmd, o->max_memory);
-  cmd->callback([o] { run(*o); });
+  auto g = std::make_shared<GenerateOptions>();
+  CLI::App* gen = cmd->add_subcommand(
+      "generate",
+      "Write the scene file of a seeded pile of the scanned models and primitives on the paper's "
+      "table (docs/scenes.md, \"Generated piles\")");
+  gen->add_option("--objects", g->objects, "objects in the pile")
+      ->check(whole_in(1, sim::kMaxPileObjects))
+      ->capture_default_str();
+  gen->add_option("--seed", g->seed, "the same seed writes the same file")
+      ->check(seed_value())
+      ->capture_default_str();
+  gen->add_option("--out,-o", g->out, "the scene file to write (YAML)")->required();
+  gen->callback([g] { generate(*g); });
+  cmd->callback([o, cmd] {
+    if (cmd->got_subcommand("generate")) return;
+    if (o->scene.empty()) throw UsageError("scene: give a built-in scene name or a YAML file");
+    run(*o);
+  });
 }
 
 }  // namespace vantage::cli
