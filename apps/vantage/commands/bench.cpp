@@ -41,6 +41,7 @@ struct BenchOptions {
   bool project_stops = true;  ///< office: unreachable frontier centroids move into their region
   PlanningOptions planning;
   MappingOptions mapping;
+  CandidateOptions candidates;   ///< tabletop only
   std::uint64_t max_memory = 0;  // 0: what the machine has available
 };
 
@@ -103,6 +104,7 @@ BenchConfig bench_config(const BenchOptions& o) {
   config.exploration.seed = o.seed;
   config.exploration.revisit = o.revisit;
   config.exploration.office.project_stops = o.project_stops;
+  o.candidates.apply(config.exploration);
   config.jobs = o.jobs;
   parse_shard(o.shard, config);
   config.validate();
@@ -174,6 +176,7 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   if (o->kind == "tabletop") {
     cmd->add_flag("--revisit", o->revisit,
                   "views already taken stay candidates (the paper's loop taken literally)");
+    o->candidates.add_to(*cmd);
   } else {
     cmd->add_flag("!--no-stop-projection", o->project_stops, kNoStopProjectionHelp);
   }
