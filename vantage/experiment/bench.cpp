@@ -173,7 +173,13 @@ void BenchConfig::validate() const {
     throw std::invalid_argument(
         fmt::format("bench.shard {}/{} is not a shard: need 0 <= I < N", shard_index, shard_count));
   }
-  exploration.validate();
+  // NOTE: each trial runs its own method; the settings must hold for every one of them.
+  for (const PlannerMethod m : methods) {
+    ExplorationConfig e = exploration;
+    e.planner.method = m;
+    e.planner.objective = natural_objective(m);
+    e.validate();
+  }
 }
 
 BenchConfig office_bench_config() {

@@ -94,7 +94,10 @@ BenchConfig bench_config(const BenchOptions& o) {
     config.objectives.push_back(parse_gain_objective(name));
   }
   config.trials = o.trials;
-  config.exploration.planner = o.planning.planner_config();
+  // NOTE: the methods are the trials'; the first stands in so the shared settings can be checked.
+  PlanningOptions planning = o.planning;
+  planning.method = o.methods.empty() ? planning.method : o.methods.front();
+  config.exploration.planner = planning.planner_config();
   config.exploration.mapper.integration.mode = parse_integration_mode(o.mapping.integration);
   config.exploration.mapper.integration.hole_filling.enabled = o.mapping.hole_filling;
   config.exploration.mapper.integration.num_threads = o.planning.threads;

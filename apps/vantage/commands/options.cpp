@@ -1,6 +1,7 @@
 #include "commands/options.hpp"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <thread>
@@ -83,6 +84,10 @@ void CandidateOptions::add_to(CLI::App& cmd) {
                  "hemisphere: arc between neighbouring views of a ring [m]; sets the view count")
       ->check(number_in(0.0, 10.0, /*open_low=*/true))
       ->capture_default_str();
+  cmd.add_option("--hemisphere-radii", radii,
+                 "hemisphere: distances of its rings of views from the scene's target, r1,r2,... "
+                 "[m]")
+      ->default_str(fmt::format("{}", fmt::join(HemisphereConfig{}.radii, ",")));
 }
 
 void CandidateOptions::apply(ExplorationConfig& config) const {
@@ -96,6 +101,7 @@ void CandidateOptions::apply(ExplorationConfig& config) const {
         "--arm-base and --reach come together: the arm's base x,y,z and its reach [m]");
   }
   config.hemisphere.spacing = spacing;
+  if (!radii.empty()) config.hemisphere.radii = parse_numbers(radii, "--hemisphere-radii");
   if (reach > 0.0) {
     ArmReach arm;
     const std::vector<double> xyz = parse_numbers(arm_base, "--arm-base");

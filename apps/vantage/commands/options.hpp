@@ -54,6 +54,7 @@ struct CandidateOptions {
   std::string arm_base;                         ///< "x,y,z" [m]; empty: the scene's arm
   double reach = 0.0;                           ///< [m]; 0: the scene's arm
   double spacing = HemisphereConfig{}.spacing;  ///< the hemisphere's view spacing [m]
+  std::string radii;                            ///< "r1,r2,..." [m]; empty: HemisphereConfig's
 
   void add_to(CLI::App& cmd);
   /// Sets the candidate set, the hemisphere and the arm; throws UsageError naming the option.
