@@ -44,22 +44,31 @@ constexpr const char* kSettingsFile = "sweep.json";
 nlohmann::json trial_settings(const BenchConfig& config) {
   const ExplorationConfig& e = config.exploration;
   const MapperConfig& m = e.mapper;
-  return {{"scans", e.scans},
-          {"seed", e.seed},
-          {"min_gain", e.min_gain},
-          {"revisit", e.revisit},
-          {"evaluation", to_string(e.planner.gain.evaluation)},
-          {"search", to_string(e.planner.search)},
-          {"epsilon", e.planner.gain.epsilon},
-          {"lambda", e.planner.lambda},
-          {"integration", to_string(m.integration.mode)},
-          {"hole_filling", m.integration.hole_filling.enabled},
-          {"icp", m.register_scans},
-          {"segmentation", m.segment_table},
-          {"mapper_from_scene", config.mapper_from_scene},
-          {"observability_alphas", e.observability.alphas},
-          {"observability_recency", e.observability.recency},
-          {"project_stops", e.office.project_stops}};
+  return {
+      {"scans", e.scans},
+      {"seed", e.seed},
+      {"min_gain", e.min_gain},
+      {"revisit", e.revisit},
+      {"evaluation", to_string(e.planner.gain.evaluation)},
+      {"search", to_string(e.planner.search)},
+      {"epsilon", e.planner.gain.epsilon},
+      {"lambda", e.planner.lambda},
+      {"integration", to_string(m.integration.mode)},
+      {"hole_filling", m.integration.hole_filling.enabled},
+      {"icp", m.register_scans},
+      {"segmentation", m.segment_table},
+      {"mapper_from_scene", config.mapper_from_scene},
+      {"observability_alphas", e.observability.alphas},
+      {"observability_recency", e.observability.recency},
+      {"project_stops", e.office.project_stops},
+      {"candidates", to_string(e.candidates)},
+      {"hemisphere_spacing", e.hemisphere.spacing},
+      {"arm", e.arm ? nlohmann::json{{"base", {e.arm->base.x(), e.arm->base.y(), e.arm->base.z()}},
+                                     {"reach", e.arm->reach}}
+                    : nlohmann::json(nullptr)},
+      {"horizon", e.planner.sequence.horizon},
+      {"travel_weight", e.planner.sequence.travel_weight},
+      {"shortlist", e.planner.sequence.shortlist}};
 }
 
 /// trial_settings, and for a sweep of generated piles which ones (their names and files say the
@@ -204,7 +213,13 @@ void BenchConfig::validate() const {
     throw std::invalid_argument(
         fmt::format("bench.shard {}/{} is not a shard: need 0 <= I < N", shard_index, shard_count));
   }
-  exploration.validate();
+  // NOTE: each trial runs its own method; the settings must hold for every one of them.
+  for (const PlannerMethod m : methods) {
+    ExplorationConfig e = exploration;
+    e.planner.method = m;
+    e.planner.objective = natural_objective(m);
+    e.validate();
+  }
 }
 
 BenchConfig office_bench_config() {

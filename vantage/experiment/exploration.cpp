@@ -42,12 +42,8 @@ double coverage(const OccupancyGrid& grid, const std::vector<std::uint32_t>& obs
 
 /// The walk around the table between two views: the arc between their bearings at the ring's
 /// radius, plus any difference in their distance from the ring's centre [m].
-double ring_walk(const RingConfig& ring, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-  const Eigen::Vector2d a = from.head<2>() - ring.center.head<2>();
-  const Eigen::Vector2d b = to.head<2>() - ring.center.head<2>();
-  double turn = std::abs(std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x()));
-  if (turn > std::numbers::pi) turn = 2.0 * std::numbers::pi - turn;
-  return ring.radius * turn + std::abs(b.norm() - a.norm());
+TravelRule ring_walk_rule(const RingConfig& ring) {
+  return {TravelRule::Kind::kRingWalk, ring.center, ring.radius};
 }
 
 /// Where the next scan is taken, and what the decision recorded.
@@ -98,10 +94,14 @@ class Explorer {
       frontier_.max_radius = config.office.max_frontier_radius;
       frontier_.validate();
     } else {
-      for (const Eigen::Isometry3d& pose : scene.candidate_poses()) {
+      const bool arm = config.candidates == CandidateSet::kHemisphere;
+      for (const Eigen::Isometry3d& pose :
+           arm ? hemisphere_poses(run_hemisphere(scene, config)) : scene.candidate_poses()) {
         ring_.push_back({Frustum(pose, scene.fov())});
         result_.candidates.push_back(pose);
       }
+      // NOTE: a sequence's tour between two views costs what the robot's move between them does.
+      planner_.sequence.travel = arm ? TravelRule{} : ring_walk_rule(scene.ring);
       if (ring_.empty()) {
         throw std::invalid_argument(cat("scene '", scene.name, "' has no candidate views"));
       }
@@ -334,7 +334,7 @@ class Explorer {
     for (std::size_t i = 0; i < ring_.size(); ++i) {
       if (!config_.revisit && taken_[i]) continue;
       open.push_back(ring_[i]);
-      open.back().travel = ring_walk(scene_.ring, here, ring_[i].view.origin());
+      open.back().travel = planner_.sequence.travel(here, ring_[i].view.origin());
       index.push_back(i);
     }
     Decision d;
@@ -518,6 +518,32 @@ void ExplorationConfig::validate() const {
   if (start < 0) throw std::invalid_argument(cat("explore.start must be >= 0, got ", start));
   if (pose_noise) pose_noise->validate();
   office.validate();
+  hemisphere.validate();
+  if (arm && !(arm->reach > 0.0)) {
+    throw std::invalid_argument(cat("explore.arm.reach must be > 0 m, got ", arm->reach));
+  }
+}
+
+std::string_view to_string(CandidateSet set) {
+  return set == CandidateSet::kHemisphere ? "hemisphere" : "ring";
+}
+
+CandidateSet parse_candidate_set(std::string_view name) {
+  if (name == "ring") return CandidateSet::kRing;
+  if (name == "hemisphere") return CandidateSet::kHemisphere;
+  throw std::invalid_argument(
+      cat("unknown candidate set '", name, "' (expected ring or hemisphere)"));
+}
+
+HemisphereConfig run_hemisphere(const sim::Scene& scene, const ExplorationConfig& config) {
+  HemisphereConfig h = config.hemisphere;
+  h.center = scene.mount.target;
+  const std::optional<ArmReach>& arm = config.arm ? config.arm : scene.arm;
+  if (arm) {
+    h.base = arm->base;
+    h.reach = arm->reach;
+  }
+  return h;
 }
 
 perception::PoseSigma odometry_prior(const sim::PoseNoise& noise) {
@@ -586,6 +612,19 @@ ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& conf
     throw std::invalid_argument(cat("explore.start ", config.start, " is out of range: scene '",
                                     scene.name, "' has ", scene.start_poses.size(),
                                     " start poses"));
+  }
+  if (scene.kind == sim::SceneKind::kOffice) {
+    // NOTE: an office's candidates are frontier stops with sweeps, travel on its floor.
+    if (config.candidates != CandidateSet::kRing) {
+      throw std::invalid_argument(cat("scene '", scene.name,
+                                      "' is an office: its candidates are "
+                                      "frontier stops, not a hemisphere"));
+    }
+    if (config.planner.sequence.active()) {
+      throw std::invalid_argument(cat("scene '", scene.name,
+                                      "' is an office: the sequence "
+                                      "planner (horizon, travel weight) is for table tops"));
+    }
   }
   Explorer explorer(scene, config, mapper);
   return explorer.run(on_scan);

@@ -14,6 +14,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vantage/perception/mapper.hpp"
@@ -21,6 +22,7 @@
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"
+#include "vantage/views/hemisphere.hpp"
 
 namespace vantage {
 
@@ -49,6 +51,18 @@ struct OfficeConfig {
   void validate() const;
 };
 
+/// Table top: where the candidate views come from.
+enum class CandidateSet {
+  kRing,  ///< the scene's ring (§5.1); travel is the walk around the table (ring_walk)
+  /// An arm's views over the table (views/hemisphere.hpp); travel is the sensor's straight-line
+  /// path between views.
+  kHemisphere,
+};
+
+std::string_view to_string(CandidateSet set);
+/// Parses "ring" or "hemisphere"; throws std::invalid_argument naming the value.
+CandidateSet parse_candidate_set(std::string_view name);
+
 /// Settings of one exploration run.
 struct ExplorationConfig {
   /// Method, alpha, evaluation, search. greedy_reference is not needed: greedy's prediction is
@@ -74,6 +88,11 @@ struct ExplorationConfig {
   /// predicted best so far. Off: planner.gain.alpha throughout.
   bool auto_alpha = false;
   ObservabilityFitConfig observability;
+  CandidateSet candidates = CandidateSet::kRing;  ///< table top: ring or an arm's hemisphere
+  /// kHemisphere: radii, elevations and spacing; the centre is the scene's target (the ring's),
+  /// the base and reach `arm`'s, else the scene's arm's, else unlimited.
+  HemisphereConfig hemisphere;
+  std::optional<ArmReach> arm;  ///< kHemisphere: overrides the scene's arm
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -197,6 +216,10 @@ AlphaSetting default_alpha_setting(PlannerMethod method, double paper);
 
 /// The registration prior of a robot whose believed pose errs by `noise` (sigmas of x, y, yaw).
 perception::PoseSigma odometry_prior(const sim::PoseNoise& noise);
+
+/// The hemisphere a run with CandidateSet::kHemisphere takes its views from: `config.hemisphere`
+/// centred on the scene's target, with `config.arm`, else the scene's arm, as its reach.
+HemisphereConfig run_hemisphere(const sim::Scene& scene, const ExplorationConfig& config);
 
 /// The frusta that plan a stop's 360° sweep: one per step of the scene's sweep, each as wide as
 /// the yaw step (2 pi / steps) when the sensor is at least that wide, so they tile the sweep

@@ -4,6 +4,7 @@
 #include <fmt/os.h>
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <nlohmann/json.hpp>
 #include <numbers>
 
@@ -44,6 +45,17 @@ json config_json(const ExplorationConfig& config) {
       {"search", to_string(config.planner.search)},
       {"epsilon", gain.epsilon},
       {"lambda", config.planner.lambda},
+      {"candidates", to_string(config.candidates)},
+      // NOTE: what "travel" measures, said where the figures are.
+      {"travel_rule", config.candidates == CandidateSet::kHemisphere
+                          ? "the sensor's straight-line path between views [m]"
+                          : "the walk around the table: the arc between bearings at the ring's "
+                            "radius plus the change in distance from its centre [m]"},
+      {"sequence",
+       {{"horizon", config.planner.sequence.horizon},
+        {"travel_weight_per_m", config.planner.sequence.travel_weight},
+        {"shortlist", config.planner.sequence.shortlist},
+        {"active", config.planner.sequence.active()}}},
       {"scans", config.scans},
       {"min_gain", config.min_gain},
       {"revisit", config.revisit},
@@ -274,6 +286,20 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
               {"observable_cells", result.observable_cells},
               {"scans", json::array()},
               {"candidates", json::array()}};
+  if (config.candidates == CandidateSet::kHemisphere && scene.kind == sim::SceneKind::kTableTop) {
+    const HemisphereConfig h = run_hemisphere(scene, config);
+    constexpr double kDeg = 180.0 / std::numbers::pi;
+    run["config"]["hemisphere"] = {
+        {"center_m", {h.center.x(), h.center.y(), h.center.z()}},
+        {"radii_m", h.radii},
+        {"elevations", h.elevations},
+        {"min_elevation_deg", h.min_elevation * kDeg},
+        {"max_elevation_deg", h.max_elevation * kDeg},
+        {"spacing_m", h.spacing},
+        {"arm_base_m", {h.base.x(), h.base.y(), h.base.z()}},
+        {"arm_reach_m", std::isfinite(h.reach) ? json(h.reach) : json(nullptr)},
+        {"views", result.candidates.size()}};
+  }
   for (const ScanRecord& r : result.scans) run["scans"].push_back(scan_json(r));
   for (const Eigen::Isometry3d& pose : result.candidates) {
     run["candidates"].push_back(pose_json(pose));

@@ -196,6 +196,45 @@ Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidate
   return plan;
 }
 
+/// The sequence decision (sequence.hpp): the tour's first view, and for it the full prediction.
+Plan plan_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> candidates,
+                      const PlannerConfig& config, std::chrono::steady_clock::time_point start) {
+  std::vector<Frustum> views;
+  std::vector<double> travel;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    if (!candidates[c].more_views.empty()) {
+      throw std::invalid_argument(cat("planner.sequence plans single views; candidate ", c,
+                                      " is a sweep of ", candidates[c].more_views.size() + 1,
+                                      " views"));
+    }
+    views.push_back(candidates[c].view);
+    travel.push_back(candidates[c].travel);
+  }
+  GainConfig gain = config.gain;
+  gain.method = gain_method_of(config.method);
+  SequencePlan sequence = plan_sequence(grid, views, travel, gain, config.sequence);
+  Plan plan;
+  plan.best = sequence.first;
+  plan.gains = std::move(sequence.gains);
+  plan.scores = std::move(sequence.scores);
+  plan.evaluated = candidates.size();
+  plan.sequence = std::move(sequence.tour);
+  plan.tour_length = sequence.tour_length;
+  plan.sequence_value = sequence.value;
+  const bool counts = method_traits(gain.method).counts;
+  if (counts) {
+    for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
+  }
+  plan.seconds = since(start);
+  if (!counts) {
+    // NOTE: the cells decided; the bits of eq. (4) are the chosen view's report (as pruned).
+    const auto predict_start = std::chrono::steady_clock::now();
+    plan.gains[plan.best] = exact_view_gain(grid, views[plan.best], gain);
+    plan.prediction_seconds = since(predict_start);
+  }
+  return plan;
+}
+
 }  // namespace
 
 // NOTE: the planner's own strategies, then one per gain method it scores by, named as the gain
@@ -276,6 +315,16 @@ void PlannerConfig::validate() const {
   if (sample_bits < 0 || sample_bits > 16) {
     throw std::invalid_argument(cat("planner.sample_bits must lie in [0, 16], got ", sample_bits));
   }
+  sequence.validate();
+  if (sequence.active()) {
+    if (method != PlannerMethod::kSurvival && method != PlannerMethod::kGreedy) {
+      throw std::invalid_argument(
+          cat("planner.sequence plans with survival or greedy, not ", to_string(method)));
+    }
+    if (method == PlannerMethod::kSurvival && objective != GainObjective::kCells) {
+      throw std::invalid_argument("planner.sequence ranks survival's views by cells, not bits");
+    }
+  }
 }
 
 Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candidates,
@@ -289,6 +338,7 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   // NOTE: the paper's model and the metrics score by something other than greedy's count, so
   // greedy's prediction on the same poses is the reference of their predictions (Fig. 11).
   const GainMethod scored_by = gain_method_of(config.method);
+  if (config.sequence.active()) return plan_by_sequence(grid, candidates, config, start);
   if (config.search == DecisionSearch::kPruned && prunable(config.method)) {
     return plan_pruned(grid, candidates, views, config, start);
   }

@@ -11,6 +11,7 @@
 
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/map/occupancy_grid.hpp"
+#include "vantage/planner/sequence.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
@@ -98,6 +99,10 @@ struct PlannerConfig {
   /// Also predict every candidate's greedy gain when the method uses another, so predictions can
   /// be compared on the same poses (the paper's Fig. 11).
   bool greedy_reference = false;
+  /// Plan a sequence of views and take its tour's first (sequence.hpp) when active (horizon > 1
+  /// or a travel weight); survival (ranking by cells) and greedy only. It evaluates exactly and
+  /// ignores `search`.
+  SequenceConfig sequence;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -130,6 +135,11 @@ struct Plan {
   /// the survival reading ranks by), evaluated after the decision and not part of `seconds` [s]
   double prediction_seconds = 0.0;
   std::size_t evaluated = 0;  ///< candidates evaluated in full (all but the estimated ones)
+  /// PlannerConfig::sequence: the planned views in the tour's order (`best` first), its length
+  /// from the current pose [m] and the views' joint expected cells seen [cells]; else empty, 0.
+  std::vector<std::size_t> sequence;
+  double tour_length = 0.0;
+  double sequence_value = 0.0;
 };
 
 /// Scores the candidates and chooses one. Ties go to the lower index; kRandom uses `seed` and

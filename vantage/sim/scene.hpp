@@ -5,6 +5,7 @@
 
 #include <Eigen/Geometry>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/sim/geometry.hpp"
 #include "vantage/sim/sensor.hpp"
+#include "vantage/views/hemisphere.hpp"
 #include "vantage/views/ring.hpp"
 
 namespace vantage::sim {
@@ -73,6 +75,9 @@ struct Scene {
   /// the file, height = mount.height). Unused in an office.
   RingConfig ring;
   std::vector<Eigen::Isometry3d> start_poses;  ///< T_world_sensor of each start
+  /// Table top: the arm that carries the sensor over the table (the hemisphere's reachability
+  /// rule, `arm:` in docs/scenes.md); none: every hemisphere view is reachable.
+  std::optional<ArmReach> arm;
   PoseNoise pose_noise;
   RobotConfig robot;
   std::vector<Shape> shapes;       ///< all solids, static and objects [m]

@@ -81,7 +81,7 @@ struct Parser {
   void parse(const YamlField& root) {
     root.allow_keys({"name", "kind", "description", "units", "grid", "floor", "table", "walls",
                      "rooms", "doors", "objects", "sensor", "mount", "candidates", "start_poses",
-                     "pose_noise", "robot"});
+                     "pose_noise", "robot", "arm"});
     scene.name = root.at("name").text();
     const YamlField kind = root.at("kind");
     if (kind.text() == "tabletop") {
@@ -106,6 +106,19 @@ struct Parser {
     parse_candidates(root.at("candidates"));
     parse_starts(root.at("start_poses"));
     if (auto f = root.get("pose_noise")) parse_pose_noise(*f);
+    if (auto f = root.get("arm")) parse_arm(*f);
+  }
+
+  /// A table top's arm: where its base stands and how far it reaches (the hemisphere's rule).
+  void parse_arm(const YamlField& f) {
+    if (scene.kind != SceneKind::kTableTop) f.fail("an arm needs a tabletop scene");
+    f.allow_keys({"base", "reach"});
+    ArmReach arm;
+    const YamlField base = f.at("base");
+    arm.base = base.vec3();
+    require_in_world(base, std::span<const double>(arm.base.data(), 3));
+    arm.reach = length(f.at("reach"));
+    scene.arm = arm;
   }
 
   void parse_units(const YamlField& f) {

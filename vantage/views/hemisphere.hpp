@@ -10,6 +10,12 @@
 
 namespace vantage {
 
+/// An arm's reachability rule: a view is reachable when its sensor lies within `reach` of `base`.
+struct ArmReach {
+  Eigen::Vector3d base = Eigen::Vector3d::Zero();          ///< the arm's base [m]
+  double reach = std::numeric_limits<double>::infinity();  ///< [m]
+};
+
 /// The hemisphere of views and the arm's reach.
 struct HemisphereConfig {
   Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< point every view looks at [m]

@@ -42,6 +42,7 @@ struct BenchOptions {
   bool project_stops = true;  ///< office: unreachable frontier centroids move into their region
   PlanningOptions planning;
   MappingOptions mapping;
+  CandidateOptions candidates;   ///< tabletop only
   std::uint64_t max_memory = 0;  // 0: what the machine has available
   int generated = 0;             ///< tabletop: generated piles, instead of --scenes unless given
   int objects = sim::PileConfig{}.objects;
@@ -103,7 +104,10 @@ BenchConfig bench_config(const BenchOptions& o) {
     config.objectives.push_back(parse_gain_objective(name));
   }
   config.trials = o.trials;
-  config.exploration.planner = o.planning.planner_config();
+  // NOTE: the methods are the trials'; the first stands in so the shared settings can be checked.
+  PlanningOptions planning = o.planning;
+  planning.method = o.methods.empty() ? planning.method : o.methods.front();
+  config.exploration.planner = planning.planner_config();
   config.exploration.mapper.integration.mode = parse_integration_mode(o.mapping.integration);
   config.exploration.mapper.integration.hole_filling.enabled = o.mapping.hole_filling;
   config.exploration.mapper.integration.num_threads = o.planning.threads;
@@ -113,6 +117,7 @@ BenchConfig bench_config(const BenchOptions& o) {
   config.exploration.seed = o.seed;
   config.exploration.revisit = o.revisit;
   config.exploration.office.project_stops = o.project_stops;
+  o.candidates.apply(config.exploration);
   config.jobs = o.jobs;
   parse_shard(o.shard, config);
   config.validate();
@@ -200,6 +205,7 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
     cmd->add_option("--generated-seed", o->generated_seed, "seed of the first generated pile")
         ->check(seed_value())
         ->capture_default_str();
+    o->candidates.add_to(*cmd);
   } else {
     cmd->add_flag("!--no-stop-projection", o->project_stops, kNoStopProjectionHelp);
   }

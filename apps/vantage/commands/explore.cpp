@@ -30,6 +30,7 @@ struct ExploreOptions {
   std::string scene = "tabletop-3";
   PlanningOptions planning;
   MappingOptions mapping;
+  CandidateOptions candidates;
   int scans = 10;
   double min_gain = 0.0;
   bool revisit = false;
@@ -102,6 +103,7 @@ void run(const ExploreOptions& o) {
   config.office.project_stops = o.project_stops;
   config.start = o.start;
   config.seed = o.seed;
+  o.candidates.apply(config);
   from_options([&] { config.validate(); });
 
   const fs::path out = o.out.empty() ? default_out(o) : fs::path(o.out);
@@ -163,6 +165,7 @@ void add_explore_command(CLI::App& app) {
           kTableTopAlpha, kOfficeAlpha))
       ->default_str("");
   o->mapping.add_to(*cmd);
+  o->candidates.add_to(*cmd);
   cmd->add_option("--scans,-n", o->scans, "number of scans to take (office: stops, a sweep each)")
       ->check(whole_in(1, kMaxScans))
       ->capture_default_str();

@@ -1,6 +1,7 @@
 #include "commands/options.hpp"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <thread>
@@ -48,6 +49,70 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
       ->check(number_in(0.0, 1e3))
       ->capture_default_str();
   add_threads_option(cmd, threads, "threads (0 = all cores); results do not depend on it");
+  cmd.add_option("--horizon", horizon,
+                 "views planned ahead (docs/decision.md, 'Planning a sequence'): the K views that "
+                 "jointly see the most unobserved cells, toured from the current pose; the tour's "
+                 "first is taken, and the plan made again after the scan. 1 with no travel weight "
+                 "is the one-view decision (survival and greedy)")
+      ->check(whole_in(1, SequenceConfig::kMaxHorizon))
+      ->capture_default_str();
+  cmd.add_option("--travel-weight", travel_weight,
+                 "what a metre of the sequence's tour costs, as a share of the best single "
+                 "view's expected cells seen [1/m]")
+      ->check(number_in(0.0, 1e3))
+      ->capture_default_str();
+  cmd.add_option("--shortlist", shortlist,
+                 "the sequence considers only this many candidates, those of highest single-view "
+                 "value; their per-cell visibilities are held in memory [views]")
+      ->check(whole_in(1, kMaxIndex))
+      ->capture_default_str();
+}
+
+void CandidateOptions::add_to(CLI::App& cmd) {
+  cmd.add_option("--candidates", candidates,
+                 "table top: ring (the scene's ring, travel the walk around the table) or "
+                 "hemisphere (an arm's views over the table at several radii and elevations, "
+                 "travel the sensor's straight-line path)")
+      ->check(CLI::IsMember({"ring", "hemisphere"}))
+      ->capture_default_str();
+  cmd.add_option("--arm-base", arm_base,
+                 "hemisphere: the arm's base x,y,z [m] (default: the scene's arm, else none)");
+  cmd.add_option("--reach", reach,
+                 "hemisphere: the arm's reach from its base [m] (default: the scene's arm, else "
+                 "unlimited)")
+      ->check(number_in(0.0, 1e3, /*open_low=*/true));
+  cmd.add_option("--view-spacing", spacing,
+                 "hemisphere: arc between neighbouring views of a ring [m]; sets the view count")
+      ->check(number_in(0.0, 10.0, /*open_low=*/true))
+      ->capture_default_str();
+  cmd.add_option("--hemisphere-radii", radii,
+                 "hemisphere: distances of its rings of views from the scene's target, r1,r2,... "
+                 "[m]")
+      ->default_str(fmt::format("{}", fmt::join(HemisphereConfig{}.radii, ",")));
+}
+
+void CandidateOptions::apply(ExplorationConfig& config) const {
+  config.candidates = candidates == "hemisphere" ? CandidateSet::kHemisphere : CandidateSet::kRing;
+  const bool arm_given = !arm_base.empty() || reach > 0.0;
+  if (arm_given && config.candidates != CandidateSet::kHemisphere) {
+    throw UsageError("--arm-base and --reach bound an arm's views: give --candidates hemisphere");
+  }
+  if (arm_base.empty() != !(reach > 0.0)) {
+    throw UsageError(
+        "--arm-base and --reach come together: the arm's base x,y,z and its reach [m]");
+  }
+  config.hemisphere.spacing = spacing;
+  if (!radii.empty()) config.hemisphere.radii = parse_numbers(radii, "--hemisphere-radii");
+  if (reach > 0.0) {
+    ArmReach arm;
+    const std::vector<double> xyz = parse_numbers(arm_base, "--arm-base");
+    if (xyz.size() != 3) {
+      throw UsageError(fmt::format("--arm-base '{}' must be three numbers x,y,z [m]", arm_base));
+    }
+    arm.base = Eigen::Vector3d(xyz[0], xyz[1], xyz[2]);
+    arm.reach = reach;
+    config.arm = arm;
+  }
 }
 
 AlphaSetting PlanningOptions::alpha_setting(double literal) const {
@@ -74,6 +139,9 @@ PlannerConfig PlanningOptions::make_planner_config(double literal_alpha) const {
   config.gain.epsilon = epsilon;
   config.gain.num_threads = threads;
   config.lambda = lambda;
+  config.sequence.horizon = horizon;
+  config.sequence.travel_weight = travel_weight;
+  config.sequence.shortlist = shortlist;
   config.validate();
   return config;
 }

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "vantage/experiment/exploration.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/perception/mapper.hpp"
 #include "vantage/planner/observability.hpp"
@@ -29,6 +30,9 @@ struct PlanningOptions {
   double epsilon = GainConfig{}.epsilon;
   double lambda = PlannerConfig{}.lambda;
   int threads = 0;
+  int horizon = SequenceConfig{}.horizon;                 ///< --horizon K
+  double travel_weight = SequenceConfig{}.travel_weight;  ///< --travel-weight W [1/m]
+  int shortlist = SequenceConfig{}.shortlist;             ///< --shortlist M
 
   /// `search`: offer --search (explore, bench); without it the planner keeps the screened default
   /// of `search` unless the command sets its own.
@@ -42,6 +46,19 @@ struct PlanningOptions {
 
  private:
   PlannerConfig make_planner_config(double literal_alpha) const;
+};
+
+/// --candidates ring|hemisphere, --arm-base, --reach, --view-spacing (explore, bench tabletop).
+struct CandidateOptions {
+  std::string candidates = "ring";
+  std::string arm_base;                         ///< "x,y,z" [m]; empty: the scene's arm
+  double reach = 0.0;                           ///< [m]; 0: the scene's arm
+  double spacing = HemisphereConfig{}.spacing;  ///< the hemisphere's view spacing [m]
+  std::string radii;                            ///< "r1,r2,..." [m]; empty: HemisphereConfig's
+
+  void add_to(CLI::App& cmd);
+  /// Sets the candidate set, the hemisphere and the arm; throws UsageError naming the option.
+  void apply(ExplorationConfig& config) const;
 };
 
 /// The most threads an option asks for; more is a typo, not a machine.

@@ -1,0 +1,90 @@
+#include "vantage/gain/view_cells.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "vantage/gain/detail/target_predictors.hpp"
+#include "vantage/gain/detail/target_sums.hpp"
+#include "vantage/gain/exact.hpp"
+#include "vantage/gain/methods.hpp"
+#include "vantage/map/line_of_sight.hpp"
+#include "vantage/util/parallel.hpp"
+#include "vantage/util/text.hpp"
+
+namespace vantage {
+double ViewCells::sum() const {
+  double total = 0.0;
+  for (const double v : seen) total += v;
+  return total;
+}
+
+std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config) {
+  config.validate();
+  const TargetRay ray = method_traits(config.method).ray;
+  if (ray != TargetRay::kSurvival && ray != TargetRay::kUnblocked) {
+    // NOTE: the lists hold the cells a view may see; under the paper's model that is every one.
+    throw std::invalid_argument(
+        cat("exact_view_cells: gain.method must be survival or greedy, got ",
+            to_string(config.method)));
+  }
+  const GridSpec& spec = map.spec();
+  std::vector<ViewCells> out(views.size());
+  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
+  detail::with_predictor(config, map.params().p_min, detail::longest_ray(spec, views),
+                         [&](const auto& predict) {
+                           run_with_threads(config.num_threads, [&] {
+                             tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
+                               const std::vector<std::size_t>& members = groups[g];
+                               const Eigen::Vector3d origin = views[members.front()].origin();
+                               std::vector<CellBox> boxes;
+                               CellBox box{spec.dims, Index3(-1, -1, -1)};
+                               for (const std::size_t v : members) {
+                                 boxes.push_back(cells_under(spec, views[v]));
+                                 if (boxes.back().empty()) continue;
+                                 box.lo = box.lo.cwiseMin(boxes.back().lo);
+                                 box.hi = box.hi.cwiseMax(boxes.back().hi);
+                               }
+                               if (box.empty()) return;
+                               // NOTE: z, then y, then x: ascending linear index, so every list
+                               // comes out sorted.
+                               Index3 cell;
+                               for (cell.z() = box.lo.z(); cell.z() <= box.hi.z(); ++cell.z()) {
+                                 for (cell.y() = box.lo.y(); cell.y() <= box.hi.y(); ++cell.y()) {
+                                   for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
+                                     const std::size_t linear = spec.linear(cell);
+                                     if (map.value(linear).state != CellState::kUnobserved)
+                                       continue;
+                                     const Eigen::Vector3d center = spec.center(cell);
+                                     bool evaluated = false;
+                                     double seen = 0.0;
+                                     for (std::size_t m = 0; m < members.size(); ++m) {
+                                       const CellBox& b = boxes[m];
+                                       if ((cell.array() < b.lo.array()).any() ||
+                                           (cell.array() > b.hi.array()).any() ||
+                                           !views[members[m]].contains(center)) {
+                                         continue;
+                                       }
+                                       if (!evaluated) {
+                                         seen = predict(map, origin, cell).seen;
+                                         evaluated = true;
+                                       }
+                                       ViewCells& list = out[members[m]];
+                                       ++list.targets;
+                                       if (seen > 0.0) {
+                                         list.cells.push_back(static_cast<std::uint32_t>(linear));
+                                         list.seen.push_back(seen);
+                                       }
+                                     }
+                                   }
+                                 }
+                               }
+                             });
+                           });
+                         });
+  return out;
+}
+
+}  // namespace vantage

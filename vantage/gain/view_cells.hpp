@@ -1,0 +1,38 @@
+#pragma once
+/// @file
+/// Which unobserved cells each view is predicted to see, one by one (issue 26): the per-target
+/// visibilities v_M that the exact evaluation sums into ViewGain::cells, kept per cell so that a
+/// planner can tell what two views would see twice (vantage/planner/sequence.hpp).
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "vantage/gain/snapshot.hpp"
+#include "vantage/gain/view_gain.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage {
+
+/// One view's unobserved targets with a visibility above 0, in ascending linear index.
+struct ViewCells {
+  std::vector<std::uint32_t> cells;  ///< linear indices of the targets, ascending
+  std::vector<double> seen;          ///< v_M of each, in (0, 1] [cells]
+  std::size_t targets = 0;           ///< unobserved cells inside the frustum, seen or not
+
+  /// The sum of `seen` in ascending cell order [cells]; equal to ViewGain::cells of the exact
+  /// evaluation up to the order of the additions.
+  double sum() const;
+};
+
+/// Every view's per-target visibilities under `config.method`, survival or greedy (v_M = 1 when
+/// nothing occupied lies before the target, else 0): each unobserved cell whose centre lies in
+/// the frustum, on its own ray from the view's origin, walked as the exact evaluation walks it
+/// (TargetWalk, target_ray.hpp), with its early stop at `config.epsilon`. Views from one origin
+/// share each target's ray. Origins run in parallel and each list is built in cell order, so the
+/// result is the same for any thread count. Throws std::invalid_argument for another method.
+std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config);
+
+}  // namespace vantage

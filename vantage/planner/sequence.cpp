@@ -1,0 +1,263 @@
+#include "vantage/planner/sequence.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <numeric>
+#include <stdexcept>
+#include <utility>
+
+#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/methods.hpp"
+#include "vantage/gain/snapshot.hpp"
+#include "vantage/util/parallel.hpp"
+#include "vantage/util/text.hpp"
+
+namespace vantage {
+namespace {
+
+/// The shortlist: the `m` views of highest value (ties: the lower index), in ascending index.
+std::vector<std::size_t> best_views(const std::vector<ViewGain>& gains, std::size_t m) {
+  std::vector<std::size_t> order(gains.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return gains[a].cells > gains[b].cells; });
+  order.resize(std::min(m, order.size()));
+  std::sort(order.begin(), order.end());
+  return order;
+}
+
+/// The shortlisted views' cells renumbered into one dense range, so the joint value's state is a
+/// flat array over the cells any of them may see.
+struct CompactCells {
+  std::size_t size = 0;                        ///< distinct cells
+  std::vector<std::vector<std::uint32_t>> at;  ///< per view, each cell's dense index
+
+  explicit CompactCells(const std::vector<ViewCells>& lists) {
+    std::vector<std::uint32_t> all;
+    for (const ViewCells& l : lists) all.insert(all.end(), l.cells.begin(), l.cells.end());
+    std::sort(all.begin(), all.end());
+    all.erase(std::unique(all.begin(), all.end()), all.end());
+    size = all.size();
+    for (const ViewCells& l : lists) {
+      std::vector<std::uint32_t>& dense = at.emplace_back();
+      dense.reserve(l.cells.size());
+      auto from = all.begin();
+      for (const std::uint32_t c : l.cells) {  // ascending: one sweep through `all`
+        from = std::lower_bound(from, all.end(), c);
+        dense.push_back(static_cast<std::uint32_t>(from - all.begin()));
+      }
+    }
+  }
+};
+
+}  // namespace
+
+double TravelRule::operator()(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {
+  if (kind == Kind::kStraightLine) return (to - from).norm();
+  const Eigen::Vector2d a = from.head<2>() - center.head<2>();
+  const Eigen::Vector2d b = to.head<2>() - center.head<2>();
+  double turn = std::abs(std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x()));
+  if (turn > std::numbers::pi) turn = 2.0 * std::numbers::pi - turn;
+  return radius * turn + std::abs(b.norm() - a.norm());
+}
+
+void SequenceConfig::validate() const {
+  if (horizon < 1 || horizon > kMaxHorizon) {
+    throw std::invalid_argument(
+        cat("planner.sequence.horizon must lie in [1, ", kMaxHorizon, "], got ", horizon));
+  }
+  if (!(travel_weight >= 0.0 && std::isfinite(travel_weight))) {
+    throw std::invalid_argument(
+        cat("planner.sequence.travel_weight must be >= 0 [1/m], got ", travel_weight));
+  }
+  if (shortlist < 1) {
+    throw std::invalid_argument(cat("planner.sequence.shortlist must be >= 1, got ", shortlist));
+  }
+}
+
+OpenTour shortest_open_tour(std::span<const double> from_start, std::span<const double> between) {
+  const std::size_t n = from_start.size();
+  if (between.size() != n * n) {
+    throw std::invalid_argument(cat("shortest_open_tour: ", n, " views but ", between.size(),
+                                    " distances between them (expected ", n * n, ")"));
+  }
+  if (n > static_cast<std::size_t>(SequenceConfig::kMaxHorizon) + 2) {
+    throw std::invalid_argument(cat("shortest_open_tour: ", n,
+                                    " views are too many to order by "
+                                    "brute force (at most ",
+                                    SequenceConfig::kMaxHorizon + 2, ")"));
+  }
+  OpenTour best;
+  if (n == 0) return best;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  best.length = std::numeric_limits<double>::infinity();
+  do {
+    double length = from_start[order[0]];
+    for (std::size_t i = 1; i < n && length < best.length; ++i) {
+      length += between[order[i - 1] * n + order[i]];
+    }
+    if (length < best.length) {
+      best.length = length;
+      best.order = order;
+    }
+  } while (std::next_permutation(order.begin(), order.end()));
+  return best;
+}
+
+double joint_cells(std::span<const ViewCells* const> views) {
+  std::vector<std::pair<std::uint32_t, double>> all;
+  for (const ViewCells* v : views) {
+    for (std::size_t i = 0; i < v->cells.size(); ++i) all.emplace_back(v->cells[i], v->seen[i]);
+  }
+  std::stable_sort(all.begin(), all.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  double total = 0.0;
+  for (std::size_t i = 0; i < all.size();) {
+    double missed = 1.0;  // prod (1 - v): no view of the set sees the cell
+    std::size_t j = i;
+    for (; j < all.size() && all[j].first == all[i].first; ++j) missed *= 1.0 - all[j].second;
+    total += 1.0 - missed;
+    i = j;
+  }
+  return total;
+}
+
+SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> views,
+                           std::span<const double> travel, const GainConfig& gain,
+                           const SequenceConfig& config) {
+  gain.validate();
+  config.validate();
+  const bool greedy = method_traits(gain.method).counts;
+  if (!greedy && method_traits(gain.method).ray != TargetRay::kSurvival) {
+    throw std::invalid_argument(
+        cat("plan_sequence: gain.method must be survival or greedy, got ", to_string(gain.method)));
+  }
+  if (views.empty()) throw std::invalid_argument("no candidate views to choose from");
+  if (travel.size() != views.size()) {
+    throw std::invalid_argument(
+        cat("plan_sequence: ", views.size(), " views but ", travel.size(), " travel distances"));
+  }
+  const GainMap map(grid, gain.num_threads);
+  SequencePlan plan;
+  // Every view's single-view value, bit for bit the exact evaluation's (hierarchy.hpp).
+  const ClassBlocks blocks = summarize_classes(map, views, gain.num_threads);
+  plan.gains = count_view_gains(map, &blocks, views,
+                                greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain);
+  double best_value = 0.0;
+  for (const ViewGain& g : plan.gains) best_value = std::max(best_value, g.cells);
+  // NOTE: relative to the best view, so the weight's meaning does not shrink with the map's
+  // unobserved cells.
+  const double cost = config.travel_weight * best_value;  // [cells/m]
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    plan.scores.push_back(plan.gains[v].cells - cost * travel[v]);
+  }
+
+  const std::vector<std::size_t> shortlist =
+      best_views(plan.gains, static_cast<std::size_t>(config.shortlist));
+  const std::size_t m = shortlist.size();
+  std::vector<double> between(m * m, 0.0);  // [i * m + j], shortlist positions
+  if (config.horizon > 1) {
+    for (std::size_t i = 0; i < m; ++i) {
+      for (std::size_t j = 0; j < m; ++j) {
+        if (i != j) {
+          between[i * m + j] =
+              config.travel(views[shortlist[i]].origin(), views[shortlist[j]].origin());
+        }
+      }
+    }
+  }
+  // Per-cell visibilities only where a later step needs them.
+  std::vector<ViewCells> lists;
+  if (config.horizon > 1) {
+    std::vector<Frustum> frusta;
+    for (const std::size_t v : shortlist) frusta.push_back(views[v]);
+    lists = exact_view_cells(map, frusta, gain);
+    plan.shortlisted = m;
+  }
+  const CompactCells compact(lists);
+  std::vector<double> missed(compact.size, 1.0);  // prod over the chosen of (1 - v) per cell
+
+  std::vector<std::size_t> chosen;  // shortlist positions
+  OpenTour tour;
+  std::vector<double> marginal(m, 0.0);
+  std::vector<bool> taken(m, false);
+  for (int step = 0; step < config.horizon; ++step) {
+    if (chosen.empty()) {
+      for (std::size_t i = 0; i < m; ++i) marginal[i] = plan.gains[shortlist[i]].cells;
+    } else {
+      // NOTE: each sum runs in its list's order on one thread: the same for any thread count.
+      run_with_threads(gain.num_threads, [&] {
+        tbb::parallel_for(std::size_t{0}, m, [&](std::size_t i) {
+          if (taken[i]) return;
+          const std::vector<std::uint32_t>& at = compact.at[i];
+          const std::vector<double>& seen = lists[i].seen;
+          double sum = 0.0;
+          for (std::size_t k = 0; k < at.size(); ++k) sum += seen[k] * missed[at[k]];
+          marginal[i] = sum;  // J(S + i) - J(S)
+        });
+      });
+    }
+    std::size_t best = m;
+    double best_score = -std::numeric_limits<double>::infinity();
+    OpenTour best_tour;
+    for (std::size_t i = 0; i < m; ++i) {
+      if (taken[i]) continue;
+      OpenTour t;
+      if (chosen.empty()) {
+        t = {{i}, travel[shortlist[i]]};
+      } else if (cost > 0.0) {
+        // The tour through the chosen views and this one (indices into `members`).
+        std::vector<std::size_t> members = chosen;
+        members.push_back(i);
+        const std::size_t n = members.size();
+        std::vector<double> start(n), d(n * n);
+        for (std::size_t a = 0; a < n; ++a) {
+          start[a] = travel[shortlist[members[a]]];
+          for (std::size_t b = 0; b < n; ++b) d[a * n + b] = between[members[a] * m + members[b]];
+        }
+        t = shortest_open_tour(start, d);
+        for (std::size_t& k : t.order) k = members[k];
+      }
+      const double score = marginal[i] - cost * (t.length - tour.length);
+      if (score > best_score) {
+        best_score = score;
+        best = i;
+        best_tour = std::move(t);
+      }
+    }
+    // NOTE: after the first view, a view whose marginal value does not pay for its detour
+    // shortens the sequence rather than join it.
+    if (best == m || (!chosen.empty() && !(best_score > 0.0))) break;
+    chosen.push_back(best);
+    taken[best] = true;
+    plan.value += marginal[best];
+    if (!best_tour.order.empty()) tour = std::move(best_tour);
+    if (step + 1 < config.horizon) {
+      const std::vector<std::uint32_t>& at = compact.at[best];
+      for (std::size_t k = 0; k < at.size(); ++k) missed[at[k]] *= 1.0 - lists[best].seen[k];
+    }
+  }
+  // With no travel weight the tours above were skipped until the last step; order them now.
+  if (tour.order.size() != chosen.size()) {
+    const std::size_t n = chosen.size();
+    std::vector<double> start(n), d(n * n);
+    for (std::size_t a = 0; a < n; ++a) {
+      start[a] = travel[shortlist[chosen[a]]];
+      for (std::size_t b = 0; b < n; ++b) d[a * n + b] = between[chosen[a] * m + chosen[b]];
+    }
+    tour = shortest_open_tour(start, d);
+    for (std::size_t& k : tour.order) k = chosen[k];
+  }
+  for (const std::size_t i : chosen) plan.chosen.push_back(shortlist[i]);
+  for (const std::size_t i : tour.order) plan.tour.push_back(shortlist[i]);
+  plan.tour_length = tour.length;
+  plan.first = plan.tour.front();
+  return plan;
+}
+
+}  // namespace vantage
