@@ -237,9 +237,19 @@ TEST(ExactGain, ASampleOfEveryUnobservedCellIsTheExactEvaluation) {
     EXPECT_EQ(sampled[v].shared, shared) << "view " << v;
     EXPECT_GT(shared, 0u);
   }
+  // The sampled search's greedy: its sampled count is exact_view_gains' on those cells; a
+  // metric has no per-target estimate.
   GainConfig greedy;
   greedy.method = GainMethod::kGreedy;
-  EXPECT_THROW(sampled_view_gains(map, views, cells, greedy), std::invalid_argument);
+  const std::vector<SampleSums> counted = sampled_view_gains(map, views, cells, greedy);
+  const std::vector<ViewGain> counts = exact_view_gains(map, views, greedy);
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    EXPECT_EQ(counted[v].cells, counts[v].cells) << "view " << v;
+    EXPECT_EQ(counted[v].gain, counted[v].cells) << "view " << v;
+  }
+  GainConfig metric;
+  metric.method = GainMethod::kUnobservedVoxel;
+  EXPECT_THROW(sampled_view_gains(map, views, cells, metric), std::invalid_argument);
 }
 
 // The screen's full evaluation: a sample's exact sums plus the exact evaluation outside it is

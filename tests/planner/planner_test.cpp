@@ -102,6 +102,37 @@ TEST(Planner, TheSampledSearchScalesItsSampleAndIsTheSameForAnyThreads) {
   EXPECT_THROW(config.validate(), std::invalid_argument);
 }
 
+// `--method sequence` is the survival reading planned kSequenceDefaults' views ahead, unless
+// told another horizon or weight.
+TEST(Planner, TheSequenceMethodIsSurvivalPlannedAhead) {
+  EXPECT_EQ(parse_planner_method("sequence"), PlannerMethod::kSequence);
+  EXPECT_EQ(gain_method_of(PlannerMethod::kSequence), GainMethod::kSurvival);
+  EXPECT_TRUE(uses_survival_reading(PlannerMethod::kSequence));
+  EXPECT_FALSE(uses_survival_reading(PlannerMethod::kGreedy));
+  EXPECT_EQ(natural_objective(PlannerMethod::kSequence), GainObjective::kCells);
+  PlannerConfig config;
+  config.method = PlannerMethod::kSequence;
+  config.objective = GainObjective::kCells;
+  EXPECT_EQ(sequence_of(config).horizon, kSequenceDefaults.horizon);
+  EXPECT_EQ(sequence_of(config).travel_weight, kSequenceDefaults.travel_weight);
+  HalfKnownBlock s;
+  const Plan by_name = plan_next_view(s.grid, s.candidates, config);
+  config.method = PlannerMethod::kSurvival;
+  EXPECT_EQ(sequence_of(config).horizon, 1);
+  config.sequence.horizon = kSequenceDefaults.horizon;
+  config.sequence.travel_weight = kSequenceDefaults.travel_weight;
+  const Plan by_settings = plan_next_view(s.grid, s.candidates, config);
+  EXPECT_EQ(by_name.best, by_settings.best);
+  EXPECT_EQ(by_name.scores, by_settings.scores);
+  EXPECT_EQ(by_name.sequence, by_settings.sequence);
+  EXPECT_GE(by_name.sequence.size(), 1u);
+  config.method = PlannerMethod::kSequence;
+  config.sequence.horizon = 2;
+  EXPECT_EQ(sequence_of(config).horizon, 2);
+  config.objective = GainObjective::kBits;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+}
+
 TEST(Planner, LatombeTradesGainForTravelAndYamauchiTakesTheNearest) {
   HalfKnownBlock s;
   PlannerConfig config;

@@ -92,6 +92,44 @@ TEST(ViewCells, SumToTheExactEvaluationsCellsViewByView) {
   }
 }
 
+// A sample's lists are the full lists cut to the sampled cells, values unchanged; a sequence
+// planned on it values each view at 2^k times its sampled sum, the same for any thread count.
+TEST(ViewCells, ASampleKeepsTheSampledCellsOfTheFullLists) {
+  const Clutter s;
+  const GainMap map(s.grid, 0);
+  const GainConfig gain = s.gain(GainMethod::kSurvival);
+  const std::vector<ViewCells> full = exact_view_cells(map, s.views, gain);
+  const std::vector<ViewCells> sample = exact_view_cells(map, s.views, gain, 2);
+  std::size_t kept = 0;
+  for (std::size_t v = 0; v < s.views.size(); ++v) {
+    ViewCells cut;
+    for (std::size_t k = 0; k < full[v].cells.size(); ++k) {
+      if (!in_cell_sample(full[v].cells[k], 2)) continue;
+      cut.cells.push_back(full[v].cells[k]);
+      cut.seen.push_back(full[v].seen[k]);
+    }
+    EXPECT_EQ(sample[v].cells, cut.cells) << "view " << v;
+    EXPECT_EQ(sample[v].seen, cut.seen) << "view " << v;
+    EXPECT_LT(sample[v].targets, full[v].targets);
+    kept += cut.cells.size();
+  }
+  EXPECT_GT(kept, 0u);
+  SequenceConfig config;
+  config.horizon = 3;
+  config.sample_bits = 2;
+  const std::vector<double> travel(s.views.size(), 0.0);
+  const SequencePlan one =
+      plan_sequence(s.grid, s.views, travel, s.gain(GainMethod::kSurvival, 1), config);
+  const SequencePlan two =
+      plan_sequence(s.grid, s.views, travel, s.gain(GainMethod::kSurvival, 2), config);
+  EXPECT_EQ(one.tour, two.tour);
+  EXPECT_EQ(one.value, two.value);
+  for (std::size_t v = 0; v < s.views.size(); ++v) {
+    EXPECT_DOUBLE_EQ(one.gains[v].cells, 4.0 * sample[v].sum()) << "view " << v;
+  }
+  EXPECT_EQ(one.chosen.size(), 3u);
+}
+
 TEST(ViewCells, RefusesAModelWithoutPerCellVisibilities) {
   const Clutter s;
   EXPECT_THROW(exact_view_cells(GainMap(s.grid, 0), s.views, s.gain(GainMethod::kProbabilistic)),

@@ -155,7 +155,7 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
   exploration.planner.gain.alpha = spec.alpha.value;
   exploration.auto_alpha = spec.alpha.automatic;
   exploration.observability.prior = spec.alpha.value;
-  if (spec.method == PlannerMethod::kSurvival && spec.alpha.automatic) {
+  if (uses_survival_reading(spec.method) && spec.alpha.automatic) {
     // NOTE: its a is a chance per unobserved cell, with a grid and a prior of its own.
     exploration.observability = survival_fit_config();
     exploration.planner.gain.alpha = exploration.observability.prior;

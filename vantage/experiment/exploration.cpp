@@ -110,7 +110,12 @@ class Explorer {
     if (!(world_.scene().grid == mapper.grid().spec())) {
       throw std::invalid_argument(cat("the mapper's grid differs from scene '", scene.name, "''s"));
     }
-    truth_ = sim::compute_ground_truth(world_, config.planner.gain.num_threads);
+    // NOTE: observable means seen by the whole candidate set together: an arm's hemisphere
+    // sees what the scene's ring may not.
+    truth_ = sim::compute_ground_truth(world_, config.planner.gain.num_threads,
+                                       config.candidates == CandidateSet::kHemisphere && !office_
+                                           ? std::span<const Eigen::Isometry3d>(result_.candidates)
+                                           : std::span<const Eigen::Isometry3d>());
     result_.observable_cells = truth_.observable.size();
     if (office_) {
       true_navigation_ = NavigationGrid::from_occupancy(scene.grid, truth_.occupied, navigation_);
@@ -558,8 +563,8 @@ perception::PoseSigma odometry_prior(const sim::PoseNoise& noise) {
 }
 
 AlphaSetting default_alpha_setting(PlannerMethod method, double paper) {
-  return method == PlannerMethod::kSurvival ? AlphaSetting{true, kSurvivalAlpha}
-                                            : AlphaSetting{false, default_alpha(method, paper)};
+  return uses_survival_reading(method) ? AlphaSetting{true, kSurvivalAlpha}
+                                       : AlphaSetting{false, default_alpha(method, paper)};
 }
 
 MapperConfig default_mapper_config(const sim::Scene& scene) {

@@ -14,6 +14,68 @@
 #include "vantage/util/text.hpp"
 
 namespace vantage {
+namespace {
+
+/// The lists of every view, each target's visibility from `predict` (target_predictors.hpp).
+template <typename Predictor>
+std::vector<ViewCells> view_cells(const GainMap& map, std::span<const Frustum> views,
+                                  const Predictor& predict, int sample_bits, int num_threads) {
+  const GridSpec& spec = map.spec();
+  std::vector<ViewCells> out(views.size());
+  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
+  run_with_threads(num_threads, [&] {
+    tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
+      const std::vector<std::size_t>& members = groups[g];
+      const Eigen::Vector3d origin = views[members.front()].origin();
+      std::vector<CellBox> boxes;
+      CellBox box{spec.dims, Index3(-1, -1, -1)};
+      for (const std::size_t v : members) {
+        boxes.push_back(cells_under(spec, views[v]));
+        if (boxes.back().empty()) continue;
+        box.lo = box.lo.cwiseMin(boxes.back().lo);
+        box.hi = box.hi.cwiseMax(boxes.back().hi);
+      }
+      if (box.empty()) return;
+      // NOTE: z, then y, then x: ascending linear index, so every list comes out sorted.
+      Index3 cell;
+      for (cell.z() = box.lo.z(); cell.z() <= box.hi.z(); ++cell.z()) {
+        for (cell.y() = box.lo.y(); cell.y() <= box.hi.y(); ++cell.y()) {
+          for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
+            const std::size_t linear = spec.linear(cell);
+            if (map.value(linear).state != CellState::kUnobserved ||
+                !in_cell_sample(linear, sample_bits)) {
+              continue;
+            }
+            const Eigen::Vector3d center = spec.center(cell);
+            bool evaluated = false;
+            double seen = 0.0;
+            for (std::size_t m = 0; m < members.size(); ++m) {
+              const CellBox& b = boxes[m];
+              if ((cell.array() < b.lo.array()).any() || (cell.array() > b.hi.array()).any() ||
+                  !views[members[m]].contains(center)) {
+                continue;
+              }
+              if (!evaluated) {
+                seen = predict(map, origin, cell).seen;
+                evaluated = true;
+              }
+              ViewCells& list = out[members[m]];
+              ++list.targets;
+              if (seen > 0.0) {
+                list.cells.push_back(static_cast<std::uint32_t>(linear));
+                list.seen.push_back(seen);
+              }
+            }
+          }
+        }
+      }
+    });
+  });
+  return out;
+}
+
+}  // namespace
+
 double ViewCells::sum() const {
   double total = 0.0;
   for (const double v : seen) total += v;
@@ -21,7 +83,7 @@ double ViewCells::sum() const {
 }
 
 std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
-                                        const GainConfig& config) {
+                                        const GainConfig& config, int sample_bits) {
   config.validate();
   const TargetRay ray = method_traits(config.method).ray;
   if (ray != TargetRay::kSurvival && ray != TargetRay::kUnblocked) {
@@ -30,61 +92,10 @@ std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frus
         cat("exact_view_cells: gain.method must be survival or greedy, got ",
             to_string(config.method)));
   }
-  const GridSpec& spec = map.spec();
-  std::vector<ViewCells> out(views.size());
-  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
-  detail::with_predictor(config, map.params().p_min, detail::longest_ray(spec, views),
-                         [&](const auto& predict) {
-                           run_with_threads(config.num_threads, [&] {
-                             tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
-                               const std::vector<std::size_t>& members = groups[g];
-                               const Eigen::Vector3d origin = views[members.front()].origin();
-                               std::vector<CellBox> boxes;
-                               CellBox box{spec.dims, Index3(-1, -1, -1)};
-                               for (const std::size_t v : members) {
-                                 boxes.push_back(cells_under(spec, views[v]));
-                                 if (boxes.back().empty()) continue;
-                                 box.lo = box.lo.cwiseMin(boxes.back().lo);
-                                 box.hi = box.hi.cwiseMax(boxes.back().hi);
-                               }
-                               if (box.empty()) return;
-                               // NOTE: z, then y, then x: ascending linear index, so every list
-                               // comes out sorted.
-                               Index3 cell;
-                               for (cell.z() = box.lo.z(); cell.z() <= box.hi.z(); ++cell.z()) {
-                                 for (cell.y() = box.lo.y(); cell.y() <= box.hi.y(); ++cell.y()) {
-                                   for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
-                                     const std::size_t linear = spec.linear(cell);
-                                     if (map.value(linear).state != CellState::kUnobserved)
-                                       continue;
-                                     const Eigen::Vector3d center = spec.center(cell);
-                                     bool evaluated = false;
-                                     double seen = 0.0;
-                                     for (std::size_t m = 0; m < members.size(); ++m) {
-                                       const CellBox& b = boxes[m];
-                                       if ((cell.array() < b.lo.array()).any() ||
-                                           (cell.array() > b.hi.array()).any() ||
-                                           !views[members[m]].contains(center)) {
-                                         continue;
-                                       }
-                                       if (!evaluated) {
-                                         seen = predict(map, origin, cell).seen;
-                                         evaluated = true;
-                                       }
-                                       ViewCells& list = out[members[m]];
-                                       ++list.targets;
-                                       if (seen > 0.0) {
-                                         list.cells.push_back(static_cast<std::uint32_t>(linear));
-                                         list.seen.push_back(seen);
-                                       }
-                                     }
-                                   }
-                                 }
-                               }
-                             });
-                           });
-                         });
-  return out;
+  return detail::with_predictor(
+      config, map.params().p_min, detail::longest_ray(map.spec(), views), [&](const auto& predict) {
+        return view_cells(map, views, predict, sample_bits, config.num_threads);
+      });
 }
 
 }  // namespace vantage

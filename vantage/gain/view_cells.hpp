@@ -31,8 +31,10 @@ struct ViewCells {
 /// the frustum, on its own ray from the view's origin, walked as the exact evaluation walks it
 /// (TargetWalk, target_ray.hpp), with its early stop at `config.epsilon`. Views from one origin
 /// share each target's ray. Origins run in parallel and each list is built in cell order, so the
-/// result is the same for any thread count. Throws std::invalid_argument for another method.
+/// result is the same for any thread count. With `sample_bits` k > 0, only the targets in the
+/// sampled search's hashed sample of one cell in 2^k (in_cell_sample, exact.hpp), the same for
+/// every view. Throws std::invalid_argument for another method.
 std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
-                                        const GainConfig& config);
+                                        const GainConfig& config, int sample_bits = 0);
 
 }  // namespace vantage

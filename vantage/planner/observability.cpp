@@ -58,7 +58,7 @@ ObservabilityFitConfig survival_fit_config() {
 }
 
 double default_alpha(PlannerMethod method, double literal) {
-  return method == PlannerMethod::kSurvival ? kSurvivalAlpha : literal;
+  return uses_survival_reading(method) ? kSurvivalAlpha : literal;
 }
 
 void ObservabilityFitConfig::validate() const {

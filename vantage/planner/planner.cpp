@@ -212,7 +212,7 @@ Plan plan_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> cand
   }
   GainConfig gain = config.gain;
   gain.method = gain_method_of(config.method);
-  SequencePlan sequence = plan_sequence(grid, views, travel, gain, config.sequence);
+  SequencePlan sequence = plan_sequence(grid, views, travel, gain, sequence_of(config));
   Plan plan;
   plan.best = sequence.first;
   plan.gains = std::move(sequence.gains);
@@ -222,15 +222,19 @@ Plan plan_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> cand
   plan.tour_length = sequence.tour_length;
   plan.sequence_value = sequence.value;
   const bool counts = method_traits(gain.method).counts;
+  const bool sampled = sequence_of(config).sample_bits > 0;
+  if (sampled) plan.estimated.assign(plan.gains.size(), true);
   if (counts) {
     for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
   }
   plan.seconds = since(start);
-  if (!counts) {
+  if (!counts || sampled) {
     // NOTE: the cells decided; the bits of eq. (4) are the chosen view's report (as pruned).
     const auto predict_start = std::chrono::steady_clock::now();
     plan.gains[plan.best] = exact_view_gain(grid, views[plan.best], gain);
     plan.prediction_seconds = since(predict_start);
+    if (sampled) plan.estimated[plan.best] = false;
+    if (counts) plan.greedy_gains[plan.best] = plan.gains[plan.best].gain;
   }
   return plan;
 }
@@ -239,7 +243,7 @@ Plan plan_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> cand
 
 // NOTE: the planner's own strategies, then one per gain method it scores by, named as the gain
 // method is (methods.hpp); the rows' order is the order names are listed in messages.
-constexpr EnumNames<PlannerMethod, 13> kPlannerMethodNames = {{
+constexpr EnumNames<PlannerMethod, 14> kPlannerMethodNames = {{
     {PlannerMethod::kProbabilistic, "probabilistic"},
     {PlannerMethod::kSurvival, "survival"},
     {PlannerMethod::kGreedy, "greedy"},
@@ -253,13 +257,29 @@ constexpr EnumNames<PlannerMethod, 13> kPlannerMethodNames = {{
     {PlannerMethod::kProximityCount, "proximity-count"},
     {PlannerMethod::kAverageEntropy, "average-entropy"},
     {PlannerMethod::kAreaFactor, "area-factor"},
+    {PlannerMethod::kSequence, "sequence"},
 }};
 
 std::string_view to_string(PlannerMethod method) { return name_of(method, kPlannerMethodNames); }
 
 GainMethod gain_method_of(PlannerMethod method) {
+  if (method == PlannerMethod::kSequence) return GainMethod::kSurvival;
   // NOTE: random, latombe and yamauchi report (latombe: and weigh) greedy's count.
   return find_gain_method(to_string(method)).value_or(GainMethod::kGreedy);
+}
+
+bool uses_survival_reading(PlannerMethod method) {
+  return method_traits(gain_method_of(method)).ray == TargetRay::kSurvival;
+}
+
+SequenceConfig sequence_of(const PlannerConfig& config) {
+  SequenceConfig sequence = config.sequence;
+  if (config.search == DecisionSearch::kSampled) sequence.sample_bits = config.sample_bits;
+  if (config.method == PlannerMethod::kSequence && !sequence.active()) {
+    sequence.horizon = kSequenceDefaults.horizon;
+    sequence.travel_weight = kSequenceDefaults.travel_weight;
+  }
+  return sequence;
 }
 
 PlannerMethod parse_planner_method(std::string_view name) {
@@ -300,7 +320,7 @@ GainObjective parse_gain_objective(std::string_view name) {
 }
 
 GainObjective natural_objective(PlannerMethod method) {
-  return method == PlannerMethod::kSurvival ? GainObjective::kCells : GainObjective::kBits;
+  return uses_survival_reading(method) ? GainObjective::kCells : GainObjective::kBits;
 }
 
 bool has_observability(PlannerMethod method) {
@@ -316,12 +336,12 @@ void PlannerConfig::validate() const {
     throw std::invalid_argument(cat("planner.sample_bits must lie in [0, 16], got ", sample_bits));
   }
   sequence.validate();
-  if (sequence.active()) {
-    if (method != PlannerMethod::kSurvival && method != PlannerMethod::kGreedy) {
+  if (sequence.active() || method == PlannerMethod::kSequence) {
+    if (!uses_survival_reading(method) && method != PlannerMethod::kGreedy) {
       throw std::invalid_argument(
-          cat("planner.sequence plans with survival or greedy, not ", to_string(method)));
+          cat("planner.sequence plans with survival, sequence or greedy, not ", to_string(method)));
     }
-    if (method == PlannerMethod::kSurvival && objective != GainObjective::kCells) {
+    if (uses_survival_reading(method) && objective != GainObjective::kCells) {
       throw std::invalid_argument("planner.sequence ranks survival's views by cells, not bits");
     }
   }
@@ -338,7 +358,7 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   // NOTE: the paper's model and the metrics score by something other than greedy's count, so
   // greedy's prediction on the same poses is the reference of their predictions (Fig. 11).
   const GainMethod scored_by = gain_method_of(config.method);
-  if (config.sequence.active()) return plan_by_sequence(grid, candidates, config, start);
+  if (sequence_of(config).active()) return plan_by_sequence(grid, candidates, config, start);
   if (config.search == DecisionSearch::kPruned && prunable(config.method)) {
     return plan_pruned(grid, candidates, views, config, start);
   }

@@ -32,9 +32,16 @@ enum class PlannerMethod {
   kProximityCount,
   kAverageEntropy,
   kAreaFactor,
+  /// Plans past the next scan (sequence.hpp, docs/decision.md "Planning a sequence"): the
+  /// survival reading's expected cells, the views that jointly see the most toured from the
+  /// current pose, PlannerConfig::sequence, or kSequenceDefaults when that plans one view.
+  kSequence,
 };
 
 std::string_view to_string(PlannerMethod method);
+/// Whether the method predicts with the survival reading of the visibility (survival, sequence):
+/// its a is a chance per unobserved cell, fitted online by default, and it ranks by cells.
+bool uses_survival_reading(PlannerMethod method);
 /// Parses probabilistic, greedy, random, latombe, yamauchi or a metric's name (as GainMethod's);
 /// throws std::invalid_argument.
 PlannerMethod parse_planner_method(std::string_view name);
@@ -141,6 +148,10 @@ struct Plan {
   double tour_length = 0.0;
   double sequence_value = 0.0;
 };
+
+/// The sequence the decision plans: `config.sequence`, with kSequenceDefaults' horizon and
+/// travel weight for PlannerMethod::kSequence when it plans one view.
+SequenceConfig sequence_of(const PlannerConfig& config);
 
 /// Scores the candidates and chooses one. Ties go to the lower index; kRandom uses `seed` and
 /// takes the candidate of a uniformly random view (uniform over candidates of as many views).

@@ -77,6 +77,10 @@ void SequenceConfig::validate() const {
   if (shortlist < 1) {
     throw std::invalid_argument(cat("planner.sequence.shortlist must be >= 1, got ", shortlist));
   }
+  if (sample_bits < 0 || sample_bits > 16) {
+    throw std::invalid_argument(
+        cat("planner.sequence.sample_bits must lie in [0, 16], got ", sample_bits));
+  }
 }
 
 OpenTour shortest_open_tour(std::span<const double> from_start, std::span<const double> between) {
@@ -144,10 +148,21 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
   }
   const GainMap map(grid, gain.num_threads);
   SequencePlan plan;
-  // Every view's single-view value, bit for bit the exact evaluation's (hierarchy.hpp).
-  const ClassBlocks blocks = summarize_classes(map, views, gain.num_threads);
-  plan.gains = count_view_gains(map, &blocks, views,
-                                greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain);
+  // Every view's single-view value: bit for bit the exact evaluation's (hierarchy.hpp), or its
+  // estimate from the sample's per-cell lists, which the joint values then share.
+  const double rate = std::ldexp(1.0, config.sample_bits);
+  std::vector<ViewCells> sampled;
+  if (config.sample_bits > 0) {
+    sampled = exact_view_cells(map, views, gain, config.sample_bits);
+    for (const ViewCells& list : sampled) {
+      const double cells = rate * list.sum();
+      plan.gains.push_back({cells, cells, static_cast<std::size_t>(rate) * list.targets});
+    }
+  } else {
+    const ClassBlocks blocks = summarize_classes(map, views, gain.num_threads);
+    plan.gains = count_view_gains(map, &blocks, views,
+                                  greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain);
+  }
   double best_value = 0.0;
   for (const ViewGain& g : plan.gains) best_value = std::max(best_value, g.cells);
   // NOTE: relative to the best view, so the weight's meaning does not shrink with the map's
@@ -174,9 +189,13 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
   // Per-cell visibilities only where a later step needs them.
   std::vector<ViewCells> lists;
   if (config.horizon > 1) {
-    std::vector<Frustum> frusta;
-    for (const std::size_t v : shortlist) frusta.push_back(views[v]);
-    lists = exact_view_cells(map, frusta, gain);
+    if (config.sample_bits > 0) {
+      for (const std::size_t v : shortlist) lists.push_back(std::move(sampled[v]));
+    } else {
+      std::vector<Frustum> frusta;
+      for (const std::size_t v : shortlist) frusta.push_back(views[v]);
+      lists = exact_view_cells(map, frusta, gain);
+    }
     plan.shortlisted = m;
   }
   const CompactCells compact(lists);
@@ -198,7 +217,7 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
           const std::vector<double>& seen = lists[i].seen;
           double sum = 0.0;
           for (std::size_t k = 0; k < at.size(); ++k) sum += seen[k] * missed[at[k]];
-          marginal[i] = sum;  // J(S + i) - J(S)
+          marginal[i] = rate * sum;  // J(S + i) - J(S), estimated on a sample
         });
       });
     }

@@ -54,6 +54,10 @@ struct SequenceConfig {
   /// Travel between two candidates' sensor positions. The travel from the current pose to a
   /// candidate is the candidate's own.
   TravelRule travel;
+  /// 0: every view's values exact. k > 0: every view's per-cell visibilities on the sampled
+  /// search's hashed sample of one unobserved cell in 2^k, values scaled by 2^k (estimates; the
+  /// shortlist then costs nothing), in [0, 16].
+  int sample_bits = 0;
 
   static constexpr int kMaxHorizon = 6;
 
@@ -62,6 +66,14 @@ struct SequenceConfig {
   /// Throws std::invalid_argument naming the field.
   void validate() const;
 };
+
+/// What PlannerMethod::kSequence plans when its SequenceConfig plans one view: K = 3 views, a
+/// metre of tour at 0.1 of the best view's value (the ring's best setting, RESULTS.md).
+struct SequenceDefaults {
+  int horizon;
+  double travel_weight;  ///< [1/m]
+};
+inline constexpr SequenceDefaults kSequenceDefaults{3, 0.1};
 
 /// An open tour from the sensor's pose through some views.
 struct OpenTour {

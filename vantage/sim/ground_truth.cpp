@@ -479,11 +479,14 @@ std::vector<Eigen::Vector2d> reachable_stops(const Scene& scene,
 }
 
 std::vector<Viewpoint> ground_truth_viewpoints(const World& world,
-                                               const std::vector<std::uint8_t>& occupied) {
+                                               const std::vector<std::uint8_t>& occupied,
+                                               std::span<const Eigen::Isometry3d> views) {
   const Scene& scene = world.scene();
   std::vector<Viewpoint> viewpoints;
   if (scene.kind == SceneKind::kTableTop) {
-    for (const Eigen::Isometry3d& pose : scene.candidate_poses()) {
+    const std::vector<Eigen::Isometry3d> ring =
+        views.empty() ? scene.candidate_poses() : std::vector<Eigen::Isometry3d>{};
+    for (const Eigen::Isometry3d& pose : views.empty() ? std::span(ring) : views) {
       viewpoints.push_back({{Frustum(pose, scene.fov())}});
     }
     for (const Eigen::Isometry3d& pose : scene.start_poses) {
@@ -501,7 +504,8 @@ std::vector<Viewpoint> ground_truth_viewpoints(const World& world,
   return viewpoints;
 }
 
-GroundTruth compute_ground_truth(const World& world, int num_threads) {
+GroundTruth compute_ground_truth(const World& world, int num_threads,
+                                 std::span<const Eigen::Isometry3d> views) {
   const Scene& scene = world.scene();
   GroundTruth gt;
   gt.grid = scene.grid;
@@ -509,7 +513,7 @@ GroundTruth compute_ground_truth(const World& world, int num_threads) {
   gt.occupied_count =
       static_cast<std::size_t>(std::count(gt.occupied.begin(), gt.occupied.end(), 1));
   gt.surface = surface_cells(scene.grid, gt.occupied);
-  const std::vector<Viewpoint> viewpoints = ground_truth_viewpoints(world, gt.occupied);
+  const std::vector<Viewpoint> viewpoints = ground_truth_viewpoints(world, gt.occupied, views);
   gt.viewpoints = viewpoints.size();
   gt.observable = observable_cells(world, scene.grid, gt.surface, viewpoints, num_threads);
   return gt;

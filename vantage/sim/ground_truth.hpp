@@ -53,10 +53,12 @@ std::vector<std::uint32_t> observable_cells(const World& world, const GridSpec& 
 std::vector<Eigen::Vector2d> reachable_stops(const Scene& scene,
                                              const std::vector<std::uint8_t>& occupied);
 
-/// The viewpoints the ground truth counts: on a table top, the candidate views and starts; in an
-/// office, a 360° sweep at every reachable stop.
+/// The viewpoints the ground truth counts: on a table top, the candidate views (`views`, or the
+/// scene's ring when empty: an arm's hemisphere is the run's, not the scene's) and the starts; in
+/// an office, a 360° sweep at every reachable stop.
 std::vector<Viewpoint> ground_truth_viewpoints(const World& world,
-                                               const std::vector<std::uint8_t>& occupied);
+                                               const std::vector<std::uint8_t>& occupied,
+                                               std::span<const Eigen::Isometry3d> views = {});
 
 /// Everything ground truth holds for one scene.
 struct GroundTruth {
@@ -69,7 +71,8 @@ struct GroundTruth {
 };
 
 /// Voxelizes the world's scene in its grid, finds its surface cells and those observable from
-/// ground_truth_viewpoints(). Deterministic for any thread count.
-GroundTruth compute_ground_truth(const World& world, int num_threads = 0);
+/// ground_truth_viewpoints(world, occupied, views). Deterministic for any thread count.
+GroundTruth compute_ground_truth(const World& world, int num_threads = 0,
+                                 std::span<const Eigen::Isometry3d> views = {});
 
 }  // namespace vantage::sim

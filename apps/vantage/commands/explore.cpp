@@ -84,7 +84,7 @@ void run(const ExploreOptions& o) {
   ExplorationConfig config;
   config.planner = o.planning.planner_config(paper);
   const double literal = default_alpha(config.planner.method, paper);
-  const bool survival = config.planner.method == PlannerMethod::kSurvival;
+  const bool survival = uses_survival_reading(config.planner.method);
   // NOTE: the survival reading is fitted online unless told an a: the configuration the sweeps
   // show best (RESULTS.md); --method probabilistic is the paper's literal one.
   const AlphaSetting alpha = o.planning.alpha.empty()

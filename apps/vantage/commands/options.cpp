@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <bit>
 #include <thread>
 
 #include "shell.hpp"
@@ -15,8 +16,9 @@ namespace vantage::cli {
 void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
   cmd.add_option("--method,-m", method,
                  "probabilistic, survival (the paper's model under the survival reading of its "
-                 "visibility, docs/model.md), greedy, random, latombe, yamauchi, or one of the "
-                 "field's metrics: "
+                 "visibility, docs/model.md), greedy, random, latombe, yamauchi, sequence "
+                 "(survival's views planned past the next scan and toured: --horizon, "
+                 "--travel-weight; default 3 views, 0.1/m), or one of the field's metrics: "
                  "occlusion-aware, unobserved-voxel, rear-side-voxel, rear-side-entropy, "
                  "proximity-count, average-entropy, area-factor (docs/model.md)")
       ->capture_default_str();
@@ -60,6 +62,11 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                  "what a metre of the sequence's tour costs, as a share of the best single "
                  "view's expected cells seen [1/m]")
       ->check(number_in(0.0, 1e3))
+      ->capture_default_str();
+  cmd.add_option("--sample", sample,
+                 "the sampled search's rate: every view ranked on one unobserved cell in N, a "
+                 "power of two in [1, 65536] (--search sampled; with a sequence, its values too)")
+      ->check(whole_in(1, 65536))
       ->capture_default_str();
   cmd.add_option("--shortlist", shortlist,
                  "the sequence considers only this many candidates, those of highest single-view "
@@ -142,6 +149,10 @@ PlannerConfig PlanningOptions::make_planner_config(double literal_alpha) const {
   config.sequence.horizon = horizon;
   config.sequence.travel_weight = travel_weight;
   config.sequence.shortlist = shortlist;
+  if (!std::has_single_bit(static_cast<unsigned>(sample))) {
+    throw UsageError(fmt::format("--sample: must be a power of two, got {}", sample));
+  }
+  config.sample_bits = std::countr_zero(static_cast<unsigned>(sample));
   config.validate();
   return config;
 }
