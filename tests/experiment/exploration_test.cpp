@@ -101,6 +101,25 @@ TEST(Exploration, SameSeedSameCsvForOneAndTwoThreads) {
 
 // Every view is taken at most once unless revisits are asked for; when the ring runs out the run
 // ends with a reason, not a repeated view.
+// Seen from above (an arm's hemisphere), the floor around the table is the largest horizontal
+// plane: the table is sought at the scene's table height, so the scans from above map objects.
+TEST(Exploration, TheTableIsSoughtAtTheScenesTableHeight) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  const MapperConfig mapper = default_mapper_config(scene);
+  EXPECT_NEAR(mapper.table.min_table_z, 0.70, 1e-9);
+  EXPECT_NEAR(mapper.table.max_table_z, 0.80, 1e-9);
+  ExplorationConfig config;
+  config.planner.method = PlannerMethod::kGreedy;
+  config.candidates = CandidateSet::kHemisphere;
+  config.scans = 3;
+  config.seed = 5;
+  config.mapper = mapper;
+  Mapper run_mapper(scene.grid, config.mapper);
+  const ExplorationResult run = explore(scene, config, run_mapper);
+  ASSERT_EQ(run.scans.size(), 3u);
+  EXPECT_GT(run.scans.back().coverage, run.scans.front().coverage + 0.05);
+}
+
 TEST(Exploration, TakesEachViewOnceUnlessRevisitsAreAllowed) {
   const sim::Scene scene = sim::load_scene(testing::small_scene_path());
   const std::size_t views = scene.candidate_poses().size();

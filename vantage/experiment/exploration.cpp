@@ -570,6 +570,14 @@ AlphaSetting default_alpha_setting(PlannerMethod method, double paper) {
 MapperConfig default_mapper_config(const sim::Scene& scene) {
   MapperConfig config;
   config.segment_table = scene.kind == sim::SceneKind::kTableTop;
+  for (const sim::Shape& shape : scene.shapes) {
+    if (shape.kind != "table") continue;
+    // NOTE: seen from above (an arm's views), the floor around the table is the largest
+    // horizontal plane; the table is the one within 5 cm of the scene's table top.
+    constexpr double kTableSlack = 0.05;  // [m]
+    config.table.min_table_z = shape.bounds().max().z() - kTableSlack;
+    config.table.max_table_z = shape.bounds().max().z() + kTableSlack;
+  }
   config.registration.prior =
       odometry_prior(ExplorationConfig{}.pose_noise.value_or(scene.pose_noise));
   if (scene.kind == sim::SceneKind::kOffice) {
