@@ -2,13 +2,14 @@
 """Plots and summarises a sweep (`vantage bench`): the paper's Figs. 10 and 11 (table top) and
 Figs. 15 and 16 (office).
 
-Usage: plot_bench.py DIR
+Usage: plot_bench.py DIR [--levels 90,95]
 Reads DIR/scans.csv; writes DIR/unobserved.png (mean +- std of unobserved cells per scan, per
 method and scene), DIR/unobserved_by_travel.png (the same against the distance travelled),
 DIR/prediction_error.png (absolute error of the predicted vs the actual number of cells seen
 per scan: the probabilistic method's expected cells seen (predicted_cells) against greedy's count
 on the same poses, the paper's Fig. 11), DIR/trials.csv (one row per trial: AUC, travel, and the
-scans and travel to reach 90 % and 95 % of the observable surface) and DIR/summary.md, which ends
+scans and travel to reach 90 % and 95 % of the observable surface, or the --levels given, in
+percent) and DIR/summary.md, which ends
 with each method's paired differences from greedy over scenes and starts, with a Wilcoxon
 signed-rank test (scipy).
 
@@ -477,9 +478,19 @@ def paired_summary(trials, budget):
 
 
 def main(argv):
-    if len(argv) != 2:
-        sys.exit("usage: plot_bench.py DIR")
-    out = argv[1]
+    global LEVELS
+    args = argv[1:]
+    if len(args) == 3 and args[1] == "--levels":
+        try:
+            LEVELS = tuple(float(x) / 100 for x in args[2].split(","))
+        except ValueError:
+            sys.exit(f"plot_bench.py: --levels takes percentages p,q,..., got '{args[2]}'")
+        if not LEVELS or not all(0 < x <= 1 for x in LEVELS):
+            sys.exit(f"plot_bench.py: --levels must lie in (0, 100], got '{args[2]}'")
+        args = args[:1]
+    if len(args) != 1:
+        sys.exit("usage: plot_bench.py DIR [--levels 90,95]")
+    out = args[0]
     rows = load(os.path.join(out, "scans.csv"))
     scenes = sorted({r["scene"] for r in rows})
     g = grouped(rows)

@@ -123,3 +123,21 @@ def test_wilcoxon_matches_scipy(plot_bench):
     assert plot_bench.wilcoxon_p(d) == pytest.approx(wilcoxon(d).pvalue)
     assert plot_bench.wilcoxon_p([0.0, 0.0]) == 1.0
     assert plot_bench.wilcoxon_p([]) is None
+
+
+def test_levels_are_chosen_on_the_command_line(sweep, plot_bench):
+    """--levels 85,92 records those levels instead: greedy reaches 85 % at scan 2 and 92 % at
+    scan 3, latombe 85 % at scan 3."""
+    try:
+        plot_bench.main(["plot_bench.py", str(sweep), "--levels", "85,92"])
+        with open(sweep / "trials.csv", newline="") as f:
+            trials = list(csv.DictReader(f))
+        assert "scans_to_90" not in trials[0]
+        greedy = [t for t in trials if t["method"] == "greedy"]
+        assert {t["scans_to_85"] for t in greedy} == {"2"}
+        assert {t["scans_to_92"] for t in greedy} == {"3"}
+        assert {t["scans_to_85"] for t in trials if t["method"] == "latombe"} == {"3"}
+        with pytest.raises(SystemExit):
+            plot_bench.main(["plot_bench.py", str(sweep), "--levels", "0,90"])
+    finally:
+        plot_bench.LEVELS = (0.90, 0.95)
