@@ -16,11 +16,49 @@
 namespace vantage {
 namespace {
 
+/// Adds unobserved cell `cell` to the lists of the members whose frustum holds it, its
+/// visibility from `predict` evaluated once for all of them.
+template <typename Predictor>
+void add_target(const GainMap& map, std::span<const Frustum> views,
+                std::span<const std::size_t> members, std::span<const CellBox> boxes,
+                const Eigen::Vector3d& origin, const Index3& cell, std::size_t linear,
+                const Predictor& predict, std::vector<ViewCells>& out) {
+  const Eigen::Vector3d center = map.spec().center(cell);
+  bool evaluated = false;
+  double seen = 0.0;
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    const CellBox& b = boxes[m];
+    if ((cell.array() < b.lo.array()).any() || (cell.array() > b.hi.array()).any() ||
+        !views[members[m]].contains(center)) {
+      continue;
+    }
+    if (!evaluated) {
+      seen = predict(map, origin, cell).seen;
+      evaluated = true;
+    }
+    ViewCells& list = out[members[m]];
+    ++list.targets;
+    if (seen > 0.0) {
+      list.cells.push_back(static_cast<std::uint32_t>(linear));
+      list.seen.push_back(seen);
+    }
+  }
+}
+
 /// The lists of every view, each target's visibility from `predict` (target_predictors.hpp).
 template <typename Predictor>
 std::vector<ViewCells> view_cells(const GainMap& map, std::span<const Frustum> views,
                                   const Predictor& predict, int sample_bits, int num_threads) {
   const GridSpec& spec = map.spec();
+  // NOTE: a sample is listed once and read by every view; without one, each view walks its box.
+  std::vector<std::uint32_t> sample;
+  if (sample_bits > 0) {
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      if (map.value(i).state == CellState::kUnobserved && in_cell_sample(i, sample_bits)) {
+        sample.push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+  }
   std::vector<ViewCells> out(views.size());
   const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
   run_with_threads(num_threads, [&] {
@@ -28,44 +66,26 @@ std::vector<ViewCells> view_cells(const GainMap& map, std::span<const Frustum> v
       const std::vector<std::size_t>& members = groups[g];
       const Eigen::Vector3d origin = views[members.front()].origin();
       std::vector<CellBox> boxes;
-      CellBox box{spec.dims, Index3(-1, -1, -1)};
-      for (const std::size_t v : members) {
-        boxes.push_back(cells_under(spec, views[v]));
-        if (boxes.back().empty()) continue;
-        box.lo = box.lo.cwiseMin(boxes.back().lo);
-        box.hi = box.hi.cwiseMax(boxes.back().hi);
-      }
+      const CellBox box = detail::boxes_under(spec, views, members, boxes);
       if (box.empty()) return;
-      // NOTE: z, then y, then x: ascending linear index, so every list comes out sorted.
+      // NOTE: ascending linear index either way, so every list comes out sorted.
+      if (sample_bits > 0) {
+        for (const std::uint32_t linear : sample) {
+          const Index3 cell = spec.unravel(linear);
+          if ((cell.array() < box.lo.array()).any() || (cell.array() > box.hi.array()).any()) {
+            continue;
+          }
+          add_target(map, views, members, boxes, origin, cell, linear, predict, out);
+        }
+        return;
+      }
       Index3 cell;
       for (cell.z() = box.lo.z(); cell.z() <= box.hi.z(); ++cell.z()) {
         for (cell.y() = box.lo.y(); cell.y() <= box.hi.y(); ++cell.y()) {
           for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
             const std::size_t linear = spec.linear(cell);
-            if (map.value(linear).state != CellState::kUnobserved ||
-                !in_cell_sample(linear, sample_bits)) {
-              continue;
-            }
-            const Eigen::Vector3d center = spec.center(cell);
-            bool evaluated = false;
-            double seen = 0.0;
-            for (std::size_t m = 0; m < members.size(); ++m) {
-              const CellBox& b = boxes[m];
-              if ((cell.array() < b.lo.array()).any() || (cell.array() > b.hi.array()).any() ||
-                  !views[members[m]].contains(center)) {
-                continue;
-              }
-              if (!evaluated) {
-                seen = predict(map, origin, cell).seen;
-                evaluated = true;
-              }
-              ViewCells& list = out[members[m]];
-              ++list.targets;
-              if (seen > 0.0) {
-                list.cells.push_back(static_cast<std::uint32_t>(linear));
-                list.seen.push_back(seen);
-              }
-            }
+            if (map.value(linear).state != CellState::kUnobserved) continue;
+            add_target(map, views, members, boxes, origin, cell, linear, predict, out);
           }
         }
       }

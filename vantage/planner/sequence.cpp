@@ -201,6 +201,18 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
   const CompactCells compact(lists);
   std::vector<double> missed(compact.size, 1.0);  // prod over the chosen of (1 - v) per cell
 
+  // The shortest open tour from the current pose through `members` (shortlist positions).
+  const auto tour_through = [&](const std::vector<std::size_t>& members) {
+    const std::size_t n = members.size();
+    std::vector<double> start(n), d(n * n);
+    for (std::size_t a = 0; a < n; ++a) {
+      start[a] = travel[shortlist[members[a]]];
+      for (std::size_t b = 0; b < n; ++b) d[a * n + b] = between[members[a] * m + members[b]];
+    }
+    OpenTour t = shortest_open_tour(start, d);
+    for (std::size_t& k : t.order) k = members[k];
+    return t;
+  };
   std::vector<std::size_t> chosen;  // shortlist positions
   OpenTour tour;
   std::vector<double> marginal(m, 0.0);
@@ -230,17 +242,10 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
       if (chosen.empty()) {
         t = {{i}, travel[shortlist[i]]};
       } else if (cost > 0.0) {
-        // The tour through the chosen views and this one (indices into `members`).
+        // The tour through the chosen views and this one.
         std::vector<std::size_t> members = chosen;
         members.push_back(i);
-        const std::size_t n = members.size();
-        std::vector<double> start(n), d(n * n);
-        for (std::size_t a = 0; a < n; ++a) {
-          start[a] = travel[shortlist[members[a]]];
-          for (std::size_t b = 0; b < n; ++b) d[a * n + b] = between[members[a] * m + members[b]];
-        }
-        t = shortest_open_tour(start, d);
-        for (std::size_t& k : t.order) k = members[k];
+        t = tour_through(members);
       }
       const double score = marginal[i] - cost * (t.length - tour.length);
       if (score > best_score) {
@@ -262,16 +267,7 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
     }
   }
   // With no travel weight the tours above were skipped until the last step; order them now.
-  if (tour.order.size() != chosen.size()) {
-    const std::size_t n = chosen.size();
-    std::vector<double> start(n), d(n * n);
-    for (std::size_t a = 0; a < n; ++a) {
-      start[a] = travel[shortlist[chosen[a]]];
-      for (std::size_t b = 0; b < n; ++b) d[a * n + b] = between[chosen[a] * m + chosen[b]];
-    }
-    tour = shortest_open_tour(start, d);
-    for (std::size_t& k : tour.order) k = chosen[k];
-  }
+  if (tour.order.size() != chosen.size()) tour = tour_through(chosen);
   for (const std::size_t i : chosen) plan.chosen.push_back(shortlist[i]);
   for (const std::size_t i : tour.order) plan.tour.push_back(shortlist[i]);
   plan.tour_length = tour.length;

@@ -22,6 +22,20 @@
 
 namespace vantage::detail {
 
+/// The cell box of each member view (`boxes`, in member order) and the box that holds them all;
+/// empty when every member's is.
+inline CellBox boxes_under(const GridSpec& spec, std::span<const Frustum> views,
+                           std::span<const std::size_t> members, std::vector<CellBox>& boxes) {
+  CellBox box{spec.dims, Index3(-1, -1, -1)};
+  for (const std::size_t v : members) {
+    boxes.push_back(cells_under(spec, views[v]));
+    if (boxes.back().empty()) continue;
+    box.lo = box.lo.cwiseMin(boxes.back().lo);
+    box.hi = box.hi.cwiseMax(boxes.back().hi);
+  }
+  return box;
+}
+
 /// Sums a per-target gain over the unobserved cells inside each frustum, for views that share
 /// one origin (`members`, indices into `views`): each unobserved cell in any member's frustum is
 /// evaluated once and added to every member whose frustum holds it. The frustum and the cell's
@@ -36,13 +50,7 @@ void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
   const GridSpec& spec = map.spec();
   const std::size_t k = members.size();
   std::vector<CellBox> boxes;
-  CellBox box{spec.dims, Index3(-1, -1, -1)};
-  for (const std::size_t v : members) {
-    boxes.push_back(cells_under(spec, views[v]));
-    if (boxes.back().empty()) continue;
-    box.lo = box.lo.cwiseMin(boxes.back().lo);
-    box.hi = box.hi.cwiseMax(boxes.back().hi);
-  }
+  const CellBox box = boxes_under(spec, views, members, boxes);
   if (box.empty()) return;
   const int ny = box.hi.y() - box.lo.y() + 1;
   const int nz = box.hi.z() - box.lo.z() + 1;
