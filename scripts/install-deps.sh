@@ -6,7 +6,7 @@ set -euo pipefail
 
 core=(cmake g++ make pkg-config libeigen3-dev libtbb-dev libgtest-dev libbenchmark-dev
       libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libyaml-cpp-dev
-      python3-matplotlib pybind11-dev python3-dev python3-numpy python3-pytest)
+      python3-matplotlib python3-scipy pybind11-dev python3-dev python3-numpy python3-pytest)
 # chromium: the test that renders `vantage view`'s page headless (skipped without it).
 edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev libnanoflann-dev npm chromium)
 
