@@ -5,8 +5,10 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
+#include <bit>
 #include <numeric>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -51,12 +53,24 @@ RankedPlan decide(const OccupancyGrid& grid, const DoubleArray& candidates, cons
 }
 
 PlannerConfig make_planner_config(const std::string& method, const GainConfig& gain, double lambda,
-                                  bool greedy_reference) {
+                                  bool greedy_reference,
+                                  const std::optional<std::string>& objective,
+                                  const std::string& search, int sample, int horizon,
+                                  double travel_weight) {
   PlannerConfig config;
   config.method = parse_planner_method(method);
   config.gain = gain;
   config.lambda = lambda;
   config.greedy_reference = greedy_reference;
+  config.objective =
+      objective ? parse_gain_objective(*objective) : natural_objective(config.method);
+  config.search = parse_decision_search(search);
+  if (sample < 1 || !std::has_single_bit(static_cast<unsigned>(sample))) {
+    throw std::invalid_argument(cat("sample must be a power of two >= 1, got ", sample));
+  }
+  config.sample_bits = std::countr_zero(static_cast<unsigned>(sample));
+  config.sequence.horizon = horizon;
+  config.sequence.travel_weight = travel_weight;
   config.validate();
   return config;
 }
@@ -247,17 +261,33 @@ void bind_plan(py::module_& m) {
   py::class_<PlannerConfig>(m, "PlannerConfig", "Settings of the next-best-view decision.")
       .def(py::init(&make_planner_config), py::arg("method") = "probabilistic",
            py::arg("gain") = GainConfig{}, py::arg("lambda_") = PlannerConfig{}.lambda,
-           py::arg("greedy_reference") = false,
-           "method 'probabilistic', 'greedy', 'random', 'latombe' or 'yamauchi'; gain: a "
+           py::arg("greedy_reference") = false, py::arg("objective") = std::nullopt,
+           py::arg("search") = "exhaustive", py::arg("sample") = 16, py::arg("horizon") = 1,
+           py::arg("travel_weight") = 0.0,
+           "method: a name as `vantage explore --method` takes ('survival', 'probabilistic', "
+           "'greedy', 'random', 'latombe', 'yamauchi', 'sequence' or a metric); gain: a "
            "GainConfig (its method follows from `method`); lambda_: latombe's travel penalty "
-           "[1/m]; greedy_reference: also predict every candidate's greedy gain.")
+           "[1/m]; greedy_reference: also predict every candidate's greedy gain; objective: "
+           "'bits' or 'cells' (default: the method's own); search: 'exhaustive', 'pruned', "
+           "'screened' or 'sampled' (docs/decision.md); sample: the sampled search's rate, one "
+           "unobserved cell in `sample`; horizon, travel_weight: plan that many views ahead and "
+           "tour them (docs/decision.md, 'Planning a sequence') [views, 1/m].")
       .def_property_readonly(
           "method", [](const PlannerConfig& c) { return std::string(to_string(c.method)); },
           "How the next view is chosen.")
       .def_readonly("gain", &PlannerConfig::gain, "The GainConfig of the gain evaluation.")
       .def_readonly("lambda_", &PlannerConfig::lambda, "Latombe's travel penalty [1/m].")
       .def_readonly("greedy_reference", &PlannerConfig::greedy_reference,
-                    "Whether every candidate's greedy gain is predicted too.");
+                    "Whether every candidate's greedy gain is predicted too.")
+      .def_property_readonly(
+          "search", [](const PlannerConfig& c) { return std::string(to_string(c.search)); },
+          "How the candidates are searched.")
+      .def_property_readonly(
+          "objective", [](const PlannerConfig& c) { return std::string(to_string(c.objective)); },
+          "What the method ranks by: bits or cells.")
+      .def_property_readonly(
+          "horizon", [](const PlannerConfig& c) { return sequence_of(c).horizon; },
+          "Views planned ahead (the sequence method's default when it is not told).");
 
   py::class_<RankedPlan>(m, "Plan", "The decision and everything behind it.")
       .def_property_readonly(

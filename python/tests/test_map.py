@@ -113,6 +113,29 @@ def test_a_plan_says_what_it_chose(spec):
     assert f"score={plan.scores[plan.best]:g}" in text, text
 
 
+def test_the_planner_takes_the_clis_settings(spec):
+    """PlannerConfig names what `vantage explore` names: the method's own objective, the search,
+    the sampled search's rate, the sequence; bad values raise ValueError."""
+    sequence = vt.PlannerConfig(method="sequence")
+    assert (sequence.objective, sequence.horizon, sequence.search) == ("cells", 3, "exhaustive")
+    assert vt.PlannerConfig(method="probabilistic").objective == "bits"
+    grid = vt.OccupancyGrid(spec)
+    candidates = vt.ring_candidates(spec)
+    exact = vt.plan_next_view(grid, candidates, FOV, vt.PlannerConfig(method="survival"))
+    every = vt.PlannerConfig(method="survival", search="sampled", sample=1)
+    assert every.search == "sampled"
+    sampled = vt.plan_next_view(grid, candidates, FOV, every)
+    assert sampled.best == exact.best
+    planned = vt.plan_next_view(grid, candidates, FOV, sequence)
+    assert 0 <= planned.best < len(candidates)
+    with pytest.raises(ValueError, match="power of two"):
+        vt.PlannerConfig(method="greedy", sample=3)
+    with pytest.raises(ValueError, match="by cells"):
+        vt.PlannerConfig(method="sequence", objective="bits")
+    with pytest.raises(ValueError, match="decision search"):
+        vt.PlannerConfig(search="best")
+
+
 def test_a_copy_is_independent(spec):
     grid = vt.OccupancyGrid(spec)
     copy = grid.copy()
