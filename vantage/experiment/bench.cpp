@@ -51,6 +51,7 @@ nlohmann::json trial_settings(const BenchConfig& config) {
       {"revisit", e.revisit},
       {"evaluation", to_string(e.planner.gain.evaluation)},
       {"search", to_string(e.planner.search)},
+      {"sample", 1 << e.planner.sample_bits},
       {"epsilon", e.planner.gain.epsilon},
       {"lambda", e.planner.lambda},
       {"integration", to_string(m.integration.mode)},
@@ -63,6 +64,7 @@ nlohmann::json trial_settings(const BenchConfig& config) {
       {"project_stops", e.office.project_stops},
       {"candidates", to_string(e.candidates)},
       {"hemisphere_spacing", e.hemisphere.spacing},
+      {"hemisphere_radii", e.hemisphere.radii},
       {"arm", e.arm ? nlohmann::json{{"base", {e.arm->base.x(), e.arm->base.y(), e.arm->base.z()}},
                                      {"reach", e.arm->reach}}
                     : nlohmann::json(nullptr)},

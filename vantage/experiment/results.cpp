@@ -43,6 +43,7 @@ json config_json(const ExplorationConfig& config) {
         {"recency", config.observability.recency}}},
       {"evaluation", to_string(gain.evaluation)},
       {"search", to_string(config.planner.search)},
+      {"sample", 1 << config.planner.sample_bits},
       {"epsilon", gain.epsilon},
       {"lambda", config.planner.lambda},
       {"candidates", to_string(config.candidates)},
@@ -51,11 +52,12 @@ json config_json(const ExplorationConfig& config) {
                           ? "the sensor's straight-line path between views [m]"
                           : "the walk around the table: the arc between bearings at the ring's "
                             "radius plus the change in distance from its centre [m]"},
+      // NOTE: what the decision plans: --method sequence's defaults where it was not told.
       {"sequence",
-       {{"horizon", config.planner.sequence.horizon},
-        {"travel_weight_per_m", config.planner.sequence.travel_weight},
+       {{"horizon", sequence_of(config.planner).horizon},
+        {"travel_weight_per_m", sequence_of(config.planner).travel_weight},
         {"shortlist", config.planner.sequence.shortlist},
-        {"active", config.planner.sequence.active()}}},
+        {"active", sequence_of(config.planner).active()}}},
       {"scans", config.scans},
       {"min_gain", config.min_gain},
       {"revisit", config.revisit},
