@@ -156,7 +156,9 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
     sampled = exact_view_cells(map, views, gain, config.sample_bits);
     for (const ViewCells& list : sampled) {
       const double cells = rate * list.sum();
-      plan.gains.push_back({cells, cells, static_cast<std::size_t>(rate) * list.targets});
+      // NOTE: greedy's gain is its count; the survival reading's bits are left 0, as exactly.
+      plan.gains.push_back(
+          {greedy ? cells : 0.0, cells, static_cast<std::size_t>(rate) * list.targets});
     }
   } else {
     const ClassBlocks blocks = summarize_classes(map, views, gain.num_threads);
