@@ -143,6 +143,16 @@ bool in_cell_sample(std::uint64_t i, int bits) {
   return bits <= 0 || (z >> (64 - bits)) == 0;
 }
 
+std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits) {
+  std::vector<std::uint32_t> sample;
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    if (map.value(i).state == CellState::kUnobserved && in_cell_sample(i, bits)) {
+      sample.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  return sample;
+}
+
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                        const GainConfig& config) {
   config.validate();

@@ -29,6 +29,10 @@ std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frust
 /// not a lattice: a regular lattice lines up with a table's plane and a ring's symmetry.
 bool in_cell_sample(std::uint64_t i, int bits);
 
+/// The linear indices of the unobserved cells in the sample of `bits`, ascending: the targets
+/// the sampled search (and a sequence planned on its sample) evaluates.
+std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits);
+
 /// The same on the grid, which is only read.
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                        const GainConfig& config);

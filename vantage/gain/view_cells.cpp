@@ -51,14 +51,8 @@ std::vector<ViewCells> view_cells(const GainMap& map, std::span<const Frustum> v
                                   const Predictor& predict, int sample_bits, int num_threads) {
   const GridSpec& spec = map.spec();
   // NOTE: a sample is listed once and read by every view; without one, each view walks its box.
-  std::vector<std::uint32_t> sample;
-  if (sample_bits > 0) {
-    for (std::size_t i = 0; i < map.size(); ++i) {
-      if (map.value(i).state == CellState::kUnobserved && in_cell_sample(i, sample_bits)) {
-        sample.push_back(static_cast<std::uint32_t>(i));
-      }
-    }
-  }
+  const std::vector<std::uint32_t> sample =
+      sample_bits > 0 ? unobserved_sample(map, sample_bits) : std::vector<std::uint32_t>{};
   std::vector<ViewCells> out(views.size());
   const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
   run_with_threads(num_threads, [&] {

@@ -85,6 +85,18 @@ void add_greedy_reference(const OccupancyGrid& grid, const Views& views, const G
   plan.reference_seconds = since(start);
 }
 
+/// What Latombe multiplies a candidate's gain by, exp(-lambda * travel); 1 for the others.
+double travel_factor(const PlannerConfig& config, const Candidate& candidate) {
+  return config.method == PlannerMethod::kLatombe ? std::exp(-config.lambda * candidate.travel)
+                                                  : 1.0;
+}
+
+/// A counting method's gains are greedy's: the plan's greedy reference costs nothing.
+void gains_as_greedy_reference(Plan& plan) {
+  plan.greedy_gains.clear();
+  for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
+}
+
 /// Candidate `c`'s exact prediction: its views' gains under `gain.method`, summed.
 ViewGain full_prediction(const OccupancyGrid& grid, const Views& views, std::size_t c,
                          const GainConfig& gain) {
@@ -122,10 +134,7 @@ Plan plan_sampled(const OccupancyGrid& grid, std::span<const Candidate> candidat
   plan.estimated = std::move(sampled.estimated);
   for (std::size_t c = 0; c < plan.gains.size(); ++c) {
     const double value = cells ? plan.gains[c].cells : plan.gains[c].gain;
-    const double factor = config.method == PlannerMethod::kLatombe
-                              ? std::exp(-config.lambda * candidates[c].travel)
-                              : 1.0;
-    plan.scores.push_back(value * factor);
+    plan.scores.push_back(value * travel_factor(config, candidates[c]));
   }
   plan.best = choose_best(plan.scores);
   plan.seconds = since(start);
@@ -140,7 +149,7 @@ Plan plan_sampled(const OccupancyGrid& grid, std::span<const Candidate> candidat
     add_greedy_reference(grid, views, config.gain, plan);
     plan.seconds += plan.reference_seconds;  // as the other searches count it
   } else if (method_traits(gain.method).counts) {
-    for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
+    gains_as_greedy_reference(plan);
   }
   return plan;
 }
@@ -169,7 +178,7 @@ Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidate
   }
   std::vector<double> factor;
   if (config.method == PlannerMethod::kLatombe) {
-    for (const Candidate& c : candidates) factor.push_back(std::exp(-config.lambda * c.travel));
+    for (const Candidate& c : candidates) factor.push_back(travel_factor(config, c));
   }
   detail::Pruning pruning =
       detail::prune_candidates(grid, views.frusta, views.first, factor, gain, score);
@@ -179,9 +188,7 @@ Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidate
   plan.estimated = std::move(pruning.estimated);
   plan.scores = std::move(pruning.scores);
   plan.evaluated = pruning.evaluated;
-  if (counts) {
-    for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
-  }
+  if (counts) gains_as_greedy_reference(plan);
   plan.seconds = since(start);
   if (score == detail::PrunedScore::kSurvivalCells) {
     // NOTE: the cells decided; the bits of eq. (4) are the chosen view's report, not the choice.
@@ -224,9 +231,7 @@ Plan plan_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> cand
   const bool counts = method_traits(gain.method).counts;
   const bool sampled = sequence_of(config).sample_bits > 0;
   if (sampled) plan.estimated.assign(plan.gains.size(), true);
-  if (counts) {
-    for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
-  }
+  if (counts) gains_as_greedy_reference(plan);
   plan.seconds = since(start);
   if (!counts || sampled) {
     // NOTE: the cells decided; the bits of eq. (4) are the chosen view's report (as pruned).
@@ -409,7 +414,7 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
     case PlannerMethod::kLatombe:
       for (std::size_t c = 0; c < candidates.size(); ++c) {
         for (std::size_t v = views.first[c]; v < views.first[c + 1]; ++v) {
-          view_scores[v] *= std::exp(-config.lambda * candidates[c].travel);
+          view_scores[v] *= travel_factor(config, candidates[c]);
         }
       }
       plan.scores = views.sums(view_scores);

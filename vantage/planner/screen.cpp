@@ -161,13 +161,8 @@ Screening sample_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
                             std::span<const std::size_t> first, const GainConfig& config,
                             int bits) {
   const GainMap map(grid, config.num_threads);
-  std::vector<std::uint32_t> sample;
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    if (map.value(i).state == CellState::kUnobserved && in_cell_sample(i, bits)) {
-      sample.push_back(static_cast<std::uint32_t>(i));
-    }
-  }
-  const std::vector<SampleSums> sums = sampled_view_gains(map, frusta, sample, config);
+  const std::vector<SampleSums> sums =
+      sampled_view_gains(map, frusta, unobserved_sample(map, bits), config);
   const double rate = std::ldexp(1.0, bits);  // Horvitz-Thompson: rate * sum is unbiased
   const std::size_t n = first.size() - 1;
   Screening out;
