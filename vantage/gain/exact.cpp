@@ -16,6 +16,7 @@
 #include "vantage/gain/target_ray.hpp"
 #include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/traversal.hpp"
+#include "vantage/util/hash.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"
 
@@ -136,21 +137,34 @@ template std::vector<ViewGain> exact_view_gains<BlindModel>(const GainMap&,
                                                             const GainConfig&, int);
 
 bool in_cell_sample(std::uint64_t i, int bits) {
-  std::uint64_t z = i + 0x9E3779B97F4A7C15ULL;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  z ^= z >> 31;
-  return bits <= 0 || (z >> (64 - bits)) == 0;
+  return bits <= 0 || (mix64(i) >> (64 - bits)) == 0;
 }
 
 std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits) {
   std::vector<std::uint32_t> sample;
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    if (map.value(i).state == CellState::kUnobserved && in_cell_sample(i, bits)) {
-      sample.push_back(static_cast<std::uint32_t>(i));
+  with_codes(map, [&](const auto* codes) {
+    std::vector<bool> unobserved;
+    for (const GainMap::Value& v : map.values()) {
+      unobserved.push_back(v.state == CellState::kUnobserved);
     }
-  }
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      if (unobserved[codes[i]] && in_cell_sample(i, bits)) {
+        sample.push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+  });
   return sample;
+}
+
+int sample_bits_for(const GainMap& map, int bits, std::size_t max_size) {
+  std::size_t unobserved = 0;
+  with_codes(map, [&](const auto* codes) {
+    std::vector<std::size_t> is;
+    for (const GainMap::Value& v : map.values()) is.push_back(v.state == CellState::kUnobserved);
+    for (std::size_t i = 0; i < map.size(); ++i) unobserved += is[codes[i]];
+  });
+  while (bits < 63 && (unobserved >> bits) > max_size) ++bits;
+  return bits;
 }
 
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,

@@ -32,6 +32,9 @@ bool in_cell_sample(std::uint64_t i, int bits);
 /// The linear indices of the unobserved cells in the sample of `bits`, ascending: the targets
 /// the sampled search (and a sequence planned on its sample) evaluates.
 std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits);
+/// The fewest bits >= `bits` whose sample of the unobserved cells is expected to hold at most
+/// `max_size` of them (1 in 2^bits of them).
+int sample_bits_for(const GainMap& map, int bits, std::size_t max_size);
 
 /// The same on the grid, which is only read.
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
