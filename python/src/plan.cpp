@@ -269,7 +269,8 @@ void bind_plan(py::module_& m) {
            "GainConfig (its method follows from `method`); lambda_: latombe's travel penalty "
            "[1/m]; greedy_reference: also predict every candidate's greedy gain; objective: "
            "'bits' or 'cells' (default: the method's own); search: 'exhaustive', 'pruned', "
-           "'screened' or 'sampled' (docs/decision.md); sample: the sampled search's rate, one "
+           "'screened', 'sampled' or 'swept' (docs/decision.md); sample: the sampled search's "
+           "rate, one "
            "unobserved cell in `sample`; horizon, travel_weight: plan that many views ahead and "
            "tour them (docs/decision.md, 'Planning a sequence') [views, 1/m].")
       .def_property_readonly(

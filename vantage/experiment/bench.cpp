@@ -52,6 +52,7 @@ nlohmann::json trial_settings(const BenchConfig& config) {
       {"evaluation", to_string(e.planner.gain.evaluation)},
       {"search", to_string(e.planner.search)},
       {"sample", 1 << e.planner.sample_bits},
+      {"swept_rays", e.planner.swept_rays},
       {"epsilon", e.planner.gain.epsilon},
       {"lambda", e.planner.lambda},
       {"integration", to_string(m.integration.mode)},

@@ -44,6 +44,7 @@ json config_json(const ExplorationConfig& config) {
       {"evaluation", to_string(gain.evaluation)},
       {"search", to_string(config.planner.search)},
       {"sample", 1 << config.planner.sample_bits},
+      {"swept_rays", config.planner.swept_rays},
       {"epsilon", gain.epsilon},
       {"lambda", config.planner.lambda},
       {"candidates", to_string(config.candidates)},

@@ -3,13 +3,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 
 #include "vantage/gain/exact.hpp"
+#include "vantage/gain/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/swept.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/prune.hpp"
+#include "vantage/planner/race.hpp"
 #include "vantage/planner/screen.hpp"
 #include "vantage/util/text.hpp"
 
@@ -21,6 +26,7 @@ struct Views {
   std::vector<Frustum> frusta;
   std::vector<std::size_t> first;
 
+  Views() = default;
   explicit Views(std::span<const Candidate> candidates) {
     for (const Candidate& c : candidates) {
       first.push_back(frusta.size());
@@ -28,6 +34,18 @@ struct Views {
       frusta.insert(frusta.end(), c.more_views.begin(), c.more_views.end());
     }
     first.push_back(frusta.size());
+  }
+
+  /// The views of candidates `among`, in that order.
+  Views subset(const std::vector<std::size_t>& among) const {
+    Views out;
+    for (const std::size_t c : among) {
+      out.first.push_back(out.frusta.size());
+      out.frusta.insert(out.frusta.end(), frusta.begin() + static_cast<std::ptrdiff_t>(first[c]),
+                        frusta.begin() + static_cast<std::ptrdiff_t>(first[c + 1]));
+    }
+    out.first.push_back(out.frusta.size());
+    return out;
   }
 
   /// The candidate whose views hold view `v`.
@@ -144,6 +162,124 @@ Plan plan_sampled(const OccupancyGrid& grid, std::span<const Candidate> candidat
   plan.gains[plan.best] = full_prediction(grid, views, plan.best, gain);
   plan.estimated[plan.best] = false;
   plan.evaluated = 1;
+  plan.prediction_seconds = since(predict_start);
+  if (config.greedy_reference && !method_traits(gain.method).counts) {
+    add_greedy_reference(grid, views, config.gain, plan);
+    plan.seconds += plan.reference_seconds;  // as the other searches count it
+  } else if (method_traits(gain.method).counts) {
+    gains_as_greedy_reference(plan);
+  }
+  return plan;
+}
+
+/// What the swept search estimates for the method, if it serves it: the survival reading's
+/// expected cells seen (when it ranks by cells) or greedy's count (greedy, Latombe).
+std::optional<CountRule> swept_rule(const PlannerConfig& config) {
+  if (config.method == PlannerMethod::kRandom || config.method == PlannerMethod::kYamauchi) {
+    return std::nullopt;
+  }
+  switch (method_traits(gain_method_of(config.method)).ray) {
+    case TargetRay::kUnblocked:
+      return CountRule::kGreedy;
+    case TargetRay::kSurvival:
+      if (config.objective == GainObjective::kCells) return CountRule::kSurvivalCells;
+      break;
+    case TargetRay::kPaper:
+    case TargetRay::kNone:
+      break;
+  }
+  return std::nullopt;
+}
+
+bool sweepable(const PlannerConfig& config) { return swept_rule(config).has_value(); }
+
+/// The swept search's rounds (docs/decision.md, "The swept search"): how many candidates the
+/// second round casts again at twice the rays a side, and how many of those, within what part of
+/// the leader's estimate, the third ranks on the sampled search's sample.
+constexpr std::size_t kSweptSecond = 12;
+constexpr std::size_t kSweptFinal = 3;
+constexpr double kSweptMargin = 0.15;
+/// The most unobserved cells the last round's first sample holds: at most one in 2^sample_bits,
+/// fewer where the map holds more, so that its cost does not grow with the cells.
+constexpr std::size_t kSweptSample = std::size_t{1} << 15;
+
+/// The candidates among `among` whose scores lie within `margin` of the best of them, the best
+/// `keep` of those (ties to the lower index), in descending order of score.
+std::vector<std::size_t> leaders(const std::vector<double>& scores,
+                                 const std::vector<std::size_t>& among, std::size_t keep,
+                                 double margin) {
+  std::vector<std::size_t> order = among;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return scores[a] > scores[b]; });
+  if (order.size() > keep) order.resize(keep);
+  const double lead = order.empty() ? 0.0 : scores[order.front()];
+  std::erase_if(order, [&](std::size_t c) { return scores[c] < (1.0 - margin) * lead; });
+  return order;
+}
+
+/// The swept search: every candidate's swept estimate; the leaders cast again at twice the rays;
+/// the leaders of that ranked on the sampled search's sample; the chosen one's exact prediction
+/// after.
+Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates,
+                const Views& views, const PlannerConfig& config,
+                std::chrono::steady_clock::time_point start) {
+  GainConfig gain = config.gain;
+  gain.method = gain_method_of(config.method);
+  const GainMap map(grid, gain.num_threads);
+  SweptConfig swept;
+  swept.alpha = gain.alpha;
+  swept.epsilon = gain.epsilon;
+  swept.num_threads = gain.num_threads;
+  Plan plan;
+  plan.gains.assign(candidates.size(), ViewGain{});
+  plan.estimated.assign(candidates.size(), true);
+  plan.scores.assign(candidates.size(), 0.0);
+  // Candidates `among` estimated at `rays` across, into the plan's gains and scores.
+  const auto estimate = [&](const std::vector<std::size_t>& among, int rays) {
+    const Views subset = views.subset(among);
+    swept.rays_across = rays;
+    const std::vector<double> per_view =
+        swept_view_counts(map, subset.frusta, *swept_rule(config), swept);
+    const std::vector<double> sums = subset.sums(per_view);
+    for (std::size_t k = 0; k < among.size(); ++k) {
+      const std::size_t c = among[k];
+      plan.gains[c].cells = sums[k];
+      plan.gains[c].gain = method_traits(gain.method).counts ? sums[k] : 0.0;
+      plan.scores[c] = sums[k] * travel_factor(config, candidates[c]);
+    }
+  };
+  std::vector<std::size_t> all(candidates.size());
+  for (std::size_t c = 0; c < all.size(); ++c) all[c] = c;
+  estimate(all, config.swept_rays);
+  const std::vector<std::size_t> second = leaders(plan.scores, all, kSweptSecond, 1.0);
+  estimate(second, std::min(2 * config.swept_rays, 4096));
+  // NOTE: the last round races the leaders on samples of the targets, whose values are exact:
+  // the swept estimate is not, it weighs a cell by the part of its volume the rays reach where
+  // the exact sum asks whether its centre is reached.
+  const std::vector<std::size_t> final_round =
+      leaders(plan.scores, second, kSweptFinal, kSweptMargin);
+  const Views finalists = views.subset(final_round);
+  std::vector<double> factor;
+  for (const std::size_t c : final_round) factor.push_back(travel_factor(config, candidates[c]));
+  const detail::Race race =
+      detail::race_candidates(map, finalists.frusta, finalists.first, factor, gain,
+                              sample_bits_for(map, config.sample_bits, kSweptSample));
+  std::vector<double> ranked(candidates.size(), -std::numeric_limits<double>::infinity());
+  for (std::size_t k = 0; k < final_round.size(); ++k) {
+    const std::size_t c = final_round[k];
+    plan.scores[c] = race.scores[k];
+    plan.gains[c].cells = race.scores[k] / factor[k];
+    plan.gains[c].gain = method_traits(gain.method).counts ? plan.gains[c].cells : 0.0;
+    ranked[c] = k == race.winner ? 1.0 : 0.0;
+  }
+  plan.best = choose_best(ranked);
+  plan.evaluated = final_round.size();
+  plan.seconds = since(start);
+  const auto predict_start = std::chrono::steady_clock::now();
+  plan.gains[plan.best] = full_prediction(grid, views, plan.best, gain);
+  plan.scores[plan.best] =
+      plan.gains[plan.best].cells * travel_factor(config, candidates[plan.best]);
+  plan.estimated[plan.best] = false;
   plan.prediction_seconds = since(predict_start);
   if (config.greedy_reference && !method_traits(gain.method).counts) {
     add_greedy_reference(grid, views, config.gain, plan);
@@ -299,6 +435,8 @@ std::string_view to_string(DecisionSearch search) {
       return "pruned";
     case DecisionSearch::kSampled:
       return "sampled";
+    case DecisionSearch::kSwept:
+      return "swept";
     case DecisionSearch::kExhaustive:
       break;
   }
@@ -306,12 +444,13 @@ std::string_view to_string(DecisionSearch search) {
 }
 
 DecisionSearch parse_decision_search(std::string_view name) {
-  for (const DecisionSearch s : {DecisionSearch::kExhaustive, DecisionSearch::kScreened,
-                                 DecisionSearch::kPruned, DecisionSearch::kSampled}) {
+  for (const DecisionSearch s :
+       {DecisionSearch::kExhaustive, DecisionSearch::kScreened, DecisionSearch::kPruned,
+        DecisionSearch::kSampled, DecisionSearch::kSwept}) {
     if (name == to_string(s)) return s;
   }
   throw std::invalid_argument(cat("unknown decision search '", name,
-                                  "' (expected exhaustive, screened, pruned or sampled)"));
+                                  "' (expected exhaustive, screened, pruned, sampled or swept)"));
 }
 
 std::string_view to_string(GainObjective objective) {
@@ -336,6 +475,9 @@ void PlannerConfig::validate() const {
   gain.validate();
   if (!(lambda >= 0.0 && std::isfinite(lambda))) {
     throw std::invalid_argument(cat("planner.lambda must be >= 0, got ", lambda));
+  }
+  if (swept_rays < 1 || swept_rays > 4096) {
+    throw std::invalid_argument(cat("planner.swept_rays must lie in [1, 4096], got ", swept_rays));
   }
   if (sample_bits < 0 || sample_bits > 16) {
     throw std::invalid_argument(cat("planner.sample_bits must lie in [0, 16], got ", sample_bits));
@@ -369,6 +511,9 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   }
   if (config.search == DecisionSearch::kSampled && samplable(config.method)) {
     return plan_sampled(grid, candidates, views, config, start);
+  }
+  if (config.search == DecisionSearch::kSwept && sweepable(config)) {
+    return plan_swept(grid, candidates, views, config, start);
   }
   if (probabilistic && config.search == DecisionSearch::kScreened) {
     // NOTE: only the argmax and its prediction are needed; a dropped candidate keeps its

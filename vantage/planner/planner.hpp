@@ -83,11 +83,18 @@ enum class DecisionSearch {
   /// either way (docs/decision.md). For candidate sets of hundreds of views. Survival,
   /// probabilistic, greedy and Latombe; the others search exhaustively.
   kSampled,
+  /// Every candidate ranked by the swept estimate (vantage/gain/swept.hpp: a thousand rays cast
+  /// outward a view, each crediting the volume it sweeps through unobserved cells); the leaders
+  /// cast again at twice the rays a side, and the leaders of that ranked by the sampled search's
+  /// estimate; the best of them is chosen and then evaluated in full for its report.
+  /// Statistical and without a guarantee (docs/decision.md), for decisions in milliseconds.
+  /// Survival (by cells), greedy and Latombe; the others search exhaustively.
+  kSwept,
 };
 
 std::string_view to_string(DecisionSearch search);
-/// Parses "exhaustive", "screened", "pruned" or "sampled"; throws std::invalid_argument naming the
-/// value.
+/// Parses "exhaustive", "screened", "pruned", "sampled" or "swept"; throws std::invalid_argument
+/// naming the value.
 DecisionSearch parse_decision_search(std::string_view name);
 
 /// Settings of the decision.
@@ -103,6 +110,8 @@ struct PlannerConfig {
   DecisionSearch search = DecisionSearch::kExhaustive;
   /// The sampled search's rate: one unobserved cell in 2^sample_bits, in [0, 16].
   int sample_bits = 4;
+  /// The swept search's rays across a view's image (SweptConfig::rays_across), in [1, 4096].
+  int swept_rays = 32;
   /// Also predict every candidate's greedy gain when the method uses another, so predictions can
   /// be compared on the same poses (the paper's Fig. 11).
   bool greedy_reference = false;

@@ -41,7 +41,9 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                    "probabilistic), pruned (exact: upper bounds from the map's blocks skip them; "
                    "survival, probabilistic, greedy and latombe), sampled (statistical, for "
                    "hundreds of views: every view ranked on one sample of 1 in 16 unobserved "
-                   "cells; the same methods) or exhaustive (every view in full)")
+                   "cells; the same methods), swept (statistical, in milliseconds: every view "
+                   "ranked by rays cast outward, the leaders raced on samples of their cells; "
+                   "survival by cells, greedy and latombe) or exhaustive (every view in full)")
         ->capture_default_str();
   }
   cmd.add_option("--epsilon", epsilon, "early stop of a ray's model, in [0, 0.5)")
@@ -67,6 +69,11 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                  "the sampled search's rate: every view ranked on one unobserved cell in N, a "
                  "power of two in [1, 65536] (--search sampled; with a sequence, its values too)")
       ->check(whole_in(1, 65536))
+      ->capture_default_str();
+  cmd.add_option("--swept-rays", swept_rays,
+                 "the swept search's rays across a view's image in its first round (the "
+                 "leaders get twice as many)")
+      ->check(whole_in(1, 4096))
       ->capture_default_str();
   cmd.add_option("--shortlist", shortlist,
                  "the sequence considers only this many candidates, those of highest single-view "
@@ -153,6 +160,7 @@ PlannerConfig PlanningOptions::make_planner_config(double literal_alpha) const {
     throw UsageError(fmt::format("--sample: must be a power of two, got {}", sample));
   }
   config.sample_bits = std::countr_zero(static_cast<unsigned>(sample));
+  config.swept_rays = swept_rays;
   config.validate();
   return config;
 }

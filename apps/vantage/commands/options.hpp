@@ -34,6 +34,7 @@ struct PlanningOptions {
   double travel_weight = SequenceConfig{}.travel_weight;  ///< --travel-weight W [1/m]
   int shortlist = SequenceConfig{}.shortlist;             ///< --shortlist M
   int sample = 1 << PlannerConfig{}.sample_bits;          ///< --sample N: one cell in N
+  int swept_rays = PlannerConfig{}.swept_rays;            ///< --swept-rays
 
   /// `search`: offer --search (explore, bench); without it the planner keeps the screened default
   /// of `search` unless the command sets its own.

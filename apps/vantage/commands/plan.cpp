@@ -242,7 +242,8 @@ void run(const PlanOptions& o) {
         "--alpha auto fits a over an exploration's scans (explore, bench); plan takes a number");
   }
   PlannerConfig planner = o.planning.planner_config();
-  planner.greedy_reference = true;
+  // NOTE: greedy's prediction on every candidate costs more than a swept decision itself.
+  planner.greedy_reference = planner.search != DecisionSearch::kSwept;
   const GainUnits units = gain_units(planner);
   if (!o.sensor_height.empty() && o.candidates != "frontier") {
     throw UsageError("--sensor-height places frontier candidates: give --candidates frontier");
@@ -437,7 +438,7 @@ auto nbv = [&](std::size_t i) {
             {"cloud_frame", pose_json(T_world_cloud)},
             {"predicted_gain", plan.gains[i].gain},
             {"predicted_cells", plan.gains[i].cells},
-            {"greedy_gain", plan.greedy_gains[i]},
+            {"greedy_gain", plan.greedy_gains.empty() ? json() : json(plan.greedy_gains[i])},
             {"score", plan.scores[i]}};
   if (robot) j["travel"] = candidates[i].travel;
   if (estimated(i)) j["estimated"] = true;
@@ -470,7 +471,11 @@ json out = {{"version", kPlanJsonVersion},
               {"free", counts.free},
               {"occupied", counts.occupied}}},
             {"candidates", json::array()},
-            {"seconds", {{"map", map_seconds}, {"plan", plan.seconds}}}};
+            {"seconds",
+             {{"map", map_seconds},
+              {"plan", plan.seconds},
+              {"reference", plan.reference_seconds},
+              {"prediction", plan.prediction_seconds}}}};
 for (const std::size_t i : ranking) out["candidates"].push_back(nbv(i));
 
 write_folder_atomically(dir, [&](const fs::path& partial) {
@@ -502,15 +507,18 @@ for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top
   const Eigen::Vector3d p = poses[i].translation();
   // NOTE: '~' marks a gain the search estimated instead of evaluating (plan.json: estimated).
   const char* mark = estimated(i) ? "~" : " ";
-  fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {}{:>{}.1f}{} {:>19.1f}{} {:>{}.3f}\n", r + 1, i,
+  // NOTE: a swept search predicts no greedy gain for the candidates ("-").
+  const std::string greedy =
+      plan.greedy_gains.empty() ? "-" : fmt::format("{:.1f}", plan.greedy_gains[i]);
+  fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {}{:>{}.1f}{} {:>19}{} {:>{}.3f}\n", r + 1, i,
              fmt::format("({:.3f}, {:.3f}, {:.3f})", unsigned_zero(p.x(), 3),
                          unsigned_zero(p.y(), 3), unsigned_zero(p.z(), 3)),
              unsigned_zero(yaw_deg(poses[i]), 1), mark, plan.gains[i].gain, gain_header.size(),
              show_cells
                  ? fmt::format(" {}{:>{}.1f}", mark, plan.gains[i].cells, cells_header.size() - 1)
                  : "",
-             plan.greedy_gains[i], robot ? fmt::format(" {:>10.3f}", candidates[i].travel) : "",
-             plan.scores[i], score_header.size());
+             greedy, robot ? fmt::format(" {:>10.3f}", candidates[i].travel) : "", plan.scores[i],
+             score_header.size());
 }
 if (any_estimated) {
   fmt::print("{}\n", planner.search == DecisionSearch::kPruned

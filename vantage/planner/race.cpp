@@ -1,0 +1,115 @@
+#include "vantage/planner/race.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <utility>
+
+#include "vantage/gain/view_cells.hpp"
+#include "vantage/planner/choose.hpp"
+
+namespace vantage::detail {
+namespace {
+
+/// A candidate's targets: linear index and the sum of its views' v_M, ascending by index.
+using Targets = std::vector<std::pair<std::uint32_t, double>>;
+
+Targets merged(std::span<const ViewCells> lists) {
+  Targets out;
+  for (const ViewCells& list : lists) {
+    for (std::size_t i = 0; i < list.cells.size(); ++i)
+      out.emplace_back(list.cells[i], list.seen[i]);
+  }
+  std::stable_sort(out.begin(), out.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  Targets sums;
+  for (const auto& [cell, seen] : out) {
+    if (!sums.empty() && sums.back().first == cell) {
+      sums.back().second += seen;
+    } else {
+      sums.emplace_back(cell, seen);
+    }
+  }
+  return sums;
+}
+
+/// The sum and the sum of squares over the union of two candidates' targets of
+/// fa * a_i - fb * b_i (a target one lacks counts 0 there).
+std::pair<double, double> difference(const Targets& a, double fa, const Targets& b, double fb) {
+  double sum = 0.0, sq = 0.0;
+  std::size_t i = 0, j = 0;
+  while (i < a.size() || j < b.size()) {
+    double d = 0.0;
+    if (j == b.size() || (i < a.size() && a[i].first < b[j].first)) {
+      d = fa * a[i++].second;
+    } else if (i == a.size() || b[j].first < a[i].first) {
+      d = -fb * b[j++].second;
+    } else {
+      d = fa * a[i++].second - fb * b[j++].second;
+    }
+    sum += d;
+    sq += d * d;
+  }
+  return {sum, sq};
+}
+
+}  // namespace
+
+Race race_candidates(const GainMap& map, std::span<const Frustum> frusta,
+                     std::span<const std::size_t> first, std::span<const double> factor,
+                     const GainConfig& config, int start_bits) {
+  constexpr double kStandardErrors = 3.0;
+  constexpr int kStep = 2;  // each sample four times the one before
+  const std::size_t n = first.size() - 1;
+  std::vector<std::size_t> alive(n);
+  for (std::size_t k = 0; k < n; ++k) alive[k] = k;
+  Race race;
+  race.scores.assign(n, 0.0);
+  for (int bits = std::max(0, start_bits);; bits = std::max(0, bits - kStep)) {
+    std::vector<Frustum> views;
+    std::vector<std::size_t> starts;
+    for (const std::size_t k : alive) {
+      starts.push_back(views.size());
+      views.insert(views.end(), frusta.begin() + static_cast<std::ptrdiff_t>(first[k]),
+                   frusta.begin() + static_cast<std::ptrdiff_t>(first[k + 1]));
+    }
+    starts.push_back(views.size());
+    const std::vector<ViewCells> lists = exact_view_cells(map, views, config, bits);
+    const double rate = std::ldexp(1.0, bits);  // Horvitz-Thompson
+    std::vector<Targets> targets;
+    std::vector<double> scores;
+    for (std::size_t a = 0; a < alive.size(); ++a) {
+      targets.push_back(merged(std::span(lists).subspan(starts[a], starts[a + 1] - starts[a])));
+      double sum = 0.0;
+      for (const auto& [cell, seen] : targets.back()) sum += seen;
+      scores.push_back(rate * factor[alive[a]] * sum);
+      race.scores[alive[a]] = scores.back();
+    }
+    race.bits = bits;
+    const std::size_t lead = choose_best(scores);
+    if (bits == 0) {
+      race.winner = alive[lead];
+      race.exact = true;
+      return race;
+    }
+    // NOTE: a pair's difference on one sample is estimated with its own error, far smaller than
+    // the sum of the two estimates' errors when the views see many of the same cells.
+    std::vector<std::size_t> next;
+    for (std::size_t a = 0; a < alive.size(); ++a) {
+      if (a != lead) {
+        const auto [sum, sq] =
+            difference(targets[lead], factor[alive[lead]], targets[a], factor[alive[a]]);
+        const double gap = rate * sum, error = std::sqrt(rate * (rate - 1.0) * sq);
+        if (gap > kStandardErrors * error && gap > 0.0) continue;
+      }
+      next.push_back(alive[a]);
+    }
+    alive = std::move(next);
+    if (alive.size() == 1) {
+      race.winner = alive.front();
+      return race;
+    }
+  }
+}
+
+}  // namespace vantage::detail
