@@ -106,10 +106,12 @@ std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frus
         cat("exact_view_cells: gain.method must be survival or greedy, got ",
             to_string(config.method)));
   }
-  return detail::with_predictor(
-      config, map.params().p_min, detail::longest_ray(map.spec(), views), [&](const auto& predict) {
-        return view_cells(map, views, predict, sample_bits, config.num_threads);
-      });
+  // NOTE: the lists keep v_M only, so the survival reading's rays skip its occupancy filter.
+  if (ray == TargetRay::kSurvival) {
+    return view_cells(map, views, detail::SurvivalVisibilityPredictor{config.alpha, config.epsilon},
+                      sample_bits, config.num_threads);
+  }
+  return view_cells(map, views, detail::UnblockedPredictor{}, sample_bits, config.num_threads);
 }
 
 }  // namespace vantage

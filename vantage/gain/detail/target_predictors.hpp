@@ -91,6 +91,29 @@ TargetPrediction survival_ray_gain(const Cells& map, const SurvivalModel& model,
   return SurvivalModel::predict(state, cell);
 }
 
+/// The survival reading's v_M alone (TargetPrediction::seen; gain left 0): the walk and the
+/// products of survival_ray_gain without the occupancy filter, so the same v_M bit for bit at a
+/// fraction of the cost, for what keeps visibilities only (view_cells.hpp).
+template <typename Cells>
+TargetPrediction survival_visibility(const Cells& map, double alpha, const Eigen::Vector3d& origin,
+                                     const Index3& target, double epsilon) {
+  TargetWalk walk(map.spec(), origin, target);
+  if (!walk.entered()) return {};
+  CellState prev = map.value(walk.linear()).state;
+  double visibility = 1.0;
+  while (!walk.at_target()) {
+    if (!(visibility >= epsilon && visibility > 0.0)) return {};
+    walk.advance();
+    if (prev == CellState::kOccupied) {
+      visibility = 0.0;
+    } else if (prev == CellState::kUnobserved) {
+      visibility *= alpha;
+    }
+    prev = map.value(walk.linear()).state;
+  }
+  return {0.0, visibility};
+}
+
 /// Whether nothing occludes the target (the simple greedy gain): 1 or 0, in bits and in cells.
 /// Walks the cells TargetWalk takes, as count_view_gains does (hierarchy.hpp).
 template <typename Cells>
@@ -126,6 +149,17 @@ struct SurvivalPredictor {
   TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
                               const Index3& target) const {
     return survival_ray_gain(map, model, origin, target, epsilon);
+  }
+};
+
+/// The survival reading's visibility alone on the target's ray.
+struct SurvivalVisibilityPredictor {
+  double alpha;
+  double epsilon;
+  template <typename Cells>
+  TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
+                              const Index3& target) const {
+    return survival_visibility(map, alpha, origin, target, epsilon);
   }
 };
 
