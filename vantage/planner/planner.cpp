@@ -129,6 +129,23 @@ ViewGain full_prediction(const OccupancyGrid& grid, const Views& views, std::siz
   return full;
 }
 
+/// What a search that decided on estimates reports: the chosen candidate's exact prediction,
+/// after the decision and not part of its time (it is also what an online fit of a compares with
+/// the scan's outcome), and greedy's reference.
+void report_choice(const OccupancyGrid& grid, const Views& views, const PlannerConfig& config,
+                   const GainConfig& gain, Plan& plan) {
+  const auto predict_start = std::chrono::steady_clock::now();
+  plan.gains[plan.best] = full_prediction(grid, views, plan.best, gain);
+  plan.estimated[plan.best] = false;
+  plan.prediction_seconds = since(predict_start);
+  if (config.greedy_reference && !method_traits(gain.method).counts) {
+    add_greedy_reference(grid, views, config.gain, plan);
+    plan.seconds += plan.reference_seconds;  // as the other searches count it
+  } else if (method_traits(gain.method).counts) {
+    gains_as_greedy_reference(plan);
+  }
+}
+
 /// Whether the sampled search serves the method: a target model with sampled estimates, or
 /// Latombe's weighting of greedy's.
 bool samplable(PlannerMethod method) {
@@ -156,19 +173,8 @@ Plan plan_sampled(const OccupancyGrid& grid, std::span<const Candidate> candidat
   }
   plan.best = choose_best(plan.scores);
   plan.seconds = since(start);
-  // NOTE: the estimates decided; the chosen view's exact prediction is its report (and what an
-  // online fit of a compares with the scan's outcome), not part of the choice.
-  const auto predict_start = std::chrono::steady_clock::now();
-  plan.gains[plan.best] = full_prediction(grid, views, plan.best, gain);
-  plan.estimated[plan.best] = false;
   plan.evaluated = 1;
-  plan.prediction_seconds = since(predict_start);
-  if (config.greedy_reference && !method_traits(gain.method).counts) {
-    add_greedy_reference(grid, views, config.gain, plan);
-    plan.seconds += plan.reference_seconds;  // as the other searches count it
-  } else if (method_traits(gain.method).counts) {
-    gains_as_greedy_reference(plan);
-  }
+  report_choice(grid, views, config, gain, plan);
   return plan;
 }
 
@@ -275,18 +281,9 @@ Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates
   plan.best = choose_best(ranked);
   plan.evaluated = final_round.size();
   plan.seconds = since(start);
-  const auto predict_start = std::chrono::steady_clock::now();
-  plan.gains[plan.best] = full_prediction(grid, views, plan.best, gain);
+  report_choice(grid, views, config, gain, plan);
   plan.scores[plan.best] =
       plan.gains[plan.best].cells * travel_factor(config, candidates[plan.best]);
-  plan.estimated[plan.best] = false;
-  plan.prediction_seconds = since(predict_start);
-  if (config.greedy_reference && !method_traits(gain.method).counts) {
-    add_greedy_reference(grid, views, config.gain, plan);
-    plan.seconds += plan.reference_seconds;  // as the other searches count it
-  } else if (method_traits(gain.method).counts) {
-    gains_as_greedy_reference(plan);
-  }
   return plan;
 }
 
