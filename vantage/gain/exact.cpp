@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <stdexcept>
 
@@ -154,6 +155,25 @@ std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits) {
     }
   });
   return sample;
+}
+
+std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const GainMap& map, int top) {
+  top = std::clamp(top, 0, 63);
+  std::vector<std::vector<std::uint32_t>> lists(static_cast<std::size_t>(top) + 1);
+  with_codes(map, [&](const auto* codes) {
+    std::vector<bool> unobserved;
+    for (const GainMap::Value& v : map.values()) {
+      unobserved.push_back(v.state == CellState::kUnobserved);
+    }
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      if (!unobserved[codes[i]]) continue;
+      // NOTE: in the sample of b bits exactly when the hash's top b bits are zero.
+      const int zeros = std::countl_zero(mix64(i));
+      lists[static_cast<std::size_t>(std::min(zeros, top))].push_back(
+          static_cast<std::uint32_t>(i));
+    }
+  });
+  return lists;
 }
 
 int sample_bits_for(const GainMap& map, int bits, std::size_t max_size) {

@@ -32,6 +32,11 @@ bool in_cell_sample(std::uint64_t i, int bits);
 /// The linear indices of the unobserved cells in the sample of `bits`, ascending: the targets
 /// the sampled search (and a sequence planned on its sample) evaluates.
 std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits);
+/// The unobserved cells by the nested samples they first enter: `top` + 1 lists, list b (< top)
+/// holding the cells in the sample of b bits but not of b + 1, list `top` the sample of `top`
+/// bits; lists b ... top together are the sample of b bits. Each list ascending.
+std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const GainMap& map, int top);
+
 /// The fewest bits >= `bits` whose sample of the unobserved cells is expected to hold at most
 /// `max_size` of them (1 in 2^bits of them).
 int sample_bits_for(const GainMap& map, int bits, std::size_t max_size);

@@ -46,13 +46,12 @@ void add_target(const GainMap& map, std::span<const Frustum> views,
 }
 
 /// The lists of every view, each target's visibility from `predict` (target_predictors.hpp).
+/// With `sample`, only its cells (unobserved, ascending); else every unobserved cell.
 template <typename Predictor>
 std::vector<ViewCells> view_cells(const GainMap& map, std::span<const Frustum> views,
-                                  const Predictor& predict, int sample_bits, int num_threads) {
+                                  const Predictor& predict,
+                                  const std::span<const std::uint32_t>* sample, int num_threads) {
   const GridSpec& spec = map.spec();
-  // NOTE: a sample is listed once and read by every view; without one, each view walks its box.
-  const std::vector<std::uint32_t> sample =
-      sample_bits > 0 ? unobserved_sample(map, sample_bits) : std::vector<std::uint32_t>{};
   std::vector<ViewCells> out(views.size());
   const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
   run_with_threads(num_threads, [&] {
@@ -63,8 +62,8 @@ std::vector<ViewCells> view_cells(const GainMap& map, std::span<const Frustum> v
       const CellBox box = detail::boxes_under(spec, views, members, boxes);
       if (box.empty()) return;
       // NOTE: ascending linear index either way, so every list comes out sorted.
-      if (sample_bits > 0) {
-        for (const std::uint32_t linear : sample) {
+      if (sample != nullptr) {
+        for (const std::uint32_t linear : *sample) {
           const Index3 cell = spec.unravel(linear);
           if ((cell.array() < box.lo.array()).any() || (cell.array() > box.hi.array()).any()) {
             continue;
@@ -96,8 +95,11 @@ double ViewCells::sum() const {
   return total;
 }
 
-std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
-                                        const GainConfig& config, int sample_bits) {
+namespace {
+
+std::vector<ViewCells> cells_of(const GainMap& map, std::span<const Frustum> views,
+                                const GainConfig& config,
+                                const std::span<const std::uint32_t>* sample) {
   config.validate();
   const TargetRay ray = method_traits(config.method).ray;
   if (ray != TargetRay::kSurvival && ray != TargetRay::kUnblocked) {
@@ -109,9 +111,26 @@ std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frus
   // NOTE: the lists keep v_M only, so the survival reading's rays skip its occupancy filter.
   if (ray == TargetRay::kSurvival) {
     return view_cells(map, views, detail::SurvivalVisibilityPredictor{config.alpha, config.epsilon},
-                      sample_bits, config.num_threads);
+                      sample, config.num_threads);
   }
-  return view_cells(map, views, detail::UnblockedPredictor{}, sample_bits, config.num_threads);
+  return view_cells(map, views, detail::UnblockedPredictor{}, sample, config.num_threads);
+}
+
+}  // namespace
+
+std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config, int sample_bits) {
+  // NOTE: a sample is listed once and read by every view; without one, each view walks its box.
+  if (sample_bits <= 0) return cells_of(map, views, config, nullptr);
+  const std::vector<std::uint32_t> sample = unobserved_sample(map, sample_bits);
+  const std::span<const std::uint32_t> cells(sample);
+  return cells_of(map, views, config, &cells);
+}
+
+std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config,
+                                        std::span<const std::uint32_t> cells) {
+  return cells_of(map, views, config, &cells);
 }
 
 }  // namespace vantage

@@ -37,4 +37,9 @@ struct ViewCells {
 std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
                                         const GainConfig& config, int sample_bits = 0);
 
+/// The same for the targets among `cells`: linear indices of unobserved cells, ascending.
+std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config,
+                                        std::span<const std::uint32_t> cells);
+
 }  // namespace vantage

@@ -207,7 +207,7 @@ constexpr std::size_t kSweptFinal = 3;
 constexpr double kSweptMargin = 0.15;
 /// The most unobserved cells the last round's first sample holds: at most one in 2^sample_bits,
 /// fewer where the map holds more, so that its cost does not grow with the cells.
-constexpr std::size_t kSweptSample = std::size_t{1} << 15;
+constexpr std::size_t kSweptSample = std::size_t{1} << 13;
 
 /// The candidates among `among` whose scores lie within `margin` of the best of them, the best
 /// `keep` of those (ties to the lower index), in descending order of score.
@@ -267,9 +267,8 @@ Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates
   const Views finalists = views.subset(final_round);
   std::vector<double> factor;
   for (const std::size_t c : final_round) factor.push_back(travel_factor(config, candidates[c]));
-  const detail::Race race =
-      detail::race_candidates(map, finalists.frusta, finalists.first, factor, gain,
-                              sample_bits_for(map, config.sample_bits, kSweptSample));
+  const detail::Race race = detail::race_candidates(map, finalists.frusta, finalists.first, factor,
+                                                    gain, sample_bits_for(map, 0, kSweptSample));
   std::vector<double> ranked(candidates.size(), -std::numeric_limits<double>::infinity());
   for (std::size_t k = 0; k < final_round.size(); ++k) {
     const std::size_t c = final_round[k];

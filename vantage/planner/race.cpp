@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <utility>
 
+#include "vantage/gain/exact.hpp"
 #include "vantage/gain/view_cells.hpp"
 #include "vantage/planner/choose.hpp"
 
@@ -53,19 +54,30 @@ std::pair<double, double> difference(const Targets& a, double fa, const Targets&
   return {sum, sq};
 }
 
+/// Two lists of targets in one, ascending by index (they hold no index in common).
+Targets united(const Targets& a, const Targets& b) {
+  Targets out(a.size() + b.size());
+  std::merge(a.begin(), a.end(), b.begin(), b.end(), out.begin(),
+             [](const auto& x, const auto& y) { return x.first < y.first; });
+  return out;
+}
+
 }  // namespace
 
 Race race_candidates(const GainMap& map, std::span<const Frustum> frusta,
                      std::span<const std::size_t> first, std::span<const double> factor,
                      const GainConfig& config, int start_bits) {
   constexpr double kStandardErrors = 3.0;
-  constexpr int kStep = 2;  // each sample four times the one before
   const std::size_t n = first.size() - 1;
   std::vector<std::size_t> alive(n);
   for (std::size_t k = 0; k < n; ++k) alive[k] = k;
   Race race;
   race.scores.assign(n, 0.0);
-  for (int bits = std::max(0, start_bits);; bits = std::max(0, bits - kStep)) {
+  std::vector<Targets> targets(n);  // per finalist, on the sample so far
+  // NOTE: each sample doubles the last and holds it: only the new cells are cast.
+  const std::vector<std::vector<std::uint32_t>> levels =
+      unobserved_by_sample(map, std::max(0, start_bits));
+  for (int bits = std::max(0, start_bits);; --bits) {
     std::vector<Frustum> views;
     std::vector<std::size_t> starts;
     for (const std::size_t k : alive) {
@@ -74,14 +86,15 @@ Race race_candidates(const GainMap& map, std::span<const Frustum> frusta,
                    frusta.begin() + static_cast<std::ptrdiff_t>(first[k + 1]));
     }
     starts.push_back(views.size());
-    const std::vector<ViewCells> lists = exact_view_cells(map, views, config, bits);
+    const std::vector<ViewCells> lists =
+        exact_view_cells(map, views, config, levels[static_cast<std::size_t>(bits)]);
     const double rate = std::ldexp(1.0, bits);  // Horvitz-Thompson
-    std::vector<Targets> targets;
     std::vector<double> scores;
     for (std::size_t a = 0; a < alive.size(); ++a) {
-      targets.push_back(merged(std::span(lists).subspan(starts[a], starts[a + 1] - starts[a])));
+      Targets& mine = targets[alive[a]];
+      mine = united(mine, merged(std::span(lists).subspan(starts[a], starts[a + 1] - starts[a])));
       double sum = 0.0;
-      for (const auto& [cell, seen] : targets.back()) sum += seen;
+      for (const auto& [cell, seen] : mine) sum += seen;
       scores.push_back(rate * factor[alive[a]] * sum);
       race.scores[alive[a]] = scores.back();
     }
@@ -97,8 +110,8 @@ Race race_candidates(const GainMap& map, std::span<const Frustum> frusta,
     std::vector<std::size_t> next;
     for (std::size_t a = 0; a < alive.size(); ++a) {
       if (a != lead) {
-        const auto [sum, sq] =
-            difference(targets[lead], factor[alive[lead]], targets[a], factor[alive[a]]);
+        const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]],
+                                          targets[alive[a]], factor[alive[a]]);
         const double gap = rate * sum, error = std::sqrt(rate * (rate - 1.0) * sq);
         if (gap > kStandardErrors * error && gap > 0.0) continue;
       }
