@@ -7,8 +7,10 @@
 // decision").
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <memory>
@@ -24,6 +26,7 @@
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/swept.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/choose.hpp"
@@ -259,13 +262,17 @@ DecisionState& fr079() {
 /// 8x the cells, for the scaling table), search (0 exhaustive exact, 3 pruned, 4 sampled at its
 /// default rate, 5 swept at its defaults), threads. `choice_of_best`: the chosen candidate's
 /// exact score over the best exact score (1 when the choice is the exhaustive search's).
+DecisionState& scale_case(std::int64_t which) {
+  return which <= 2   ? table_top(4, which == 0 ? 1 : (which == 1 ? 3 : 6))
+         : which == 3 ? sphere_state(200)
+         : which == 4 ? sphere_state(1000)
+         : which == 6 ? table_top(4, 1, 2)
+                      : fr079();
+}
+
 void BM_DecisionAtScale(benchmark::State& bench) {
   const auto which = bench.range(0);
-  DecisionState& s = which <= 2   ? table_top(4, which == 0 ? 1 : (which == 1 ? 3 : 6))
-                     : which == 3 ? sphere_state(200)
-                     : which == 4 ? sphere_state(1000)
-                     : which == 6 ? table_top(4, 1, 2)
-                                  : fr079();
+  DecisionState& s = scale_case(which);
   PlannerConfig config;
   config.method = which == 5 ? PlannerMethod::kLatombe : PlannerMethod::kSurvival;
   config.objective = GainObjective::kCells;
@@ -314,6 +321,48 @@ BENCHMARK(BM_DecisionAtScale)
     ->ArgsProduct({{0, 1, 2, 5}, {0}, {2}})
     ->ArgNames({"case", "search", "threads"})
     ->Iterations(1)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
+/// The swept search's estimate alone (its first round at 32 rays across, its second at 64) on
+/// every candidate of BM_DecisionAtScale's case, the survival reading, 2 threads: `s_per_view` is
+/// the wall time over the views [s]; `best_rank` (the ring and the 200-view sphere) the place of
+/// the exact best candidate in the estimate's order, 0 first, and `best_of_lead` its estimate over
+/// the leader's (docs/decision.md, "The swept search", item 2).
+void BM_SweptEstimate(benchmark::State& bench) {
+  const auto which = bench.range(0);
+  DecisionState& s = scale_case(which);
+  std::vector<Frustum> views;
+  for (const Candidate& c : s.candidates) views.push_back(c.view);
+  const GainMap map(s.grid, 2);
+  SweptConfig config;
+  config.rays_across = static_cast<int>(bench.range(1));
+  config.alpha = kSurvivalAlpha;
+  config.num_threads = 2;
+  std::vector<double> estimate;
+  for (auto _ : bench) estimate = swept_view_counts(map, views, CountRule::kSurvivalCells, config);
+  bench.counters["views"] = static_cast<double>(views.size());
+  bench.counters["s_per_view"] = benchmark::Counter(
+      static_cast<double>(views.size()),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  if (which > 3) return;
+  GainConfig gain;
+  gain.method = GainMethod::kSurvival;
+  gain.alpha = kSurvivalAlpha;
+  const ClassBlocks blocks = summarize_classes(map, views);
+  std::vector<double> exact;
+  for (const ViewGain& g : count_view_gains(map, &blocks, views, CountRule::kSurvivalCells, gain)) {
+    exact.push_back(g.cells);
+  }
+  const std::size_t best = choose_best(exact);
+  const double lead = *std::max_element(estimate.begin(), estimate.end());
+  bench.counters["best_rank"] = static_cast<double>(std::count_if(
+      estimate.begin(), estimate.end(), [&](double e) { return e > estimate[best]; }));
+  bench.counters["best_of_lead"] = estimate[best] / lead;
+}
+BENCHMARK(BM_SweptEstimate)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {32, 64}})
+    ->ArgNames({"case", "rays"})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

@@ -270,8 +270,8 @@ void bind_plan(py::module_& m) {
            "[1/m]; greedy_reference: also predict every candidate's greedy gain; objective: "
            "'bits' or 'cells' (default: the method's own); search: 'exhaustive', 'pruned', "
            "'screened', 'sampled' or 'swept' (docs/decision.md); sample: the sampled search's "
-           "rate, one "
-           "unobserved cell in `sample`; horizon, travel_weight: plan that many views ahead and "
+           "rate, one unobserved cell in `sample`; horizon, travel_weight: plan that many views "
+           "ahead and "
            "tour them (docs/decision.md, 'Planning a sequence') [views, 1/m].")
       .def_property_readonly(
           "method", [](const PlannerConfig& c) { return std::string(to_string(c.method)); },

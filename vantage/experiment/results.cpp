@@ -33,6 +33,8 @@ json config_json(const ExplorationConfig& config) {
   const GainConfig& gain = config.planner.gain;
   const MapperConfig& mapper = config.mapper;
   const perception::RegistrationConfig& reg = mapper.registration;
+  // NOTE: what the decision plans: --method sequence's defaults where it was not told.
+  const SequenceConfig sequence = sequence_of(config.planner);
   return {
       {"method", to_string(config.planner.method)},
       {"alpha", config.auto_alpha ? json("auto") : json(gain.alpha)},
@@ -53,12 +55,11 @@ json config_json(const ExplorationConfig& config) {
                           ? "the sensor's straight-line path between views [m]"
                           : "the walk around the table: the arc between bearings at the ring's "
                             "radius plus the change in distance from its centre [m]"},
-      // NOTE: what the decision plans: --method sequence's defaults where it was not told.
       {"sequence",
-       {{"horizon", sequence_of(config.planner).horizon},
-        {"travel_weight_per_m", sequence_of(config.planner).travel_weight},
-        {"shortlist", config.planner.sequence.shortlist},
-        {"active", sequence_of(config.planner).active()}}},
+       {{"horizon", sequence.horizon},
+        {"travel_weight_per_m", sequence.travel_weight},
+        {"shortlist", sequence.shortlist},
+        {"active", sequence.active()}}},
       {"scans", config.scans},
       {"min_gain", config.min_gain},
       {"revisit", config.revisit},

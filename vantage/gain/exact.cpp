@@ -141,50 +141,53 @@ bool in_cell_sample(std::uint64_t i, int bits) {
   return bits <= 0 || (mix64(i) >> (64 - bits)) == 0;
 }
 
-std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits) {
-  std::vector<std::uint32_t> sample;
+namespace {
+
+/// Calls `f(i)` for every unobserved cell of the snapshot, in ascending linear index.
+template <typename F>
+void for_each_unobserved(const GainMap& map, F&& f) {
   with_codes(map, [&](const auto* codes) {
     std::vector<bool> unobserved;
     for (const GainMap::Value& v : map.values()) {
       unobserved.push_back(v.state == CellState::kUnobserved);
     }
     for (std::size_t i = 0; i < map.size(); ++i) {
-      if (unobserved[codes[i]] && in_cell_sample(i, bits)) {
-        sample.push_back(static_cast<std::uint32_t>(i));
-      }
+      if (unobserved[codes[i]]) f(i);
     }
+  });
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits) {
+  std::vector<std::uint32_t> sample;
+  for_each_unobserved(map, [&](std::size_t i) {
+    if (in_cell_sample(i, bits)) sample.push_back(static_cast<std::uint32_t>(i));
   });
   return sample;
 }
 
-std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const GainMap& map, int top) {
-  top = std::clamp(top, 0, 63);
-  std::vector<std::vector<std::uint32_t>> lists(static_cast<std::size_t>(top) + 1);
-  with_codes(map, [&](const auto* codes) {
-    std::vector<bool> unobserved;
-    for (const GainMap::Value& v : map.values()) {
-      unobserved.push_back(v.state == CellState::kUnobserved);
-    }
-    for (std::size_t i = 0; i < map.size(); ++i) {
-      if (!unobserved[codes[i]]) continue;
-      // NOTE: in the sample of b bits exactly when the hash's top b bits are zero.
-      const int zeros = std::countl_zero(mix64(i));
-      lists[static_cast<std::size_t>(std::min(zeros, top))].push_back(
-          static_cast<std::uint32_t>(i));
-    }
-  });
-  return lists;
-}
-
-int sample_bits_for(const GainMap& map, int bits, std::size_t max_size) {
+std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const GainMap& map,
+                                                             std::size_t max_size) {
+  constexpr int kTop = 63;
+  std::vector<std::vector<std::uint32_t>> lists(kTop + 1);
   std::size_t unobserved = 0;
-  with_codes(map, [&](const auto* codes) {
-    std::vector<std::size_t> is;
-    for (const GainMap::Value& v : map.values()) is.push_back(v.state == CellState::kUnobserved);
-    for (std::size_t i = 0; i < map.size(); ++i) unobserved += is[codes[i]];
+  for_each_unobserved(map, [&](std::size_t i) {
+    // NOTE: in the sample of b bits exactly when the hash's top b bits are zero.
+    const int zeros = std::min(std::countl_zero(mix64(i)), kTop);
+    lists[static_cast<std::size_t>(zeros)].push_back(static_cast<std::uint32_t>(i));
+    ++unobserved;
   });
-  while (bits < 63 && (unobserved >> bits) > max_size) ++bits;
-  return bits;
+  int bits = 0;
+  while (bits < kTop && (unobserved >> bits) > max_size) ++bits;
+  // The smallest sample's list holds every cell of it: the lists past it folded in, in order.
+  std::vector<std::uint32_t>& smallest = lists[static_cast<std::size_t>(bits)];
+  for (std::size_t k = static_cast<std::size_t>(bits) + 1; k < lists.size(); ++k) {
+    smallest.insert(smallest.end(), lists[k].begin(), lists[k].end());
+  }
+  std::sort(smallest.begin(), smallest.end());
+  lists.resize(static_cast<std::size_t>(bits) + 1);
+  return lists;
 }
 
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,

@@ -61,7 +61,6 @@ double ray_credit(const GridSpec& spec, const States& states, const Eigen::Vecto
                                     static_cast<std::ptrdiff_t>(spec.dims.x()) * spec.dims.y()};
   std::ptrdiff_t linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
   double v = 1.0, credit = 0.0, t = s_in;
-  const double r0_cube = r_min * r_min * r_min;
   while (t < s_out) {
     const int a =
         t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
@@ -71,7 +70,7 @@ double ray_credit(const GridSpec& spec, const States& states, const Eigen::Vecto
     if (state == CellState::kUnobserved) {
       if (t_leave > r_min) {
         const double lo = std::max(t, r_min);
-        credit += v * (t_leave * t_leave * t_leave - std::max(lo * lo * lo, r0_cube));
+        credit += v * (t_leave * t_leave * t_leave - lo * lo * lo);
       }
       v *= alpha;
       if (v < epsilon) break;

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 
 #include "vantage/gain/detail/target_predictors.hpp"
@@ -50,7 +51,8 @@ void add_target(const GainMap& map, std::span<const Frustum> views,
 template <typename Predictor>
 std::vector<ViewCells> view_cells(const GainMap& map, std::span<const Frustum> views,
                                   const Predictor& predict,
-                                  const std::span<const std::uint32_t>* sample, int num_threads) {
+                                  std::optional<std::span<const std::uint32_t>> sample,
+                                  int num_threads) {
   const GridSpec& spec = map.spec();
   std::vector<ViewCells> out(views.size());
   const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
@@ -62,7 +64,7 @@ std::vector<ViewCells> view_cells(const GainMap& map, std::span<const Frustum> v
       const CellBox box = detail::boxes_under(spec, views, members, boxes);
       if (box.empty()) return;
       // NOTE: ascending linear index either way, so every list comes out sorted.
-      if (sample != nullptr) {
+      if (sample) {
         for (const std::uint32_t linear : *sample) {
           const Index3 cell = spec.unravel(linear);
           if ((cell.array() < box.lo.array()).any() || (cell.array() > box.hi.array()).any()) {
@@ -99,7 +101,7 @@ namespace {
 
 std::vector<ViewCells> cells_of(const GainMap& map, std::span<const Frustum> views,
                                 const GainConfig& config,
-                                const std::span<const std::uint32_t>* sample) {
+                                std::optional<std::span<const std::uint32_t>> sample) {
   config.validate();
   const TargetRay ray = method_traits(config.method).ray;
   if (ray != TargetRay::kSurvival && ray != TargetRay::kUnblocked) {
@@ -121,16 +123,15 @@ std::vector<ViewCells> cells_of(const GainMap& map, std::span<const Frustum> vie
 std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
                                         const GainConfig& config, int sample_bits) {
   // NOTE: a sample is listed once and read by every view; without one, each view walks its box.
-  if (sample_bits <= 0) return cells_of(map, views, config, nullptr);
+  if (sample_bits <= 0) return cells_of(map, views, config, std::nullopt);
   const std::vector<std::uint32_t> sample = unobserved_sample(map, sample_bits);
-  const std::span<const std::uint32_t> cells(sample);
-  return cells_of(map, views, config, &cells);
+  return cells_of(map, views, config, std::span<const std::uint32_t>(sample));
 }
 
 std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
                                         const GainConfig& config,
                                         std::span<const std::uint32_t> cells) {
-  return cells_of(map, views, config, &cells);
+  return cells_of(map, views, config, cells);
 }
 
 }  // namespace vantage

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -201,12 +200,12 @@ bool sweepable(const PlannerConfig& config) { return swept_rule(config).has_valu
 
 /// The swept search's rounds (docs/decision.md, "The swept search"): how many candidates the
 /// second round casts again at twice the rays a side, and how many of those, within what part of
-/// the leader's estimate, the third ranks on the sampled search's sample.
+/// the leader's estimate, the third races on samples of their cells.
 constexpr std::size_t kSweptSecond = 12;
 constexpr std::size_t kSweptFinal = 3;
 constexpr double kSweptMargin = 0.15;
-/// The most unobserved cells the last round's first sample holds: at most one in 2^sample_bits,
-/// fewer where the map holds more, so that its cost does not grow with the cells.
+/// The most unobserved cells the race's first sample is expected to hold, whatever the map holds,
+/// so that its cost does not grow with the cells.
 constexpr std::size_t kSweptSample = std::size_t{1} << 13;
 
 /// The candidates among `among` whose scores lie within `margin` of the best of them, the best
@@ -224,8 +223,7 @@ std::vector<std::size_t> leaders(const std::vector<double>& scores,
 }
 
 /// The swept search: every candidate's swept estimate; the leaders cast again at twice the rays;
-/// the leaders of that ranked on the sampled search's sample; the chosen one's exact prediction
-/// after.
+/// the leaders of that raced (race.hpp); the chosen one's exact prediction after.
 Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates,
                 const Views& views, const PlannerConfig& config,
                 std::chrono::steady_clock::time_point start) {
@@ -267,17 +265,15 @@ Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates
   const Views finalists = views.subset(final_round);
   std::vector<double> factor;
   for (const std::size_t c : final_round) factor.push_back(travel_factor(config, candidates[c]));
-  const detail::Race race = detail::race_candidates(map, finalists.frusta, finalists.first, factor,
-                                                    gain, sample_bits_for(map, 0, kSweptSample));
-  std::vector<double> ranked(candidates.size(), -std::numeric_limits<double>::infinity());
+  const detail::Race race =
+      detail::race_candidates(map, finalists.frusta, finalists.first, factor, gain, kSweptSample);
   for (std::size_t k = 0; k < final_round.size(); ++k) {
     const std::size_t c = final_round[k];
     plan.scores[c] = race.scores[k];
     plan.gains[c].cells = race.scores[k] / factor[k];
     plan.gains[c].gain = method_traits(gain.method).counts ? plan.gains[c].cells : 0.0;
-    ranked[c] = k == race.winner ? 1.0 : 0.0;
   }
-  plan.best = choose_best(ranked);
+  plan.best = final_round[race.winner];
   plan.evaluated = final_round.size();
   plan.seconds = since(start);
   report_choice(grid, views, config, gain, plan);

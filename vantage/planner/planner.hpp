@@ -85,8 +85,8 @@ enum class DecisionSearch {
   kSampled,
   /// Every candidate ranked by the swept estimate (vantage/gain/swept.hpp: a thousand rays cast
   /// outward a view, each crediting the volume it sweeps through unobserved cells); the leaders
-  /// cast again at twice the rays a side, and the leaders of that ranked by the sampled search's
-  /// estimate; the best of them is chosen and then evaluated in full for its report.
+  /// cast again at twice the rays a side, and the leaders of that raced on samples of their cells
+  /// up to all of them (race.hpp); the winner is then evaluated in full for its report.
   /// Statistical and without a guarantee (docs/decision.md), for decisions in milliseconds.
   /// Survival (by cells), greedy and Latombe; the others search exhaustively.
   kSwept,

@@ -66,7 +66,7 @@ Targets united(const Targets& a, const Targets& b) {
 
 Race race_candidates(const GainMap& map, std::span<const Frustum> frusta,
                      std::span<const std::size_t> first, std::span<const double> factor,
-                     const GainConfig& config, int start_bits) {
+                     const GainConfig& config, std::size_t max_sample) {
   constexpr double kStandardErrors = 3.0;
   const std::size_t n = first.size() - 1;
   std::vector<std::size_t> alive(n);
@@ -75,9 +75,8 @@ Race race_candidates(const GainMap& map, std::span<const Frustum> frusta,
   race.scores.assign(n, 0.0);
   std::vector<Targets> targets(n);  // per finalist, on the sample so far
   // NOTE: each sample doubles the last and holds it: only the new cells are cast.
-  const std::vector<std::vector<std::uint32_t>> levels =
-      unobserved_by_sample(map, std::max(0, start_bits));
-  for (int bits = std::max(0, start_bits);; --bits) {
+  const std::vector<std::vector<std::uint32_t>> levels = unobserved_by_sample(map, max_sample);
+  for (int bits = static_cast<int>(levels.size()) - 1;; --bits) {
     std::vector<Frustum> views;
     std::vector<std::size_t> starts;
     for (const std::size_t k : alive) {

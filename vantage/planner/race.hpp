@@ -26,10 +26,11 @@ struct Race {
 };
 
 /// Races the finalists whose views are `frusta[first[k] .. first[k + 1])`, each scored by the sum
-/// of its views' v_M under `config.method` (survival or greedy) times `factor[k]`, from the sample
-/// of `start_bits` bits. Deterministic; the same for any thread count.
+/// of its views' v_M under `config.method` (survival or greedy) times `factor[k]`, from the
+/// smallest sample expected to hold at most `max_sample` unobserved cells (unobserved_by_sample).
+/// Deterministic; the same for any thread count.
 Race race_candidates(const GainMap& map, std::span<const Frustum> frusta,
                      std::span<const std::size_t> first, std::span<const double> factor,
-                     const GainConfig& config, int start_bits);
+                     const GainConfig& config, std::size_t max_sample);
 
 }  // namespace vantage::detail
