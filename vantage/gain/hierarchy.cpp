@@ -21,19 +21,6 @@ namespace {
 constexpr int kShift = ClassBlocks::kShift;
 constexpr int kBlock = ClassBlocks::kBlock;
 
-/// The kHas* bit of a class.
-std::uint8_t class_bit(CellState state) {
-  switch (state) {
-    case CellState::kUnobserved:
-      return ClassBlocks::kHasUnobserved;
-    case CellState::kFree:
-      return ClassBlocks::kHasFree;
-    case CellState::kOccupied:
-      return ClassBlocks::kHasOccupied;
-  }
-  return 0;
-}
-
 /// A cell's class bit, read from the snapshot's codes of width `Code`.
 template <typename Code>
 struct ClassOf {

@@ -23,7 +23,9 @@ struct ClassBlocks {
   static constexpr int kShift = 3;
   static constexpr int kBlock = 1 << kShift;  ///< block edge [cells]
   /// Bits of `classes`: the block holds a cell of that class.
-  static constexpr std::uint8_t kHasUnobserved = 1, kHasFree = 2, kHasOccupied = 4;
+  static constexpr std::uint8_t kHasUnobserved = class_bit(CellState::kUnobserved),
+                                kHasFree = class_bit(CellState::kFree),
+                                kHasOccupied = class_bit(CellState::kOccupied);
 
   /// Coarse blocks of kCoarse^3 cells (kCoarse / kBlock blocks a side), for long jumps.
   static constexpr int kCoarseShift = 4;
@@ -97,9 +99,10 @@ enum class BoundKind {
 };
 
 /// An upper bound on each view's sum, from the blocks its frustum may touch: their unobserved
-/// cells (reachable ones, but for kEntropy and kAllCells), each weighted for kSurvivalCells by alpha^n with n a
-/// lower bound on the unobserved cells before it on any ray from the view's origin (its depth in
-/// unobserved space on the origin's side). The views must be among those `blocks` was made for.
+/// cells (reachable ones, but for kEntropy and kAllCells), each weighted for kSurvivalCells by
+/// alpha^n with n a lower bound on the unobserved cells before it on any ray from the view's origin
+/// (its depth in unobserved space on the origin's side). The views must be among those `blocks` was
+/// made for.
 std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec& spec,
                                       const GainMap& map, std::span<const Frustum> views,
                                       BoundKind kind, double alpha);

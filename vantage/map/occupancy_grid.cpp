@@ -49,6 +49,7 @@ OccupancyGrid::OccupancyGrid(const GridSpec& spec, const OccupancyParams& params
   occupied_min_ = static_cast<float>(logit(kOccupiedMinProbability));
   try {
     log_odds_.assign(spec_.num_cells(), 0.0f);
+    census_ = BlockCensus(spec_.dims);
   } catch (const std::bad_alloc&) {
     throw std::length_error(cat("grid of ", spec_.num_cells(), " cells (",
                                 spec_.num_cells() * sizeof(float) >> 20,
@@ -61,22 +62,17 @@ void OccupancyGrid::set_probability(std::size_t i, double p) {
   set_log_odds(i, static_cast<float>(logit(p)));
 }
 
-void OccupancyGrid::reset() { std::fill(log_odds_.begin(), log_odds_.end(), 0.0f); }
+void OccupancyGrid::reset() {
+  std::fill(log_odds_.begin(), log_odds_.end(), 0.0f);
+  census_.reset();
+}
 
 CellCounts OccupancyGrid::counts() const {
   CellCounts counts;
-  for (const float l : log_odds_) {
-    switch (state_of(l)) {
-      case CellState::kUnobserved:
-        ++counts.unobserved;
-        break;
-      case CellState::kFree:
-        ++counts.free;
-        break;
-      case CellState::kOccupied:
-        ++counts.occupied;
-        break;
-    }
+  for (std::size_t b = 0; b < census_.size(); ++b) {
+    counts.unobserved += static_cast<std::size_t>(census_.count(b, CellState::kUnobserved));
+    counts.free += static_cast<std::size_t>(census_.count(b, CellState::kFree));
+    counts.occupied += static_cast<std::size_t>(census_.count(b, CellState::kOccupied));
   }
   return counts;
 }

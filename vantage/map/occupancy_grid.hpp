@@ -9,6 +9,8 @@
 #include <span>
 #include <vector>
 
+#include "vantage/map/block_census.hpp"
+#include "vantage/map/cell_state.hpp"
 #include "vantage/map/grid_spec.hpp"
 
 namespace vantage {
@@ -29,19 +31,6 @@ struct OccupancyParams {
   /// p_max.
   void validate() const;
 };
-
-/// The three classes of docs/model.md: unobserved 0.4 < p < 0.6, free p <= 0.4, occupied p >= 0.6.
-enum class CellState : std::uint8_t { kUnobserved = 0, kFree = 1, kOccupied = 2 };
-
-inline constexpr double kFreeMaxProbability = 0.4;      ///< p <= this is free
-inline constexpr double kOccupiedMinProbability = 0.6;  ///< p >= this is occupied
-
-/// Class of a probability by docs/model.md's thresholds.
-inline CellState classify(double p) {
-  if (p <= kFreeMaxProbability) return CellState::kFree;
-  if (p >= kOccupiedMinProbability) return CellState::kOccupied;
-  return CellState::kUnobserved;
-}
 
 /// How many cells are in each class.
 struct CellCounts {
@@ -76,24 +65,34 @@ class OccupancyGrid {
     return CellState::kUnobserved;
   }
 
-  void hit(std::size_t i) { log_odds_[i] = clamp(log_odds_[i] + hit_); }
-  void miss(std::size_t i) { log_odds_[i] = clamp(log_odds_[i] + miss_); }
-  void set_log_odds(std::size_t i, float l) { log_odds_[i] = clamp(l); }
+  // NOTE: writes are not thread-safe, not even to different cells: they keep the census.
+  void hit(std::size_t i) { store(i, clamp(log_odds_[i] + hit_)); }
+  void miss(std::size_t i) { store(i, clamp(log_odds_[i] + miss_)); }
+  void set_log_odds(std::size_t i, float l) { store(i, clamp(l)); }
   void set_probability(std::size_t i, double p);
   /// Every cell back to unknown.
   void reset();
 
   std::span<const float> log_odds() const { return log_odds_; }
+  /// How many cells are in each class, from the census.
   CellCounts counts() const;
+  /// Per block of cells, its cells of each class, kept as the cells change.
+  const BlockCensus& census() const { return census_; }
 
  private:
   float clamp(float l) const { return l < min_ ? min_ : (l > max_ ? max_ : l); }
+  void store(std::size_t i, float l) {
+    const CellState from = state_of(log_odds_[i]), to = state_of(l);
+    log_odds_[i] = l;
+    if (from != to) census_.move(i, from, to);
+  }
 
   GridSpec spec_;
   OccupancyParams params_;
   float hit_, miss_, min_, max_;
   float free_max_, occupied_min_;
   std::vector<float> log_odds_;
+  BlockCensus census_;
 };
 
 }  // namespace vantage

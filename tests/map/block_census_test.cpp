@@ -1,0 +1,78 @@
+// The census the grid keeps (vantage/map/block_census.hpp) against a count of every block's
+// cells after random updates of every kind, on a grid whose sides are not multiples of a block.
+
+#include "vantage/map/block_census.hpp"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <random>
+
+#include "vantage/map/occupancy_grid.hpp"
+
+namespace vantage {
+namespace {
+
+/// Every block's cells of each class, counted cell by cell.
+std::vector<std::array<int, 3>> counted(const OccupancyGrid& grid) {
+  const BlockCensus& census = grid.census();
+  std::vector<std::array<int, 3>> counts(census.size(), {0, 0, 0});
+  const GridSpec& spec = grid.spec();
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    ++counts[census.block_of(spec.unravel(i))][static_cast<std::size_t>(grid.state(i))];
+  }
+  return counts;
+}
+
+void expect_census(const OccupancyGrid& grid) {
+  const std::vector<std::array<int, 3>> counts = counted(grid);
+  const BlockCensus& census = grid.census();
+  for (std::size_t b = 0; b < census.size(); ++b) {
+    for (const CellState s : {CellState::kUnobserved, CellState::kFree, CellState::kOccupied}) {
+      ASSERT_EQ(census.count(b, s), counts[b][static_cast<std::size_t>(s)]) << "block " << b;
+    }
+    std::uint8_t classes = 0;
+    for (std::size_t s = 0; s < 3; ++s) {
+      if (counts[b][s] != 0) classes |= class_bit(static_cast<CellState>(s));
+    }
+    ASSERT_EQ(census.classes(b), classes) << "block " << b;
+  }
+}
+
+TEST(BlockCensus, KeepsEveryBlocksCountsThroughRandomUpdates) {
+  OccupancyGrid grid(GridSpec::centered({0, 0, 0}, 0.1, {13, 9, 6}));
+  EXPECT_EQ(grid.census().dims(), Index3(4, 3, 2));
+  expect_census(grid);
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<std::size_t> cell(0, grid.size() - 1);
+  std::uniform_int_distribution<int> kind(0, 3);
+  std::uniform_real_distribution<double> p(0.05, 0.95);
+  for (int k = 0; k < 4000; ++k) {
+    const std::size_t i = cell(rng);
+    switch (kind(rng)) {
+      case 0:
+        grid.hit(i);
+        break;
+      case 1:
+        grid.miss(i);
+        break;
+      case 2:
+        grid.set_probability(i, p(rng));
+        break;
+      default:
+        grid.set_log_odds(i, 0.0f);
+        break;
+    }
+  }
+  expect_census(grid);
+  const CellCounts c = grid.counts();
+  EXPECT_EQ(c.unobserved + c.free + c.occupied, grid.size());
+  EXPECT_GT(c.free, 0u);
+  EXPECT_GT(c.occupied, 0u);
+  grid.reset();
+  expect_census(grid);
+  EXPECT_EQ(grid.counts().unobserved, grid.size());
+}
+
+}  // namespace
+}  // namespace vantage

@@ -1,0 +1,62 @@
+#pragma once
+/// @file
+/// How many cells of each class every block of 4^3 cells holds (docs/decision.md, "The map's
+/// census"), kept by OccupancyGrid as its cells change class: what a ray needs to cross whole
+/// blocks of free space, read without a pass over the grid.
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "vantage/map/cell_state.hpp"
+#include "vantage/map/grid_spec.hpp"
+
+namespace vantage {
+
+/// Per block of kBlock^3 cells, its cells of each class (a block cut by the grid's far faces
+/// holds fewer cells).
+class BlockCensus {
+ public:
+  static constexpr int kShift = 2;
+  static constexpr int kBlock = 1 << kShift;  ///< block edge [cells]
+
+  BlockCensus() = default;
+  /// The census of a grid of `cell_dims` cells, all unobserved.
+  explicit BlockCensus(const Index3& cell_dims);
+
+  /// Blocks along each axis.
+  const Index3& dims() const { return dims_; }
+  std::size_t size() const { return counts_.size(); }
+  /// Index of the block that holds `cell`.
+  std::size_t block_of(const Index3& cell) const {
+    return static_cast<std::size_t>(cell.x() >> kShift) +
+           static_cast<std::size_t>(dims_.x()) *
+               (static_cast<std::size_t>(cell.y() >> kShift) +
+                static_cast<std::size_t>(dims_.y()) * static_cast<std::size_t>(cell.z() >> kShift));
+  }
+  /// Cells of `state` in block `block` [cells].
+  int count(std::size_t block, CellState state) const {
+    return counts_[block][static_cast<std::size_t>(state)];
+  }
+  /// The classes block `block` holds, as class_bit()s.
+  std::uint8_t classes(std::size_t block) const {
+    const std::array<std::uint8_t, 3>& c = counts_[block];
+    return static_cast<std::uint8_t>((c[0] != 0 ? 1 : 0) | (c[1] != 0 ? 2 : 0) |
+                                     (c[2] != 0 ? 4 : 0));
+  }
+
+  /// The cell of linear index `cell` went from class `from` to class `to` (not thread-safe).
+  void move(std::size_t cell, CellState from, CellState to);
+  /// Every cell unobserved again.
+  void reset();
+  /// Bytes it holds.
+  std::size_t bytes() const { return counts_.size() * sizeof(counts_[0]); }
+
+ private:
+  Index3 cell_dims_ = Index3::Zero();
+  Index3 dims_ = Index3::Zero();
+  std::vector<std::array<std::uint8_t, 3>> counts_;  ///< per block: unobserved, free, occupied
+};
+
+}  // namespace vantage
