@@ -8,6 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "vantage/gain/free_space.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/hash.hpp"
 #include "vantage/util/parallel.hpp"
@@ -33,9 +34,9 @@ struct StateOf {
 /// ray ending in an occupied cell. Cells outside the grid are free. Amanatides-Woo in the ray's
 /// distance.
 template <typename States>
-double ray_credit(const GridSpec& spec, const States& states, const Eigen::Vector3d& o,
-                  const Eigen::Vector3d& d, double r_min, double r_max, double alpha,
-                  double epsilon) {
+double ray_credit(const GridSpec& spec, const States& states, const FreeSpace& free,
+                  const Eigen::Vector3d& o, const Eigen::Vector3d& d, double r_min, double r_max,
+                  double alpha, double epsilon) {
   double s_in = 0.0, s_out = r_max;
   if (!clip_to_grid(spec, o, d, s_in, s_out) || !(s_in < s_out)) return 0.0;
   const double h = spec.resolution;
@@ -44,38 +45,65 @@ double ray_credit(const GridSpec& spec, const States& states, const Eigen::Vecto
   int step[3];
   double t_next[3], t_delta[3];
   for (int a = 0; a < 3; ++a) {
-    if (d[a] > 0.0) {
-      step[a] = 1;
-      t_delta[a] = h / d[a];
-      t_next[a] = (spec.origin[a] + (cell[a] + 1) * h - o[a]) / d[a];
-    } else if (d[a] < 0.0) {
-      step[a] = -1;
-      t_delta[a] = -h / d[a];
-      t_next[a] = (spec.origin[a] + cell[a] * h - o[a]) / d[a];
-    } else {
-      step[a] = 0;
-      t_delta[a] = t_next[a] = std::numeric_limits<double>::infinity();
-    }
+    step[a] = d[a] > 0.0 ? 1 : (d[a] < 0.0 ? -1 : 0);
+    t_delta[a] = step[a] == 0 ? std::numeric_limits<double>::infinity() : h / std::abs(d[a]);
   }
+  // The next boundary on each axis from the cell the ray is in.
+  const auto boundaries = [&] {
+    for (int a = 0; a < 3; ++a) {
+      t_next[a] = step[a] == 0
+                      ? std::numeric_limits<double>::infinity()
+                      : (spec.origin[a] + (cell[a] + (step[a] > 0 ? 1 : 0)) * h - o[a]) / d[a];
+    }
+  };
+  boundaries();
   const std::ptrdiff_t stride[3] = {1, spec.dims.x(),
                                     static_cast<std::ptrdiff_t>(spec.dims.x()) * spec.dims.y()};
   std::ptrdiff_t linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
   double v = 1.0, credit = 0.0, t = s_in;
   while (t < s_out) {
+    const CellState state = states(static_cast<std::size_t>(linear));
+    if (state == CellState::kOccupied) break;
+    if (state == CellState::kFree && !free.radius.empty()) {
+      if (const int r = free.radius_at(cell); r > 0) {
+        // Out of the free cube in one step, into the cell past the face it leaves by.
+        Index3 lo, hi;
+        free.cube(cell, r, spec.dims, lo, hi);
+        int exit = 0;
+        double t_exit = std::numeric_limits<double>::infinity();
+        for (int a = 0; a < 3; ++a) {
+          if (step[a] == 0) continue;
+          const double face = spec.origin[a] + (step[a] > 0 ? hi[a] + 1 : lo[a]) * h;
+          const double ta = (face - o[a]) / d[a];
+          if (ta < t_exit) {
+            t_exit = ta;
+            exit = a;
+          }
+        }
+        if (!(t_exit < s_out)) break;
+        for (int a = 0; a < 3; ++a) {
+          cell[a] = a == exit ? (step[a] > 0 ? hi[a] + 1 : lo[a] - 1)
+                              : std::clamp(static_cast<int>(std::floor(
+                                               (o[a] + t_exit * d[a] - spec.origin[a]) / h)),
+                                           lo[a], hi[a]);
+        }
+        if (!spec.contains(cell)) break;
+        linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
+        boundaries();
+        t = std::max(t, t_exit);
+        continue;
+      }
+    }
     const int a =
         t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
     const double t_leave = std::min(t_next[a], s_out);
-    const CellState state = states(static_cast<std::size_t>(linear));
-    if (state == CellState::kOccupied) break;
     if (state == CellState::kUnobserved) {
-      if (t_leave > r_min) {
-        const double lo = std::max(t, r_min);
-        credit += v * (t_leave * t_leave * t_leave - lo * lo * lo);
-      }
+      const double lo = std::max(t, r_min);
+      if (t_leave > lo) credit += v * (t_leave * t_leave * t_leave - lo * lo * lo);
       v *= alpha;
       if (v < epsilon) break;
     }
-    t = t_leave;
+    t = std::max(t, t_leave);
     cell[a] += step[a];
     if (cell[a] < 0 || cell[a] >= spec.dims[a]) break;
     linear += step[a] * stride[a];
@@ -95,8 +123,8 @@ Eigen::Vector2d jitter(int i, int j) {
 
 /// One view's estimate [cells].
 template <typename States>
-double view_credit(const GridSpec& spec, const States& states, const Frustum& view, double alpha,
-                   const SweptConfig& config) {
+double view_credit(const GridSpec& spec, const States& states, const FreeSpace& free,
+                   const Frustum& view, double alpha, const SweptConfig& config) {
   const SensorFov& fov = view.fov();
   const double tan_h = std::tan(fov.h_fov / 2), tan_v = std::tan(fov.v_fov / 2);
   const double pitch = 2.0 * std::max(tan_h, tan_v) / config.rays_across;
@@ -112,8 +140,8 @@ double view_credit(const GridSpec& spec, const States& states, const Frustum& vi
     const double norm2 = 1.0 + u * u + w * w;
     const double omega = du * dw / (norm2 * std::sqrt(norm2));
     const Eigen::Vector3d d = R * (Eigen::Vector3d(1.0, u, w) / std::sqrt(norm2));
-    return omega *
-           ray_credit(spec, states, o, d, fov.min_range, fov.max_range, alpha, config.epsilon);
+    return omega * ray_credit(spec, states, free, o, d, fov.min_range, fov.max_range, alpha,
+                              config.epsilon);
   };
   double sum = 0.0;
   for (int j = 0; j < nw; ++j) {
@@ -139,11 +167,13 @@ std::vector<double> swept_view_counts(const GainMap& map, std::span<const Frustu
     throw std::invalid_argument(cat("swept.alpha must lie in (0, 1], got ", alpha));
   }
   std::vector<double> out(views.size(), 0.0);
+  const FreeSpace none;
+  const FreeSpace& free = config.skip_free ? map.free_space() : none;
   with_codes(map, [&](const auto* codes) {
     const StateOf states(map, codes);
     run_with_threads(config.num_threads, [&] {
       tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
-        out[v] = view_credit(map.spec(), states, views[v], alpha, config);
+        out[v] = view_credit(map.spec(), states, free, views[v], alpha, config);
       });
     });
   });

@@ -25,6 +25,9 @@ struct SweptConfig {
   /// A ray stops once its visibility falls below this, as the exact evaluation's rays do.
   double epsilon = 1e-6;
   int num_threads = 0;  ///< 0 = all cores; the result does not depend on it
+  /// Rays cross the snapshot's free cubes (GainMap::free_space) in one step; false walks them
+  /// cell by cell (the reference: the same credits but for rounding).
+  bool skip_free = true;
 };
 
 /// Every view's estimated count under `rule` [cells]: the expected unobserved cells seen of the
@@ -36,7 +39,8 @@ struct SweptConfig {
 /// free); in each unobserved cell between the sensor's range limits it credits
 /// v * omega * (r1^3 - r0^3) / (3 h^3), the cells' worth of the cone's volume between the
 /// distances r0 and r1 where it enters and leaves the cell (omega: the pixel's solid angle, h:
-/// the cell's edge), and then multiplies v by alpha; an occupied cell ends it. Unbiased for the
+/// the cell's edge), and then multiplies v by alpha; an occupied cell ends it. Free cells credit
+/// nothing, and a ray crosses a cube of free blocks in one step. Unbiased for the
 /// volume integral of the per-point visibility, which the exact count samples at the cells'
 /// centres. Views run in parallel, each summed in a fixed order: the same for any thread count.
 std::vector<double> swept_view_counts(const GainMap& map, std::span<const Frustum> views,

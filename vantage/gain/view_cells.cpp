@@ -110,12 +110,16 @@ std::vector<ViewCells> cells_of(const GainMap& map, std::span<const Frustum> vie
         cat("exact_view_cells: gain.method must be survival or greedy, got ",
             to_string(config.method)));
   }
-  // NOTE: the lists keep v_M only, so the survival reading's rays skip its occupancy filter.
+  // NOTE: the lists keep v_M only, so the survival reading's rays skip its occupancy filter,
+  // and the rays cross free cubes in one step (the same v_M, bit for bit).
   if (ray == TargetRay::kSurvival) {
-    return view_cells(map, views, detail::SurvivalVisibilityPredictor{config.alpha, config.epsilon},
-                      sample, config.num_threads);
+    return view_cells(
+        map, views,
+        detail::SurvivalVisibilityPredictor{config.alpha, config.epsilon, &map.free_space()},
+        sample, config.num_threads);
   }
-  return view_cells(map, views, detail::UnblockedPredictor{}, sample, config.num_threads);
+  return view_cells(map, views, detail::UnblockedPredictor{&map.free_space()}, sample,
+                    config.num_threads);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <cstddef>
 
+#include "vantage/gain/free_space.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/model.hpp"
 #include "vantage/gain/ray_model.hpp"
@@ -37,6 +38,18 @@ struct GridCells {
     return v;
   }
 };
+
+/// Leaves the free cube around the walk's cell in one step (the cells it crosses change nothing
+/// on the rays of the survival reading and greedy); false, and no step, when the cell's block is
+/// not in one.
+inline bool cross_free(const FreeSpace& free, const GridSpec& spec, TargetWalk& walk) {
+  const int r = free.radius_at(walk.cell());
+  if (r == 0) return false;
+  Index3 lo, hi;
+  free.cube(walk.cell(), r, spec.dims, lo, hi);
+  walk.leave_box(lo, hi);
+  return true;
+}
 
 /// Gain and visibility of the target cell on its ray from `origin` under `Model`; 0 when the ray
 /// stops early (visibility below `epsilon`) before it. `Cells` is GainMap or GridCells.
@@ -96,13 +109,18 @@ TargetPrediction survival_ray_gain(const Cells& map, const SurvivalModel& model,
 /// fraction of the cost, for what keeps visibilities only (view_cells.hpp).
 template <typename Cells>
 TargetPrediction survival_visibility(const Cells& map, double alpha, const Eigen::Vector3d& origin,
-                                     const Index3& target, double epsilon) {
+                                     const Index3& target, double epsilon,
+                                     const FreeSpace* free = nullptr) {
   TargetWalk walk(map.spec(), origin, target);
   if (!walk.entered()) return {};
   CellState prev = map.value(walk.linear()).state;
   double visibility = 1.0;
   while (!walk.at_target()) {
     if (!(visibility >= epsilon && visibility > 0.0)) return {};
+    if (free != nullptr && prev == CellState::kFree && cross_free(*free, map.spec(), walk)) {
+      prev = map.value(walk.linear()).state;
+      continue;
+    }
     walk.advance();
     if (prev == CellState::kOccupied) {
       visibility = 0.0;
@@ -117,13 +135,17 @@ TargetPrediction survival_visibility(const Cells& map, double alpha, const Eigen
 /// Whether nothing occludes the target (the simple greedy gain): 1 or 0, in bits and in cells.
 /// Walks the cells TargetWalk takes, as count_view_gains does (hierarchy.hpp).
 template <typename Cells>
-TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin,
-                             const Index3& target) {
+TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin, const Index3& target,
+                             const FreeSpace* free = nullptr) {
   const GridSpec& spec = map.spec();
   TargetWalk walk(spec, origin, target);
   if (walk.entered()) {
-    for (; !walk.at_target(); walk.advance()) {
-      if (occludes(map.value(walk.linear()).state)) return {0.0, 0.0};
+    while (!walk.at_target()) {
+      const CellState state = map.value(walk.linear()).state;
+      if (occludes(state)) return {0.0, 0.0};
+      if (free == nullptr || state != CellState::kFree || !cross_free(*free, spec, walk)) {
+        walk.advance();
+      }
     }
   }
   return {1.0, 1.0};
@@ -156,19 +178,21 @@ struct SurvivalPredictor {
 struct SurvivalVisibilityPredictor {
   double alpha;
   double epsilon;
+  const FreeSpace* free = nullptr;  ///< free cubes to cross in one step, if any
   template <typename Cells>
   TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
                               const Index3& target) const {
-    return survival_visibility(map, alpha, origin, target, epsilon);
+    return survival_visibility(map, alpha, origin, target, epsilon, free);
   }
 };
 
 /// Simple greedy: whether the target's ray is unblocked.
 struct UnblockedPredictor {
+  const FreeSpace* free = nullptr;  ///< free cubes to cross in one step, if any
   template <typename Cells>
   TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
                               const Index3& target) const {
-    return greedy_gain(map, origin, target);
+    return greedy_gain(map, origin, target, free);
   }
 };
 
