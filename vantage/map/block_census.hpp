@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// How many cells of each class every block of 4^3 cells holds (docs/decision.md, "The map's
-/// census"), kept by OccupancyGrid as its cells change class: what a ray needs to cross whole
-/// blocks of free space, read without a pass over the grid.
+/// How many cells of each class every block of 4^3 cells holds (docs/decision.md, "The swept
+/// search", item 6), kept by OccupancyGrid as its cells change class: what a ray needs to cross
+/// whole blocks of free space, read without a pass over the grid.
 
 #include <array>
 #include <cstddef>
