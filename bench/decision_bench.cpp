@@ -357,12 +357,14 @@ void BM_SweptEstimate(benchmark::State& bench) {
   std::vector<Frustum> views;
   for (const Candidate& c : s.candidates) views.push_back(c.view);
   const GainMap map(s.grid, 2);
+  const ClassMap classes(s.grid);
   SweptConfig config;
   config.rays_across = static_cast<int>(bench.range(1));
   config.alpha = kSurvivalAlpha;
   config.num_threads = 2;
   std::vector<double> estimate;
-  for (auto _ : bench) estimate = swept_view_counts(map, views, CountRule::kSurvivalCells, config);
+  for (auto _ : bench)
+    estimate = swept_view_counts(classes, views, CountRule::kSurvivalCells, config);
   bench.counters["views"] = static_cast<double>(views.size());
   bench.counters["s_per_view"] = benchmark::Counter(
       static_cast<double>(views.size()),

@@ -1,6 +1,7 @@
 // The free space of a grid (vantage/gain/free_space.hpp) against a brute-force distance, and the
 // rays that cross its cubes in one step against the same rays walked cell by cell: the exact
-// lists' visibilities bit for bit, the swept estimate to rounding.
+// lists' visibilities bit for bit, the swept estimate to rounding; the grid's classes
+// (vantage/gain/class_map.hpp) against the snapshot's.
 
 #include "vantage/gain/free_space.hpp"
 
@@ -11,9 +12,12 @@
 #include <random>
 #include <vector>
 
+#include "vantage/gain/class_map.hpp"
 #include "vantage/gain/detail/target_predictors.hpp"
+#include "vantage/gain/exact.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/swept.hpp"
+#include "vantage/gain/view_cells.hpp"
 
 namespace vantage {
 namespace {
@@ -103,7 +107,7 @@ TEST(FreeSpace, RaysThatCrossFreeCubesSeeWhatCellByCellRaysSee) {
 
 TEST(FreeSpace, TheSweptEstimateCrossesCubesToRounding) {
   const OccupancyGrid grid = cluttered();
-  const GainMap map(grid, 1);
+  const ClassMap map(grid);
   std::vector<Frustum> views;
   for (int k = 0; k < 8; ++k) {
     const double yaw = 0.8 * k;
@@ -121,6 +125,39 @@ TEST(FreeSpace, TheSweptEstimateCrossesCubesToRounding) {
     for (std::size_t v = 0; v < views.size(); ++v) {
       EXPECT_GT(cells[v], 1.0);
       EXPECT_NEAR(cubes[v], cells[v], 1e-9 * cells[v]) << "view " << v;
+    }
+  }
+}
+
+TEST(ClassMap, ReadsWhatTheSnapshotReadsAndListsTheSameTargets) {
+  const OccupancyGrid grid = cluttered();
+  const GainMap snapshot(grid, 1);
+  const ClassMap classes(grid);
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    ASSERT_EQ(classes.state(i), snapshot.value(i).state) << i;
+  }
+  EXPECT_EQ(unobserved_by_sample(classes, 64), unobserved_by_sample(snapshot, 64));
+  std::vector<Frustum> views;
+  for (const Eigen::Vector3d& origin :
+       {Eigen::Vector3d(-0.6, 0.0, 0.1), Eigen::Vector3d(0.05, 0.01, 0.02)}) {
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = origin;
+    views.emplace_back(pose, SensorFov{deg2rad(57), deg2rad(43), 0.05, 1.5});
+  }
+  const std::vector<std::uint32_t> all = unobserved_by_sample(snapshot, grid.size()).front();
+  for (const GainMethod method : {GainMethod::kSurvival, GainMethod::kGreedy}) {
+    GainConfig config;
+    config.method = method;
+    config.alpha = 0.9;
+    config.num_threads = 1;
+    const std::vector<ViewCells> a = exact_view_cells(classes, views, config, all);
+    const std::vector<ViewCells> b = exact_view_cells(snapshot, views, config, all);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t v = 0; v < a.size(); ++v) {
+      EXPECT_GT(a[v].cells.size(), 50u);
+      EXPECT_EQ(a[v].cells, b[v].cells);
+      EXPECT_EQ(a[v].seen, b[v].seen);
+      EXPECT_EQ(a[v].targets, b[v].targets);
     }
   }
 }

@@ -47,7 +47,8 @@ TEST(Swept, AnUnobstructedFrustumCountsItsVolumeInCells) {
   const Frustum view = along_x({-0.9, 0.0, 0.0}, 1.6);
   const std::vector<Frustum> views{view};
   const double cells = frustum_volume(view.fov(), 0.3, 1.6) / std::pow(0.02, 3);
-  const double swept = swept_view_counts(map, views, CountRule::kGreedy, SweptConfig{})[0];
+  const double swept =
+      swept_view_counts(ClassMap(grid), views, CountRule::kGreedy, SweptConfig{})[0];
   EXPECT_NEAR(swept, cells, 0.01 * cells);
   // ... and the exact count of the cells whose centres lie inside, to the boundary's share.
   GainConfig gain;
@@ -61,7 +62,7 @@ TEST(Swept, FreeSpaceAndTheSpaceBehindAWallCountNothing) {
   const Frustum view = along_x({-0.9, 0.0, 0.0}, 1.6);
   const std::vector<Frustum> views{view};
   for (std::size_t i = 0; i < grid.size(); ++i) grid.set_probability(i, 0.12);
-  EXPECT_EQ(swept_view_counts(GainMap(grid, 1), views, CountRule::kGreedy, SweptConfig{})[0], 0.0);
+  EXPECT_EQ(swept_view_counts(ClassMap(grid), views, CountRule::kGreedy, SweptConfig{})[0], 0.0);
   // Unobserved everywhere, an occupied wall at x = 0 across the whole view: only the space
   // between the sensor's near range and the wall counts.
   grid = cube();
@@ -70,7 +71,7 @@ TEST(Swept, FreeSpaceAndTheSpaceBehindAWallCountNothing) {
     if (c.x() == 50) grid.set_probability(i, 0.97);
   }
   const double swept =
-      swept_view_counts(GainMap(grid, 1), views, CountRule::kGreedy, SweptConfig{})[0];
+      swept_view_counts(ClassMap(grid), views, CountRule::kGreedy, SweptConfig{})[0];
   EXPECT_GT(swept, 0.0);
   // Every ray stops on the wall, 0.9 m away along the axis and farther off it: at most the
   // frustum up to 0.9 m / cos of the corner's angle.
@@ -91,7 +92,7 @@ TEST(Swept, SurvivalSeesLessThanGreedyAndOneThreadDecidesAsTwo) {
   for (int k = 0; k < 6; ++k) {
     views.push_back(along_x({-0.9, -0.3 + 0.1 * k, 0.05 * k}, 2.0));
   }
-  const GainMap map(grid, 1);
+  const ClassMap map(grid);
   SweptConfig config;
   config.num_threads = 1;
   const std::vector<double> greedy = swept_view_counts(map, views, CountRule::kGreedy, config);
@@ -110,7 +111,7 @@ TEST(Swept, SurvivalSeesLessThanGreedyAndOneThreadDecidesAsTwo) {
 
 TEST(Swept, RefusesRaysAcrossOutsideItsRange) {
   const OccupancyGrid grid = cube();
-  const GainMap map(grid, 1);
+  const ClassMap map(grid);
   const std::vector<Frustum> views{along_x({-0.9, 0.0, 0.0}, 1.6)};
   SweptConfig config;
   config.rays_across = 0;

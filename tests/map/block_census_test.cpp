@@ -1,5 +1,6 @@
-// The census the grid keeps (vantage/map/block_census.hpp) against a count of every block's
-// cells after random updates of every kind, on a grid whose sides are not multiples of a block.
+// The census and the packed classes the grid keeps (vantage/map/block_census.hpp,
+// cell_classes.hpp) against a count of every block's cells and every cell's class after random
+// updates of every kind, on a grid whose sides are not multiples of a block.
 
 #include "vantage/map/block_census.hpp"
 
@@ -25,6 +26,7 @@ std::vector<std::array<int, 3>> counted(const OccupancyGrid& grid) {
 }
 
 void expect_census(const OccupancyGrid& grid) {
+  for (std::size_t i = 0; i < grid.size(); ++i) ASSERT_EQ(grid.classes()[i], grid.state(i)) << i;
   const std::vector<std::array<int, 3>> counts = counted(grid);
   const BlockCensus& census = grid.census();
   for (std::size_t b = 0; b < census.size(); ++b) {

@@ -10,6 +10,7 @@
 #include <span>
 #include <vector>
 
+#include "vantage/gain/class_map.hpp"
 #include "vantage/gain/model.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/view_gain.hpp"
@@ -37,6 +38,9 @@ std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits);
 /// b + 1 lists, list k < b holding the cells in the sample of k bits but not of k + 1, list b the
 /// sample of b bits; lists k ... b together are the sample of k bits. Each list ascending.
 std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const GainMap& map,
+                                                             std::size_t max_size);
+/// The same read from the grid's classes.
+std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const ClassMap& map,
                                                              std::size_t max_size);
 
 /// The same on the grid, which is only read.

@@ -17,18 +17,6 @@
 namespace vantage {
 namespace {
 
-/// Each cell's class, read from the snapshot's codes of width `Code`.
-template <typename Code>
-struct StateOf {
-  const Code* codes;
-  std::vector<CellState> state;  ///< per code
-
-  StateOf(const GainMap& map, const Code* c) : codes(c) {
-    for (const GainMap::Value& v : map.values()) state.push_back(v.state);
-  }
-  CellState operator()(std::size_t i) const { return state[codes[i]]; }
-};
-
 /// What one ray credits: sum over the unobserved cells it crosses inside [r_min, r_max] of
 /// v * (r1^3 - r0^3), v falling by alpha past each unobserved cell (1 for greedy's alpha), the
 /// ray ending in an occupied cell. Cells outside the grid are free. Amanatides-Woo in the ray's
@@ -156,7 +144,7 @@ double view_credit(const GridSpec& spec, const States& states, const FreeSpace& 
 
 }  // namespace
 
-std::vector<double> swept_view_counts(const GainMap& map, std::span<const Frustum> views,
+std::vector<double> swept_view_counts(const ClassMap& map, std::span<const Frustum> views,
                                       CountRule rule, const SweptConfig& config) {
   if (config.rays_across < 1 || config.rays_across > 4096) {
     throw std::invalid_argument(
@@ -169,12 +157,10 @@ std::vector<double> swept_view_counts(const GainMap& map, std::span<const Frustu
   std::vector<double> out(views.size(), 0.0);
   const FreeSpace none;
   const FreeSpace& free = config.skip_free ? map.free_space() : none;
-  with_codes(map, [&](const auto* codes) {
-    const StateOf states(map, codes);
-    run_with_threads(config.num_threads, [&] {
-      tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
-        out[v] = view_credit(map.spec(), states, free, views[v], alpha, config);
-      });
+  const auto states = [&](std::size_t i) { return map.state(i); };
+  run_with_threads(config.num_threads, [&] {
+    tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
+      out[v] = view_credit(map.spec(), states, free, views[v], alpha, config);
     });
   });
   return out;

@@ -10,8 +10,8 @@
 #include <span>
 #include <vector>
 
+#include "vantage/gain/class_map.hpp"
 #include "vantage/gain/hierarchy.hpp"
-#include "vantage/gain/snapshot.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
@@ -25,7 +25,7 @@ struct SweptConfig {
   /// A ray stops once its visibility falls below this, as the exact evaluation's rays do.
   double epsilon = 1e-6;
   int num_threads = 0;  ///< 0 = all cores; the result does not depend on it
-  /// Rays cross the snapshot's free cubes (GainMap::free_space) in one step; false walks them
+  /// Rays cross the map's free cubes (ClassMap::free_space) in one step; false walks them
   /// cell by cell (the reference: the same credits but for rounding).
   bool skip_free = true;
 };
@@ -43,7 +43,7 @@ struct SweptConfig {
 /// nothing, and a ray crosses a cube of free blocks in one step. Unbiased for the
 /// volume integral of the per-point visibility, which the exact count samples at the cells'
 /// centres. Views run in parallel, each summed in a fixed order: the same for any thread count.
-std::vector<double> swept_view_counts(const GainMap& map, std::span<const Frustum> views,
+std::vector<double> swept_view_counts(const ClassMap& map, std::span<const Frustum> views,
                                       CountRule rule, const SweptConfig& config);
 
 }  // namespace vantage

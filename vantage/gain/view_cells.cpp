@@ -19,8 +19,8 @@ namespace {
 
 /// Adds unobserved cell `cell` to the lists of the members whose frustum holds it, its
 /// visibility from `predict` evaluated once for all of them.
-template <typename Predictor>
-void add_target(const GainMap& map, std::span<const Frustum> views,
+template <typename Map, typename Predictor>
+void add_target(const Map& map, std::span<const Frustum> views,
                 std::span<const std::size_t> members, std::span<const CellBox> boxes,
                 const Eigen::Vector3d& origin, const Index3& cell, std::size_t linear,
                 const Predictor& predict, std::vector<ViewCells>& out) {
@@ -47,9 +47,10 @@ void add_target(const GainMap& map, std::span<const Frustum> views,
 }
 
 /// The lists of every view, each target's visibility from `predict` (target_predictors.hpp).
-/// With `sample`, only its cells (unobserved, ascending); else every unobserved cell.
-template <typename Predictor>
-std::vector<ViewCells> view_cells(const GainMap& map, std::span<const Frustum> views,
+/// With `sample`, only its cells (unobserved, ascending); else every unobserved cell. `Map` is
+/// GainMap or ClassMap.
+template <typename Map, typename Predictor>
+std::vector<ViewCells> view_cells(const Map& map, std::span<const Frustum> views,
                                   const Predictor& predict,
                                   std::optional<std::span<const std::uint32_t>> sample,
                                   int num_threads) {
@@ -99,7 +100,8 @@ double ViewCells::sum() const {
 
 namespace {
 
-std::vector<ViewCells> cells_of(const GainMap& map, std::span<const Frustum> views,
+template <typename Map>
+std::vector<ViewCells> cells_of(const Map& map, std::span<const Frustum> views,
                                 const GainConfig& config,
                                 std::optional<std::span<const std::uint32_t>> sample) {
   config.validate();
@@ -133,6 +135,12 @@ std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frus
 }
 
 std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config,
+                                        std::span<const std::uint32_t> cells) {
+  return cells_of(map, views, config, cells);
+}
+
+std::vector<ViewCells> exact_view_cells(const ClassMap& map, std::span<const Frustum> views,
                                         const GainConfig& config,
                                         std::span<const std::uint32_t> cells) {
   return cells_of(map, views, config, cells);

@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "vantage/gain/class_map.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/views/frustum.hpp"
@@ -39,6 +40,10 @@ std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frus
 
 /// The same for the targets among `cells`: linear indices of unobserved cells, ascending.
 std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config,
+                                        std::span<const std::uint32_t> cells);
+/// The same read from the grid's classes, without a snapshot: the same lists bit for bit.
+std::vector<ViewCells> exact_view_cells(const ClassMap& map, std::span<const Frustum> views,
                                         const GainConfig& config,
                                         std::span<const std::uint32_t> cells);
 

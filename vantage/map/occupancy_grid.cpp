@@ -50,6 +50,7 @@ OccupancyGrid::OccupancyGrid(const GridSpec& spec, const OccupancyParams& params
   try {
     log_odds_.assign(spec_.num_cells(), 0.0f);
     census_ = BlockCensus(spec_.dims);
+    classes_ = CellClasses(spec_.num_cells());
   } catch (const std::bad_alloc&) {
     throw std::length_error(cat("grid of ", spec_.num_cells(), " cells (",
                                 spec_.num_cells() * sizeof(float) >> 20,
@@ -65,6 +66,7 @@ void OccupancyGrid::set_probability(std::size_t i, double p) {
 void OccupancyGrid::reset() {
   std::fill(log_odds_.begin(), log_odds_.end(), 0.0f);
   census_.reset();
+  classes_.reset();
 }
 
 CellCounts OccupancyGrid::counts() const {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vantage/map/block_census.hpp"
+#include "vantage/map/cell_classes.hpp"
 #include "vantage/map/cell_state.hpp"
 #include "vantage/map/grid_spec.hpp"
 
@@ -65,7 +66,8 @@ class OccupancyGrid {
     return CellState::kUnobserved;
   }
 
-  // NOTE: writes are not thread-safe, not even to different cells: they keep the census.
+  // NOTE: writes are not thread-safe, not even to different cells: they keep the census and
+  // the packed classes.
   void hit(std::size_t i) { store(i, clamp(log_odds_[i] + hit_)); }
   void miss(std::size_t i) { store(i, clamp(log_odds_[i] + miss_)); }
   void set_log_odds(std::size_t i, float l) { store(i, clamp(l)); }
@@ -78,13 +80,18 @@ class OccupancyGrid {
   CellCounts counts() const;
   /// Per block of cells, its cells of each class, kept as the cells change.
   const BlockCensus& census() const { return census_; }
+  /// Every cell's class, kept as the cells change.
+  const CellClasses& classes() const { return classes_; }
 
  private:
   float clamp(float l) const { return l < min_ ? min_ : (l > max_ ? max_ : l); }
   void store(std::size_t i, float l) {
     const CellState from = state_of(log_odds_[i]), to = state_of(l);
     log_odds_[i] = l;
-    if (from != to) census_.move(i, from, to);
+    if (from != to) {
+      census_.move(i, from, to);
+      classes_.set(i, to);
+    }
   }
 
   GridSpec spec_;
@@ -93,6 +100,7 @@ class OccupancyGrid {
   float free_max_, occupied_min_;
   std::vector<float> log_odds_;
   BlockCensus census_;
+  CellClasses classes_;
 };
 
 }  // namespace vantage

@@ -229,7 +229,9 @@ Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates
                 std::chrono::steady_clock::time_point start) {
   GainConfig gain = config.gain;
   gain.method = gain_method_of(config.method);
-  const GainMap map(grid, gain.num_threads);
+  // NOTE: the grid's own classes and census, no snapshot: the swept rays and the race read
+  // classes only.
+  const ClassMap map(grid);
   SweptConfig swept;
   swept.alpha = gain.alpha;
   swept.epsilon = gain.epsilon;

@@ -64,7 +64,7 @@ Targets united(const Targets& a, const Targets& b) {
 
 }  // namespace
 
-Race race_candidates(const GainMap& map, std::span<const Frustum> frusta,
+Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
                      std::span<const std::size_t> first, std::span<const double> factor,
                      const GainConfig& config, std::size_t max_sample) {
   constexpr double kStandardErrors = 3.0;

@@ -10,7 +10,7 @@
 #include <span>
 #include <vector>
 
-#include "vantage/gain/snapshot.hpp"
+#include "vantage/gain/class_map.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/views/frustum.hpp"
 
@@ -29,7 +29,7 @@ struct Race {
 /// of its views' v_M under `config.method` (survival or greedy) times `factor[k]`, from the
 /// smallest sample expected to hold at most `max_sample` unobserved cells (unobserved_by_sample).
 /// Deterministic; the same for any thread count.
-Race race_candidates(const GainMap& map, std::span<const Frustum> frusta,
+Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
                      std::span<const std::size_t> first, std::span<const double> factor,
                      const GainConfig& config, std::size_t max_sample);
 

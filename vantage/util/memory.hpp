@@ -82,8 +82,9 @@ struct MemoryEstimate {
   }
 };
 
-/// Bytes a cell of an OccupancyGrid holds: its log-odds (a float).
-inline constexpr double kOccupancyGridBytesPerCell = 4.0;
+/// Bytes a cell of an OccupancyGrid holds: its log-odds (a float), its class (2 bits) and its
+/// share of its block's census (3 bytes a 4^3 block).
+inline constexpr double kOccupancyGridBytesPerCell = 4.0 + 0.25 + 3.0 / 64.0;
 
 /// Bytes a grid cell costs mapping and planning at their peak (`vantage plan`, `explore`, a bench
 /// trial; a Mapper and a plan in Python): measured 52.0 B a cell at the margin on `vantage plan
