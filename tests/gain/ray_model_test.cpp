@@ -1,5 +1,5 @@
-// The paper's ray model: docs/model.md's worked example, pinned, and the properties the paper asks of
-// it (§3.1.1, §3.2.2).
+// The paper's ray model: docs/model.md's worked example, pinned, and the properties the paper asks
+// of it (§3.1.1, §3.2.2).
 
 #include "vantage/gain/ray_model.hpp"
 

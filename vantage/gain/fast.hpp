@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// Fast gain evaluation (docs/fast-gain.md): rays cast outward through each candidate's frustum,
-/// every ray carrying the model's state (docs/model.md "One ray") along itself, and every unobserved
-/// cell credited once per view, by the ray that owns it. Its parts: the layout of the rays
-/// (fast_layout.hpp), the cast (fast_cast.hpp), the replay and the jump (fast_replay.hpp).
+/// every ray carrying the model's state (docs/model.md "One ray") along itself, and every
+/// unobserved cell credited once per view, by the ray that owns it. Its parts: the layout of the
+/// rays (fast_layout.hpp), the cast (fast_cast.hpp), the replay and the jump (fast_replay.hpp).
 
 #include <span>
 #include <vector>

@@ -1,8 +1,8 @@
 #pragma once
 /// @file
-/// The paper's model of one ray (§3.1, §3.2; docs/model.md "One ray"): a visibility HMM along the ray
-/// and a visibility-aware occupancy filter, which together predict the information a sensor gains
-/// on the ray's target cell.
+/// The paper's model of one ray (§3.1, §3.2; docs/model.md "One ray"): a visibility HMM along the
+/// ray and a visibility-aware occupancy filter, which together predict the information a sensor
+/// gains on the ray's target cell.
 
 #include <cstddef>
 #include <span>
@@ -57,8 +57,8 @@ class RayModel {
 /// The model's states after a prefix of k cells that all have occupancy p, for k = 1 … n.
 ///
 /// Cells outside the grid between the sensor and the grid count as free with p = p_min
-/// (docs/model.md), so the state where a ray enters the grid depends only on how many cells it skipped:
-/// `at(k)` is the state after c_0 … c_{k-1}, ready to step into c_k.
+/// (docs/model.md), so the state where a ray enters the grid depends only on how many cells it
+/// skipped: `at(k)` is the state after c_0 … c_{k-1}, ready to step into c_k.
 ///
 /// The table is built once and read-only afterwards, so threads may share it.
 class UniformPrefix {

@@ -15,8 +15,8 @@ namespace vantage {
 inline bool occludes(CellState state) { return state == CellState::kOccupied; }
 
 /// Whether no cell on the ray from `origin` to the centre of `target`, before the target itself,
-/// occludes. Cells outside the grid are free (docs/model.md). `state_of(linear)` gives a cell's class,
-/// so any view of the grid (the grid, a gain snapshot) can be asked.
+/// occludes. Cells outside the grid are free (docs/model.md). `state_of(linear)` gives a cell's
+/// class, so any view of the grid (the grid, a gain snapshot) can be asked.
 template <typename StateOf>
 bool line_of_sight(const GridSpec& spec, const Eigen::Vector3d& origin, const Index3& target,
                    StateOf&& state_of) {

@@ -153,8 +153,9 @@ struct GridWalk {
 
 /// What one traversal did.
 struct TraversalResult {
-  /// Lattice cells the segment crossed before it entered the grid. They are not visited; docs/model.md
-  /// counts them as free. When the segment never enters the grid, every cell it crosses counts.
+  /// Lattice cells the segment crossed before it entered the grid. They are not visited;
+  /// docs/model.md counts them as free. When the segment never enters the grid, every cell it
+  /// crosses counts.
   int skipped = 0;
   int visited = 0;           ///< grid cells handed to the visitor
   bool entered = false;      ///< the segment enters the grid at all
@@ -171,8 +172,8 @@ struct TraversalResult {
 /// segment leaves the grid.
 ///
 /// @param visit  `bool(const Index3& cell, std::size_t linear, int m)` or the same returning void;
-///               `m` is the cell's position along the whole segment from `from` (c_m of docs/model.md).
-///               Returning false stops the walk.
+///               `m` is the cell's position along the whole segment from `from` (c_m of
+///               docs/model.md). Returning false stops the walk.
 template <typename Visitor>
 TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,
                          const Eigen::Vector3d& to, Visitor&& visit) {
