@@ -3,7 +3,9 @@
 #include <benchmark/benchmark.h>
 #include <octomap/OcTree.h>
 
+#include <algorithm>
 #include <chrono>
+#include <vector>
 
 #include "bench/fixtures.hpp"
 #include "vantage/map/integrate.hpp"
@@ -36,6 +38,10 @@ void BM_Integrate_Ours(benchmark::State& state) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
   state.counters["points"] = static_cast<double>(scan.points_world.size());
+  // NOTE: each cell is updated once, from unobserved, so the cells now known are the writes
+  // that changed a class, each a census update (BM_GridWrites).
+  const CellCounts counts = grid.counts();
+  state.counters["class_changes"] = static_cast<double>(counts.free + counts.occupied);
 }
 // Args: threads, inside-only.
 BENCHMARK(BM_Integrate_Ours)
@@ -72,6 +78,31 @@ void BM_Integrate_OctoMap(benchmark::State& state) {
 }
 // Arg: inside-only. Debian's OctoMap is built without OpenMP: one thread.
 BENCHMARK(BM_Integrate_OctoMap)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseManualTime();
+
+/// What the grid's census and packed classes cost a write that changes a cell's class
+/// (docs/decision.md, "The swept search", item 6): arg 0, a miss on every cell of the table
+/// top's 129 x 129 x 65 grid, all unobserved, so every write moves a cell to free; arg 1, the
+/// same clamped log-odds additions on a bare float array, what a write cost before.
+void BM_GridWrites(benchmark::State& state) {
+  const GridSpec spec = GridSpec::centered({0, 0, 0}, 0.01, {129, 129, 65});
+  for (auto _ : state) {
+    state.PauseTiming();
+    OccupancyGrid grid(spec);
+    std::vector<float> bare(grid.size(), 0.0f);
+    const auto miss = static_cast<float>(logit(grid.params().p_miss));
+    const auto lo = static_cast<float>(logit(grid.params().p_min));
+    state.ResumeTiming();
+    if (state.range(0) == 0) {
+      for (std::size_t i = 0; i < grid.size(); ++i) grid.miss(i);
+    } else {
+      for (float& l : bare) l = std::max(lo, l + miss);
+    }
+    benchmark::DoNotOptimize(grid.log_odds().data());
+    benchmark::DoNotOptimize(bare.data());
+  }
+  state.counters["writes"] = static_cast<double>(spec.num_cells());
+}
+BENCHMARK(BM_GridWrites)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace vantage::bench

@@ -41,6 +41,21 @@ void expect_census(const OccupancyGrid& grid) {
   }
 }
 
+TEST(Divider, DividesEveryThirtyTwoBitNumberExactly) {
+  std::mt19937 rng(9);
+  std::uniform_int_distribution<std::uint32_t> any;
+  for (const std::uint32_t d : {1u, 2u, 3u, 7u, 64u, 65u, 129u, 1000u, 4095u, 65537u, any(rng)}) {
+    const Divider by(d);
+    for (const std::uint32_t n : {0u, 1u, d - 1, d, d + 1, 0xffffffffu, 0xfffffffeu}) {
+      ASSERT_EQ(by(n), n / d) << n << " / " << d;
+    }
+    for (int k = 0; k < 100000; ++k) {
+      const std::uint32_t n = any(rng);
+      ASSERT_EQ(by(n), n / d) << n << " / " << d;
+    }
+  }
+}
+
 TEST(BlockCensus, KeepsEveryBlocksCountsThroughRandomUpdates) {
   OccupancyGrid grid(GridSpec::centered({0, 0, 0}, 0.1, {13, 9, 6}));
   EXPECT_EQ(grid.census().dims(), Index3(4, 3, 2));

@@ -1,20 +1,32 @@
 #include "vantage/map/block_census.hpp"
 
 #include <algorithm>
+#include <bit>
 
 namespace vantage {
 
+Divider::Divider(std::uint32_t d) {
+  // l = ceil(log2 d); the multiplier floor(2^(32 + l) / d) + 1 lies in (2^32, 2^33]: n / d is
+  // (n + (m n >> 32)) >> l with m = floor(2^32 (2^l - d) / d) + 1 < 2^32.
+  const int l = d <= 1 ? 0 : static_cast<int>(std::bit_width(d - 1));
+  shift_ = l;
+  m_ = (((std::uint64_t{1} << l) - d) << 32) / d + 1;
+}
+
 BlockCensus::BlockCensus(const Index3& cell_dims)
-    : cell_dims_(cell_dims), dims_((cell_dims.array() + (kBlock - 1)) / kBlock) {
+    : cell_dims_(cell_dims),
+      by_x_(static_cast<std::uint32_t>(cell_dims.x())),
+      by_y_(static_cast<std::uint32_t>(cell_dims.y())),
+      dims_((cell_dims.array() + (kBlock - 1)) / kBlock) {
   reset();
 }
 
 void BlockCensus::move(std::size_t cell, CellState from, CellState to) {
-  const auto nx = static_cast<std::size_t>(cell_dims_.x());
-  const auto ny = static_cast<std::size_t>(cell_dims_.y());
-  const std::size_t row = cell / nx;
-  const Index3 c(static_cast<int>(cell - row * nx), static_cast<int>(row % ny),
-                 static_cast<int>(row / ny));
+  const auto i = static_cast<std::uint32_t>(cell);
+  const std::uint32_t row = by_x_(i), z = by_y_(row);
+  const Index3 c(static_cast<int>(i - row * static_cast<std::uint32_t>(cell_dims_.x())),
+                 static_cast<int>(row - z * static_cast<std::uint32_t>(cell_dims_.y())),
+                 static_cast<int>(z));
   std::array<std::uint8_t, 3>& counts = counts_[block_of(c)];
   --counts[static_cast<std::size_t>(from)];
   ++counts[static_cast<std::size_t>(to)];

@@ -14,6 +14,22 @@
 
 namespace vantage {
 
+/// n / d for every n < 2^32 by a multiply and a shift (Granlund and Montgomery, 1994, Thm 4.2):
+/// a division costs the census' update more than the rest of it.
+class Divider {
+ public:
+  Divider() = default;
+  explicit Divider(std::uint32_t d);
+  std::uint32_t operator()(std::uint32_t n) const {
+    const std::uint64_t t = (m_ * n) >> 32;  // the multiplier's low word times n, high word
+    return static_cast<std::uint32_t>((n + t) >> shift_);
+  }
+
+ private:
+  std::uint64_t m_ = 1;  ///< the multiplier less 2^32
+  int shift_ = 0;
+};
+
 /// Per block of kBlock^3 cells, its cells of each class (a block cut by the grid's far faces
 /// holds fewer cells).
 class BlockCensus {
@@ -46,7 +62,8 @@ class BlockCensus {
                                      (c[2] != 0 ? 4 : 0));
   }
 
-  /// The cell of linear index `cell` went from class `from` to class `to` (not thread-safe).
+  /// The cell of linear index `cell` (of a grid of at most kMaxGridCells) went from class `from`
+  /// to class `to` (not thread-safe).
   void move(std::size_t cell, CellState from, CellState to);
   /// Every cell unobserved again.
   void reset();
@@ -55,6 +72,7 @@ class BlockCensus {
 
  private:
   Index3 cell_dims_ = Index3::Zero();
+  Divider by_x_, by_y_;  ///< by the grid's cells along x, along y
   Index3 dims_ = Index3::Zero();
   std::vector<std::array<std::uint8_t, 3>> counts_;  ///< per block: unobserved, free, occupied
 };
