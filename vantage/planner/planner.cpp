@@ -262,8 +262,10 @@ Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates
   // NOTE: the last round races the leaders on samples of the targets, whose values are exact:
   // the swept estimate is not, it weighs a cell by the part of its volume the rays reach where
   // the exact sum asks whether its centre is reached.
-  const std::vector<std::size_t> final_round =
-      leaders(plan.scores, second, kSweptFinal, kSweptMargin);
+  std::vector<std::size_t> final_round = leaders(plan.scores, second, kSweptFinal, kSweptMargin);
+  // NOTE: in candidate order, so that an exact tie on the full lists goes to the lower index, as
+  // in the exhaustive search.
+  std::sort(final_round.begin(), final_round.end());
   const Views finalists = views.subset(final_round);
   std::vector<double> factor;
   for (const std::size_t c : final_round) factor.push_back(travel_factor(config, candidates[c]));
