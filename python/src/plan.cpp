@@ -56,7 +56,7 @@ PlannerConfig make_planner_config(const std::string& method, const GainConfig& g
                                   bool greedy_reference,
                                   const std::optional<std::string>& objective,
                                   const std::string& search, int sample, int horizon,
-                                  double travel_weight) {
+                                  double travel_weight, int swept_rays) {
   PlannerConfig config;
   config.method = parse_planner_method(method);
   config.gain = gain;
@@ -69,6 +69,7 @@ PlannerConfig make_planner_config(const std::string& method, const GainConfig& g
     throw std::invalid_argument(cat("sample must be a power of two >= 1, got ", sample));
   }
   config.sample_bits = std::countr_zero(static_cast<unsigned>(sample));
+  config.swept_rays = swept_rays;
   config.sequence.horizon = horizon;
   config.sequence.travel_weight = travel_weight;
   config.validate();
@@ -263,7 +264,7 @@ void bind_plan(py::module_& m) {
            py::arg("gain") = GainConfig{}, py::arg("lambda_") = PlannerConfig{}.lambda,
            py::arg("greedy_reference") = false, py::arg("objective") = std::nullopt,
            py::arg("search") = "exhaustive", py::arg("sample") = 16, py::arg("horizon") = 1,
-           py::arg("travel_weight") = 0.0,
+           py::arg("travel_weight") = 0.0, py::arg("swept_rays") = PlannerConfig{}.swept_rays,
            "method: a name as `vantage explore --method` takes ('survival', 'probabilistic', "
            "'greedy', 'random', 'latombe', 'yamauchi', 'sequence' or a metric); gain: a "
            "GainConfig (its method follows from `method`); lambda_: latombe's travel penalty "
@@ -272,7 +273,8 @@ void bind_plan(py::module_& m) {
            "'screened', 'sampled' or 'swept' (docs/decision.md); sample: the sampled search's "
            "rate, one unobserved cell in `sample`; horizon, travel_weight: plan that many views "
            "ahead and "
-           "tour them (docs/decision.md, 'Planning a sequence') [views, 1/m].")
+           "tour them (docs/decision.md, 'Planning a sequence') [views, 1/m]; swept_rays: the "
+           "swept search's rays across a view's image in its first round, in [1, 4096].")
       .def_property_readonly(
           "method", [](const PlannerConfig& c) { return std::string(to_string(c.method)); },
           "How the next view is chosen.")
@@ -288,7 +290,9 @@ void bind_plan(py::module_& m) {
           "What the method ranks by: bits or cells.")
       .def_property_readonly(
           "horizon", [](const PlannerConfig& c) { return sequence_of(c).horizon; },
-          "Views planned ahead (the sequence method's default when it is not told).");
+          "Views planned ahead (the sequence method's default when it is not told).")
+      .def_readonly("swept_rays", &PlannerConfig::swept_rays,
+                    "The swept search's rays across a view's image in its first round.");
 
   py::class_<RankedPlan>(m, "Plan", "The decision and everything behind it.")
       .def_property_readonly(

@@ -115,7 +115,8 @@ def test_a_plan_says_what_it_chose(spec):
 
 def test_the_planner_takes_the_clis_settings(spec):
     """PlannerConfig names what `vantage explore` names: the method's own objective, the search,
-    the sampled search's rate, the sequence; bad values raise ValueError."""
+    the sampled search's rate, the swept search's rays, the sequence; bad values raise
+    ValueError."""
     sequence = vt.PlannerConfig(method="sequence")
     assert (sequence.objective, sequence.horizon, sequence.search) == ("cells", 3, "exhaustive")
     assert vt.PlannerConfig(method="probabilistic").objective == "bits"
@@ -128,6 +129,13 @@ def test_the_planner_takes_the_clis_settings(spec):
     assert sampled.best == exact.best
     planned = vt.plan_next_view(grid, candidates, FOV, sequence)
     assert 0 <= planned.best < len(candidates)
+    swept = vt.PlannerConfig(method="survival", search="swept", swept_rays=48)
+    assert (swept.search, swept.swept_rays) == ("swept", 48)
+    # An empty grid's ring ties many views exactly: the swept search's choice scores the best.
+    chosen = vt.plan_next_view(grid, candidates, FOV, swept)
+    assert chosen.scores[chosen.best] == pytest.approx(exact.scores[exact.best], rel=1e-9)
+    with pytest.raises(ValueError, match="swept_rays"):
+        vt.PlannerConfig(method="survival", search="swept", swept_rays=0)
     with pytest.raises(ValueError, match="power of two"):
         vt.PlannerConfig(method="greedy", sample=3)
     with pytest.raises(ValueError, match="by cells"):
