@@ -61,7 +61,7 @@ TEST(SequenceScenes, HorizonOneIsTodaysDecisionOnTabletop4) {
       ASSERT_EQ(seq.chosen.size(), 3u);
       EXPECT_EQ(seq.chosen.front(), plan.best);  // the first pick is the best single view
       const std::vector<ViewCells> lists = exact_view_cells(
-          GainMap(grid, 0),
+          ClassMap(grid),
           std::vector<Frustum>{views[seq.chosen[0]], views[seq.chosen[1]], views[seq.chosen[2]]},
           today.gain);
       const std::vector<const ViewCells*> set = {&lists[0], &lists[1], &lists[2]};

@@ -76,7 +76,7 @@ TEST(ViewCells, SumToTheExactEvaluationsCellsViewByView) {
   const GainMap map(s.grid, 0);
   for (const GainMethod method : {GainMethod::kGreedy, GainMethod::kSurvival}) {
     const GainConfig gain = s.gain(method);
-    const std::vector<ViewCells> lists = exact_view_cells(map, s.views, gain);
+    const std::vector<ViewCells> lists = exact_view_cells(ClassMap(s.grid), s.views, gain);
     const std::vector<ViewGain> exact = exact_view_gains(map, s.views, gain);
     ASSERT_EQ(lists.size(), s.views.size());
     for (std::size_t v = 0; v < s.views.size(); ++v) {
@@ -96,7 +96,7 @@ TEST(ViewCells, SumToTheExactEvaluationsCellsViewByView) {
 // planned on it values each view at 2^k times its sampled sum, the same for any thread count.
 TEST(ViewCells, ASampleKeepsTheSampledCellsOfTheFullLists) {
   const Clutter s;
-  const GainMap map(s.grid, 0);
+  const ClassMap map(s.grid);
   const GainConfig gain = s.gain(GainMethod::kSurvival);
   const std::vector<ViewCells> full = exact_view_cells(map, s.views, gain);
   const std::vector<ViewCells> sample = exact_view_cells(map, s.views, gain, 2);
@@ -132,14 +132,14 @@ TEST(ViewCells, ASampleKeepsTheSampledCellsOfTheFullLists) {
 
 TEST(ViewCells, RefusesAModelWithoutPerCellVisibilities) {
   const Clutter s;
-  EXPECT_THROW(exact_view_cells(GainMap(s.grid, 0), s.views, s.gain(GainMethod::kProbabilistic)),
+  EXPECT_THROW(exact_view_cells(ClassMap(s.grid), s.views, s.gain(GainMethod::kProbabilistic)),
                std::invalid_argument);
 }
 
 TEST(JointValue, GreedyIsTheSizeOfTheUnionOfWhatEachViewSeesAlone) {
   const Clutter s;
   const GainConfig gain = s.gain(GainMethod::kGreedy);
-  const std::vector<ViewCells> lists = exact_view_cells(GainMap(s.grid, 0), s.views, gain);
+  const std::vector<ViewCells> lists = exact_view_cells(ClassMap(s.grid), s.views, gain);
   // Brute force: every unobserved cell in each frustum, judged on its own by exact_cell_gain.
   std::vector<std::set<std::size_t>> seen(s.views.size());
   for (std::size_t v = 0; v < s.views.size(); ++v) {
@@ -163,7 +163,7 @@ TEST(JointValue, GreedyIsTheSizeOfTheUnionOfWhatEachViewSeesAlone) {
 TEST(JointValue, SurvivalCountsEachCellOnceAtOneMinusTheChanceNoViewSeesIt) {
   const Clutter s;
   const std::vector<ViewCells> lists =
-      exact_view_cells(GainMap(s.grid, 0), s.views, s.gain(GainMethod::kSurvival));
+      exact_view_cells(ClassMap(s.grid), s.views, s.gain(GainMethod::kSurvival));
   const std::vector<std::size_t> set = {0, 1, 3};
   std::map<std::uint32_t, double> missed;
   for (const std::size_t v : set) {
@@ -185,7 +185,7 @@ TEST(JointValue, IsMonotoneAndSubmodular) {
   const Clutter s;
   for (const GainMethod method : {GainMethod::kGreedy, GainMethod::kSurvival}) {
     const std::vector<ViewCells> lists =
-        exact_view_cells(GainMap(s.grid, 0), s.views, s.gain(method));
+        exact_view_cells(ClassMap(s.grid), s.views, s.gain(method));
     // Random A within B, x outside B: J(A) <= J(B), J(A + x) - J(A) >= J(B + x) - J(B).
     int strict = 0;
     for (std::uint64_t t = 0; t < 200; ++t) {
@@ -297,7 +297,7 @@ TEST(Sequence, PlansKViewsThatJointlySeeMoreThanTheBestViewTwice) {
   const GainConfig gain = s.gain(GainMethod::kGreedy);
   const SequencePlan plan = plan_sequence(s.grid, s.views, travel, gain, config);
   ASSERT_EQ(plan.chosen.size(), 3u);
-  const std::vector<ViewCells> lists = exact_view_cells(GainMap(s.grid, 0), s.views, gain);
+  const std::vector<ViewCells> lists = exact_view_cells(ClassMap(s.grid), s.views, gain);
   EXPECT_EQ(plan.value, joint_of(lists, plan.chosen));
   // Greedy selection: no single swap of the last view chosen does better.
   for (std::size_t v = 0; v < s.views.size(); ++v) {

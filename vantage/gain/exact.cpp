@@ -143,20 +143,6 @@ bool in_cell_sample(std::uint64_t i, int bits) {
 
 namespace {
 
-/// Calls `f(i)` for every unobserved cell of the snapshot, in ascending linear index.
-template <typename F>
-void for_each_unobserved(const GainMap& map, F&& f) {
-  with_codes(map, [&](const auto* codes) {
-    std::vector<bool> unobserved;
-    for (const GainMap::Value& v : map.values()) {
-      unobserved.push_back(v.state == CellState::kUnobserved);
-    }
-    for (std::size_t i = 0; i < map.size(); ++i) {
-      if (unobserved[codes[i]]) f(i);
-    }
-  });
-}
-
 /// Calls `f(i)` for every unobserved cell of the grid's classes, in ascending linear index.
 template <typename F>
 void for_each_unobserved(const ClassMap& map, F&& f) {
@@ -165,8 +151,18 @@ void for_each_unobserved(const ClassMap& map, F&& f) {
   }
 }
 
-template <typename Map>
-std::vector<std::vector<std::uint32_t>> by_sample(const Map& map, std::size_t max_size) {
+}  // namespace
+
+std::vector<std::uint32_t> unobserved_sample(const ClassMap& map, int bits) {
+  std::vector<std::uint32_t> sample;
+  for_each_unobserved(map, [&](std::size_t i) {
+    if (in_cell_sample(i, bits)) sample.push_back(static_cast<std::uint32_t>(i));
+  });
+  return sample;
+}
+
+std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const ClassMap& map,
+                                                             std::size_t max_size) {
   constexpr int kTop = 63;
   std::vector<std::vector<std::uint32_t>> lists(kTop + 1);
   std::size_t unobserved = 0;
@@ -186,26 +182,6 @@ std::vector<std::vector<std::uint32_t>> by_sample(const Map& map, std::size_t ma
   std::sort(smallest.begin(), smallest.end());
   lists.resize(static_cast<std::size_t>(bits) + 1);
   return lists;
-}
-
-}  // namespace
-
-std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits) {
-  std::vector<std::uint32_t> sample;
-  for_each_unobserved(map, [&](std::size_t i) {
-    if (in_cell_sample(i, bits)) sample.push_back(static_cast<std::uint32_t>(i));
-  });
-  return sample;
-}
-
-std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const GainMap& map,
-                                                             std::size_t max_size) {
-  return by_sample(map, max_size);
-}
-
-std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const ClassMap& map,
-                                                             std::size_t max_size) {
-  return by_sample(map, max_size);
 }
 
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,

@@ -32,14 +32,11 @@ bool in_cell_sample(std::uint64_t i, int bits);
 
 /// The linear indices of the unobserved cells in the sample of `bits`, ascending: the targets
 /// the sampled search (and a sequence planned on its sample) evaluates.
-std::vector<std::uint32_t> unobserved_sample(const GainMap& map, int bits);
+std::vector<std::uint32_t> unobserved_sample(const ClassMap& map, int bits);
 /// The unobserved cells by the nested samples they first enter, from the smallest sample
 /// expected to hold at most `max_size` of them (one in 2^b for the least such b) to all of them:
 /// b + 1 lists, list k < b holding the cells in the sample of k bits but not of k + 1, list b the
 /// sample of b bits; lists k ... b together are the sample of k bits. Each list ascending.
-std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const GainMap& map,
-                                                             std::size_t max_size);
-/// The same read from the grid's classes.
 std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const ClassMap& map,
                                                              std::size_t max_size);
 

@@ -46,7 +46,7 @@ void write_codes(std::span<const float> log_odds, std::span<const std::uint32_t>
 }  // namespace
 
 GainMap::GainMap(const OccupancyGrid& grid, int num_threads)
-    : spec_(grid.spec()), params_(grid.params()), free_(vantage::free_space(grid.census())) {
+    : spec_(grid.spec()), params_(grid.params()) {
   const std::span<const float> log_odds = grid.log_odds();
   const std::size_t n = log_odds.size();
   const std::size_t chunks = (n + kSnapshotChunk - 1) / kSnapshotChunk;

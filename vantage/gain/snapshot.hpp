@@ -9,7 +9,6 @@
 #include <span>
 #include <vector>
 
-#include "vantage/gain/free_space.hpp"
 #include "vantage/map/occupancy_grid.hpp"
 #include "vantage/views/frustum.hpp"
 
@@ -55,8 +54,6 @@ class GainMap {
   }
   /// The value of cell `i`, whatever the code width.
   const Value& value(std::size_t i) const;
-  /// Where rays may cross free cells a cube of blocks at a time, from the grid's census.
-  const FreeSpace& free_space() const { return free_; }
 
  private:
   GridSpec spec_;
@@ -67,7 +64,6 @@ class GainMap {
   std::vector<std::uint8_t> codes8_;
   std::vector<std::uint16_t> codes16_;
   std::vector<std::uint32_t> codes32_;
-  FreeSpace free_;
 };
 
 /// Calls `f(codes)` with the snapshot's codes as a pointer of their width (std::uint8_t,

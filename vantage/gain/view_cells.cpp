@@ -19,8 +19,8 @@ namespace {
 
 /// Adds unobserved cell `cell` to the lists of the members whose frustum holds it, its
 /// visibility from `predict` evaluated once for all of them.
-template <typename Map, typename Predictor>
-void add_target(const Map& map, std::span<const Frustum> views,
+template <typename Predictor>
+void add_target(const ClassMap& map, std::span<const Frustum> views,
                 std::span<const std::size_t> members, std::span<const CellBox> boxes,
                 const Eigen::Vector3d& origin, const Index3& cell, std::size_t linear,
                 const Predictor& predict, std::vector<ViewCells>& out) {
@@ -47,10 +47,9 @@ void add_target(const Map& map, std::span<const Frustum> views,
 }
 
 /// The lists of every view, each target's visibility from `predict` (target_predictors.hpp).
-/// With `sample`, only its cells (unobserved, ascending); else every unobserved cell. `Map` is
-/// GainMap or ClassMap.
-template <typename Map, typename Predictor>
-std::vector<ViewCells> view_cells(const Map& map, std::span<const Frustum> views,
+/// With `sample`, only its cells (unobserved, ascending); else every unobserved cell.
+template <typename Predictor>
+std::vector<ViewCells> view_cells(const ClassMap& map, std::span<const Frustum> views,
                                   const Predictor& predict,
                                   std::optional<std::span<const std::uint32_t>> sample,
                                   int num_threads) {
@@ -100,8 +99,7 @@ double ViewCells::sum() const {
 
 namespace {
 
-template <typename Map>
-std::vector<ViewCells> cells_of(const Map& map, std::span<const Frustum> views,
+std::vector<ViewCells> cells_of(const ClassMap& map, std::span<const Frustum> views,
                                 const GainConfig& config,
                                 std::optional<std::span<const std::uint32_t>> sample) {
   config.validate();
@@ -126,18 +124,12 @@ std::vector<ViewCells> cells_of(const Map& map, std::span<const Frustum> views,
 
 }  // namespace
 
-std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
+std::vector<ViewCells> exact_view_cells(const ClassMap& map, std::span<const Frustum> views,
                                         const GainConfig& config, int sample_bits) {
   // NOTE: a sample is listed once and read by every view; without one, each view walks its box.
   if (sample_bits <= 0) return cells_of(map, views, config, std::nullopt);
   const std::vector<std::uint32_t> sample = unobserved_sample(map, sample_bits);
   return cells_of(map, views, config, std::span<const std::uint32_t>(sample));
-}
-
-std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
-                                        const GainConfig& config,
-                                        std::span<const std::uint32_t> cells) {
-  return cells_of(map, views, config, cells);
 }
 
 std::vector<ViewCells> exact_view_cells(const ClassMap& map, std::span<const Frustum> views,

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "vantage/gain/class_map.hpp"
-#include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/views/frustum.hpp"
 
@@ -34,15 +33,12 @@ struct ViewCells {
 /// share each target's ray. Origins run in parallel and each list is built in cell order, so the
 /// result is the same for any thread count. With `sample_bits` k > 0, only the targets in the
 /// sampled search's hashed sample of one cell in 2^k (in_cell_sample, exact.hpp), the same for
-/// every view. Throws std::invalid_argument for another method.
-std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
+/// every view. It reads the cells' classes only, from the grid itself (ClassMap), and its rays
+/// cross free cubes in one step. Throws std::invalid_argument for another method.
+std::vector<ViewCells> exact_view_cells(const ClassMap& map, std::span<const Frustum> views,
                                         const GainConfig& config, int sample_bits = 0);
 
 /// The same for the targets among `cells`: linear indices of unobserved cells, ascending.
-std::vector<ViewCells> exact_view_cells(const GainMap& map, std::span<const Frustum> views,
-                                        const GainConfig& config,
-                                        std::span<const std::uint32_t> cells);
-/// The same read from the grid's classes, without a snapshot: the same lists bit for bit.
 std::vector<ViewCells> exact_view_cells(const ClassMap& map, std::span<const Frustum> views,
                                         const GainConfig& config,
                                         std::span<const std::uint32_t> cells);

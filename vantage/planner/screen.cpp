@@ -162,7 +162,7 @@ Screening sample_candidates(const OccupancyGrid& grid, std::span<const Frustum> 
                             int bits) {
   const GainMap map(grid, config.num_threads);
   const std::vector<SampleSums> sums =
-      sampled_view_gains(map, frusta, unobserved_sample(map, bits), config);
+      sampled_view_gains(map, frusta, unobserved_sample(ClassMap(grid), bits), config);
   const double rate = std::ldexp(1.0, bits);  // Horvitz-Thompson: rate * sum is unbiased
   const std::size_t n = first.size() - 1;
   Screening out;

@@ -147,13 +147,14 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
         cat("plan_sequence: ", views.size(), " views but ", travel.size(), " travel distances"));
   }
   const GainMap map(grid, gain.num_threads);
+  const ClassMap classes(grid);  // what the per-cell lists read
   SequencePlan plan;
   // Every view's single-view value: bit for bit the exact evaluation's (hierarchy.hpp), or its
   // estimate from the sample's per-cell lists, which the joint values then share.
   const double rate = std::ldexp(1.0, config.sample_bits);
   std::vector<ViewCells> sampled;
   if (config.sample_bits > 0) {
-    sampled = exact_view_cells(map, views, gain, config.sample_bits);
+    sampled = exact_view_cells(classes, views, gain, config.sample_bits);
     for (const ViewCells& list : sampled) {
       const double cells = rate * list.sum();
       // NOTE: greedy's gain is its count; the survival reading's bits are left 0, as exactly.
@@ -196,7 +197,7 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
     } else {
       std::vector<Frustum> frusta;
       for (const std::size_t v : shortlist) frusta.push_back(views[v]);
-      lists = exact_view_cells(map, frusta, gain);
+      lists = exact_view_cells(classes, frusta, gain);
     }
     plan.shortlisted = m;
   }
