@@ -390,5 +390,27 @@ BENCHMARK(BM_SweptEstimate)
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 
+/// What crossing free cubes in one step saves the swept estimate (docs/decision.md, "The swept
+/// search", item 6): its first round (32 rays across, the survival reading, 2 threads) on every
+/// candidate of BM_DecisionAtScale's case, with the jumps (free:1) and cell by cell (free:0).
+void BM_SweptFreeCubes(benchmark::State& bench) {
+  DecisionState& s = scale_case(bench.range(0));
+  std::vector<Frustum> views;
+  for (const Candidate& c : s.candidates) views.push_back(c.view);
+  const ClassMap classes(s.grid);
+  SweptConfig config;
+  config.alpha = kSurvivalAlpha;
+  config.num_threads = 2;
+  config.skip_free = bench.range(1) != 0;
+  for (auto _ : bench) {
+    benchmark::DoNotOptimize(swept_view_counts(classes, views, CountRule::kSurvivalCells, config));
+  }
+}
+BENCHMARK(BM_SweptFreeCubes)
+    ->ArgsProduct({{0, 1, 2, 3}, {0, 1}})
+    ->ArgNames({"case", "free"})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 }  // namespace
 }  // namespace vantage::bench
