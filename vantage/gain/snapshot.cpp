@@ -97,17 +97,6 @@ GainMap::GainMap(const OccupancyGrid& grid, int num_threads)
   });
 }
 
-const GainMap::Value& GainMap::value(std::size_t i) const {
-  switch (code_width_) {
-    case 1:
-      return values_[codes<std::uint8_t>()[i]];
-    case 2:
-      return values_[codes<std::uint16_t>()[i]];
-    default:
-      return values_[codes<std::uint32_t>()[i]];
-  }
-}
-
 namespace {
 
 /// Each block's common code (or kMixed) and whether it holds an unobserved cell.

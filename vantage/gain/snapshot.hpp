@@ -52,8 +52,18 @@ class GainMap {
       return codes32_.data();
     }
   }
-  /// The value of cell `i`, whatever the code width.
-  const Value& value(std::size_t i) const;
+  /// The value of cell `i`, whatever the code width. Inline: every per-target ray reads it per
+  /// cell.
+  const Value& value(std::size_t i) const {
+    switch (code_width_) {
+      case 1:
+        return values_[codes8_[i]];
+      case 2:
+        return values_[codes16_[i]];
+      default:
+        return values_[codes32_[i]];
+    }
+  }
 
  private:
   GridSpec spec_;
