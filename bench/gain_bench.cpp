@@ -1,11 +1,13 @@
 // Gain evaluation of the 30 ring candidates on the 129 x 129 x 65 table top after one scan:
-// exact, fast, and the OctoMap way (BENCHMARK.md).
+// exact, fast, and the OctoMap way; and the paper's model's decision among them (BENCHMARK.md).
 #include <benchmark/benchmark.h>
 
 #include "bench/fixtures.hpp"
 #include "bench/octomap_gain.hpp"
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/fast.hpp"
+#include "vantage/planner/choose.hpp"
+#include "vantage/planner/planner.hpp"
 
 namespace vantage::bench {
 namespace {
@@ -43,6 +45,37 @@ void BM_Gain30_Fast(benchmark::State& state) {
   gain30(state, [](const auto&... args) { return fast_view_gains(args...); });
 }
 BENCHMARK(BM_Gain30_Fast)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The paper's model's decision over the same 30 views, by the expected cells seen (E, ViewGain::
+// cells): the swept search, which races the views on the model's exact per-target v_M
+// (docs/decision.md, "The paper's model"). `decision_ms` is the decision's own time (Plan::seconds,
+// without the chosen view's full prediction after it), the figure to set against
+// BM_Gain30_OctoMap, which evaluates every view; `same_choice` is 1 when it chose the view the
+// exact evaluation of every view ranks first.
+void BM_Gain30_Decision(benchmark::State& state) {
+  const World& world = table_top_after_one_scan();
+  static const std::size_t exact_best = [&] {
+    const std::vector<ViewGain> exact = exact_view_gains(world.grid, world.views, GainConfig{});
+    std::vector<double> cells;
+    for (const ViewGain& g : exact) cells.push_back(g.cells);
+    return choose_best(cells);
+  }();
+  std::vector<Candidate> candidates;
+  for (const Frustum& view : world.views) candidates.push_back(Candidate{view});
+  PlannerConfig config;
+  config.method = PlannerMethod::kProbabilistic;
+  config.objective = GainObjective::kCells;
+  config.search = DecisionSearch::kSwept;
+  config.gain = with_threads(state);
+  Plan plan;
+  for (auto _ : state) plan = plan_next_view(world.grid, candidates, config);
+  state.counters["decision_ms"] = 1e3 * plan.seconds;
+  state.counters["prediction_ms"] = 1e3 * plan.prediction_seconds;
+  state.counters["chosen"] = static_cast<double>(plan.best);
+  state.counters["same_choice"] = plan.best == exact_best ? 1.0 : 0.0;
+  state.counters["raced"] = static_cast<double>(plan.evaluated);
+}
+BENCHMARK(BM_Gain30_Decision)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The snapshot alone (part of every fast and exact evaluation above).
 void BM_GainMapSnapshot(benchmark::State& state) {

@@ -4,6 +4,7 @@
 // scan's pose, and every candidate's exact sums to hold a search's choice to.
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,35 @@ inline Reference reference_of(const OccupancyGrid& grid, const std::vector<Candi
   gain.method = GainMethod::kGreedy;
   r.greedy = count_view_gains(map, &blocks, views, CountRule::kGreedy, gain);
   return r;
+}
+
+/// The exhaustive exact search's score of every candidate under `config`: from `reference` for the
+/// survival reading, greedy and Latombe; the paper's model has no cheap exact reference, so its
+/// scores are the exhaustive search's own, by the exact evaluation.
+inline std::vector<double> exact_scores(const OccupancyGrid& grid,
+                                        const std::vector<Candidate>& cands,
+                                        const Reference& reference, const PlannerConfig& config) {
+  if (config.method == PlannerMethod::kProbabilistic) {
+    PlannerConfig exhaustive = config;
+    exhaustive.search = DecisionSearch::kExhaustive;
+    exhaustive.gain.evaluation = GainEvaluation::kExact;
+    return plan_next_view(grid, cands, exhaustive).scores;
+  }
+  std::vector<double> scores;
+  for (std::size_t c = 0; c < cands.size(); ++c) {
+    switch (config.method) {
+      case PlannerMethod::kSurvival:
+        scores.push_back(reference.survival[c].cells);
+        break;
+      case PlannerMethod::kLatombe:
+        scores.push_back(reference.greedy[c].gain * std::exp(-config.lambda * cands[c].travel));
+        break;
+      default:
+        scores.push_back(reference.greedy[c].gain);
+        break;
+    }
+  }
+  return scores;
 }
 
 /// Calls `f(state, grid, ring, scans, last_pose)` for table top `name` after 1, 3 and 6 scans

@@ -25,32 +25,6 @@ namespace {
 
 using oracle::Reference;
 
-/// The exhaustive exact search's score of every candidate under `config`.
-std::vector<double> exact_scores(const OccupancyGrid& grid, const std::vector<Candidate>& cands,
-                                 const Reference& reference, const PlannerConfig& config) {
-  if (config.method == PlannerMethod::kProbabilistic) {
-    PlannerConfig exhaustive = config;
-    exhaustive.search = DecisionSearch::kExhaustive;
-    exhaustive.gain.evaluation = GainEvaluation::kExact;
-    return plan_next_view(grid, cands, exhaustive).scores;
-  }
-  std::vector<double> scores;
-  for (std::size_t c = 0; c < cands.size(); ++c) {
-    switch (config.method) {
-      case PlannerMethod::kSurvival:
-        scores.push_back(reference.survival[c].cells);
-        break;
-      case PlannerMethod::kLatombe:
-        scores.push_back(reference.greedy[c].gain * std::exp(-config.lambda * cands[c].travel));
-        break;
-      default:
-        scores.push_back(reference.greedy[c].gain);
-        break;
-    }
-  }
-  return scores;
-}
-
 void check_state(const std::string& state, const OccupancyGrid& grid,
                  const std::vector<Candidate>& cands, const Reference& reference,
                  PlannerMethod method, bool two_threads = false,
@@ -61,7 +35,7 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
   config.gain.alpha = method == PlannerMethod::kSurvival ? kSurvivalAlpha : kTableTopAlpha;
   config.search = DecisionSearch::kPruned;
   config.gain.num_threads = 1;
-  const std::vector<double> exact = exact_scores(grid, cands, reference, config);
+  const std::vector<double> exact = oracle::exact_scores(grid, cands, reference, config);
   const std::size_t best = choose_best(exact);
   const Plan plan = plan_next_view(grid, cands, config);
   const std::string what =

@@ -9,12 +9,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <set>
 #include <vector>
 
+#include "vantage/gain/class_map.hpp"
 #include "vantage/gain/exact.hpp"
+#include "vantage/gain/snapshot.hpp"
+#include "vantage/gain/view_cells.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/views/ring.hpp"
 
@@ -133,6 +137,27 @@ TEST(ViewCells, ASampleKeepsTheSampledCellsOfTheFullLists) {
 TEST(ViewCells, RefusesAModelWithoutPerCellVisibilities) {
   const Clutter s;
   EXPECT_THROW(exact_view_cells(ClassMap(s.grid), s.views, s.gain(GainMethod::kProbabilistic)),
+               std::invalid_argument);
+}
+
+// The paper's model's lists (the race's values under it) over every unobserved cell: each view's
+// v_M summed is the exact evaluation's E; another model is refused.
+TEST(ViewCells, ThePaperModelsListsSumToTheExactEvaluationsCells) {
+  const Clutter s;
+  const GainMap map(s.grid, 0);
+  const GainConfig gain = s.gain(GainMethod::kProbabilistic);
+  const std::vector<std::vector<std::uint32_t>> every =
+      unobserved_by_sample(ClassMap(s.grid), s.grid.size());
+  ASSERT_EQ(every.size(), 1u);  // one level: all the unobserved cells, ascending
+  const std::vector<ViewCells> lists = paper_view_cells(map, s.views, gain, every[0]);
+  const std::vector<ViewGain> exact = exact_view_gains(map, s.views, gain);
+  ASSERT_EQ(lists.size(), s.views.size());
+  for (std::size_t v = 0; v < s.views.size(); ++v) {
+    EXPECT_EQ(lists[v].targets, exact[v].targets) << "view " << v;
+    EXPECT_NEAR(lists[v].sum(), exact[v].cells, 1e-9 * (1.0 + exact[v].cells)) << "view " << v;
+    EXPECT_GT(lists[v].sum(), 0.0);
+  }
+  EXPECT_THROW(paper_view_cells(map, s.views, s.gain(GainMethod::kSurvival), every[0]),
                std::invalid_argument);
 }
 

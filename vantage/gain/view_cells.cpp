@@ -19,8 +19,8 @@ namespace {
 
 /// Adds unobserved cell `cell` to the lists of the members whose frustum holds it, its
 /// visibility from `predict` evaluated once for all of them.
-template <typename Predictor>
-void add_target(const ClassMap& map, std::span<const Frustum> views,
+template <typename Map, typename Predictor>
+void add_target(const Map& map, std::span<const Frustum> views,
                 std::span<const std::size_t> members, std::span<const CellBox> boxes,
                 const Eigen::Vector3d& origin, const Index3& cell, std::size_t linear,
                 const Predictor& predict, std::vector<ViewCells>& out) {
@@ -47,9 +47,10 @@ void add_target(const ClassMap& map, std::span<const Frustum> views,
 }
 
 /// The lists of every view, each target's visibility from `predict` (target_predictors.hpp).
-/// With `sample`, only its cells (unobserved, ascending); else every unobserved cell.
-template <typename Predictor>
-std::vector<ViewCells> view_cells(const ClassMap& map, std::span<const Frustum> views,
+/// With `sample`, only its cells (unobserved, ascending); else every unobserved cell. `Map` is
+/// ClassMap or GainMap.
+template <typename Map, typename Predictor>
+std::vector<ViewCells> view_cells(const Map& map, std::span<const Frustum> views,
                                   const Predictor& predict,
                                   std::optional<std::span<const std::uint32_t>> sample,
                                   int num_threads) {
@@ -136,6 +137,21 @@ std::vector<ViewCells> exact_view_cells(const ClassMap& map, std::span<const Fru
                                         const GainConfig& config,
                                         std::span<const std::uint32_t> cells) {
   return cells_of(map, views, config, cells);
+}
+
+std::vector<ViewCells> paper_view_cells(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config,
+                                        std::span<const std::uint32_t> cells) {
+  config.validate();
+  if (method_traits(config.method).ray != TargetRay::kPaper) {
+    throw std::invalid_argument(cat("paper_view_cells: gain.method must be the paper's model, got ",
+                                    to_string(config.method)));
+  }
+  const detail::PaperPredictor<PaperModel> predict{
+      RayTables<PaperModel>(config.alpha, map.params().p_min,
+                            detail::longest_ray(map.spec(), views)),
+      config.epsilon};
+  return view_cells(map, views, predict, std::optional(cells), config.num_threads);
 }
 
 }  // namespace vantage

@@ -196,7 +196,18 @@ std::optional<CountRule> swept_rule(const PlannerConfig& config) {
   return std::nullopt;
 }
 
-bool sweepable(const PlannerConfig& config) { return swept_rule(config).has_value(); }
+/// Whether the swept search serves the method by the paper's model: it races every candidate on
+/// the model's exact v_M (plan_swept_paper). Only when it ranks by cells: a target's gain in bits
+/// can sit in a few cells a sample misses (docs/decision.md, "The paper's model").
+bool swept_paper(const PlannerConfig& config) {
+  return config.method != PlannerMethod::kRandom && config.method != PlannerMethod::kYamauchi &&
+         method_traits(gain_method_of(config.method)).ray == TargetRay::kPaper &&
+         config.objective == GainObjective::kCells;
+}
+
+bool sweepable(const PlannerConfig& config) {
+  return swept_rule(config).has_value() || swept_paper(config);
+}
 
 /// The swept search's rounds (docs/decision.md, "The swept search"): how many candidates the
 /// second round casts again at twice the rays a side, and how many of those, within what part of
@@ -222,11 +233,80 @@ std::vector<std::size_t> leaders(const std::vector<double>& scores,
   return order;
 }
 
+/// Ends a swept search on its race between the candidates `raced` (ascending): their last scores
+/// and the winner into the plan, the decision's time, and the winner's exact prediction after.
+void finish_race(const OccupancyGrid& grid, std::span<const Candidate> candidates,
+                 const Views& views, const PlannerConfig& config, const GainConfig& gain,
+                 std::chrono::steady_clock::time_point start, const std::vector<std::size_t>& raced,
+                 const std::vector<double>& factor, const detail::Race& race, Plan& plan) {
+  const bool cells = config.objective == GainObjective::kCells;
+  for (std::size_t k = 0; k < raced.size(); ++k) {
+    const std::size_t c = raced[k];
+    plan.scores[c] = race.scores[k];
+    // NOTE: a counting method's gain is its count; the others' race on the objective alone.
+    const double value = race.scores[k] / factor[k];
+    if (method_traits(gain.method).counts) {
+      plan.gains[c].cells = plan.gains[c].gain = value;
+    } else if (cells) {
+      plan.gains[c].cells = value;
+    } else {
+      plan.gains[c].gain = value;
+    }
+  }
+  plan.best = raced[race.winner];
+  plan.evaluated = raced.size();
+  plan.seconds = since(start);
+  report_choice(grid, views, config, gain, plan);
+  const ViewGain& chosen = plan.gains[plan.best];
+  plan.scores[plan.best] =
+      (cells ? chosen.cells : chosen.gain) * travel_factor(config, candidates[plan.best]);
+}
+
+/// The paper's race starts every candidate on a sample of about kSweptSample * kSweptFinal / n
+/// unobserved cells (at least kPaperLeastSample), so that its first round costs about what the
+/// three finalists' first round does in the other race.
+constexpr std::size_t kPaperLeastSample = 512;
+std::size_t paper_first_sample(std::size_t candidates) {
+  return std::max(kPaperLeastSample,
+                  kSweptSample * kSweptFinal / std::max<std::size_t>(candidates, 1));
+}
+
+/// The swept search under the paper's model: no ray sweeps a volume (the model's state in a cell
+/// depends on the cell's own ray, and a ray carried past it predicts it several-fold off near
+/// frontiers, docs/fast-gain.md "The replay"), so every candidate enters the race, on the model's
+/// exact per-target v_M [cells].
+Plan plan_swept_paper(const OccupancyGrid& grid, std::span<const Candidate> candidates,
+                      const Views& views, const PlannerConfig& config,
+                      std::chrono::steady_clock::time_point start) {
+  GainConfig gain = config.gain;
+  gain.method = gain_method_of(config.method);
+  const GainMap map(grid, gain.num_threads);
+  Plan plan;
+  plan.gains.assign(candidates.size(), ViewGain{});
+  plan.estimated.assign(candidates.size(), true);
+  plan.scores.assign(candidates.size(), 0.0);
+  std::vector<std::size_t> all(candidates.size());
+  std::vector<double> factor;
+  for (std::size_t c = 0; c < all.size(); ++c) {
+    all[c] = c;
+    factor.push_back(travel_factor(config, candidates[c]));
+  }
+  const detail::Race race = detail::race_candidates(
+      unobserved_by_sample(ClassMap(grid), paper_first_sample(candidates.size())), views.frusta,
+      views.first, factor,
+      [&](std::span<const Frustum> raced, std::span<const std::uint32_t> cells) {
+        return paper_view_cells(map, raced, gain, cells);
+      });
+  finish_race(grid, candidates, views, config, gain, start, all, factor, race, plan);
+  return plan;
+}
+
 /// The swept search: every candidate's swept estimate; the leaders cast again at twice the rays;
 /// the leaders of that raced (race.hpp); the chosen one's exact prediction after.
 Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates,
                 const Views& views, const PlannerConfig& config,
                 std::chrono::steady_clock::time_point start) {
+  if (swept_paper(config)) return plan_swept_paper(grid, candidates, views, config, start);
   GainConfig gain = config.gain;
   gain.method = gain_method_of(config.method);
   // NOTE: the grid's own classes and census, no snapshot: the swept rays and the race read
@@ -271,18 +351,7 @@ Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates
   for (const std::size_t c : final_round) factor.push_back(travel_factor(config, candidates[c]));
   const detail::Race race =
       detail::race_candidates(map, finalists.frusta, finalists.first, factor, gain, kSweptSample);
-  for (std::size_t k = 0; k < final_round.size(); ++k) {
-    const std::size_t c = final_round[k];
-    plan.scores[c] = race.scores[k];
-    plan.gains[c].cells = race.scores[k] / factor[k];
-    plan.gains[c].gain = method_traits(gain.method).counts ? plan.gains[c].cells : 0.0;
-  }
-  plan.best = final_round[race.winner];
-  plan.evaluated = final_round.size();
-  plan.seconds = since(start);
-  report_choice(grid, views, config, gain, plan);
-  plan.scores[plan.best] =
-      plan.gains[plan.best].cells * travel_factor(config, candidates[plan.best]);
+  finish_race(grid, candidates, views, config, gain, start, final_round, factor, race, plan);
   return plan;
 }
 

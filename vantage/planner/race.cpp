@@ -64,9 +64,9 @@ Targets united(const Targets& a, const Targets& b) {
 
 }  // namespace
 
-Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
-                     std::span<const std::size_t> first, std::span<const double> factor,
-                     const GainConfig& config, std::size_t max_sample) {
+Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
+                     std::span<const Frustum> frusta, std::span<const std::size_t> first,
+                     std::span<const double> factor, const TargetLister& list) {
   constexpr double kStandardErrors = 3.0;
   const std::size_t n = first.size() - 1;
   std::vector<std::size_t> alive(n);
@@ -75,7 +75,6 @@ Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
   race.scores.assign(n, 0.0);
   std::vector<Targets> targets(n);  // per finalist, on the sample so far
   // NOTE: each sample doubles the last and holds it: only the new cells are cast.
-  const std::vector<std::vector<std::uint32_t>> levels = unobserved_by_sample(map, max_sample);
   for (int bits = static_cast<int>(levels.size()) - 1;; --bits) {
     std::vector<Frustum> views;
     std::vector<std::size_t> starts;
@@ -85,8 +84,7 @@ Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
                    frusta.begin() + static_cast<std::ptrdiff_t>(first[k + 1]));
     }
     starts.push_back(views.size());
-    const std::vector<ViewCells> lists =
-        exact_view_cells(map, views, config, levels[static_cast<std::size_t>(bits)]);
+    const std::vector<ViewCells> lists = list(views, levels[static_cast<std::size_t>(bits)]);
     const double rate = std::ldexp(1.0, bits);  // Horvitz-Thompson
     std::vector<double> scores;
     for (std::size_t a = 0; a < alive.size(); ++a) {
@@ -122,6 +120,15 @@ Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
       return race;
     }
   }
+}
+
+Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
+                     std::span<const std::size_t> first, std::span<const double> factor,
+                     const GainConfig& config, std::size_t max_sample) {
+  return race_candidates(unobserved_by_sample(map, max_sample), frusta, first, factor,
+                         [&](std::span<const Frustum> views, std::span<const std::uint32_t> cells) {
+                           return exact_view_cells(map, views, config, cells);
+                         });
 }
 
 }  // namespace vantage::detail

@@ -7,10 +7,13 @@
 /// errors drops out; the race ends with one left or on the full lists, which are exact.
 
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <span>
 #include <vector>
 
 #include "vantage/gain/class_map.hpp"
+#include "vantage/gain/view_cells.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/views/frustum.hpp"
 
@@ -25,10 +28,21 @@ struct Race {
   bool exact = false;  ///< the race reached the full lists: `winner` is the exact argmax
 };
 
+/// Lists the targets of `views` among `cells` (unobserved, ascending) with their values, as
+/// exact_view_cells and paper_view_cells do: the same lists for any thread count.
+using TargetLister = std::function<std::vector<ViewCells>(std::span<const Frustum> views,
+                                                          std::span<const std::uint32_t> cells)>;
+
 /// Races the finalists whose views are `frusta[first[k] .. first[k + 1])`, each scored by the sum
-/// of its views' v_M under `config.method` (survival or greedy) times `factor[k]`, from the
-/// smallest sample expected to hold at most `max_sample` unobserved cells (unobserved_by_sample).
-/// Deterministic; the same for any thread count.
+/// of its views' target values from `list` times `factor[k]`, on the nested samples `levels`
+/// (unobserved_by_sample: `levels[b]` the cells new in the sample of one in 2^b), from the
+/// smallest. Deterministic; the same for any thread count.
+Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
+                     std::span<const Frustum> frusta, std::span<const std::size_t> first,
+                     std::span<const double> factor, const TargetLister& list);
+
+/// The race of the survival reading's or greedy's v_M (`config.method`, exact_view_cells) from the
+/// smallest sample expected to hold at most `max_sample` unobserved cells.
 Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
                      std::span<const std::size_t> first, std::span<const double> factor,
                      const GainConfig& config, std::size_t max_sample);
