@@ -163,21 +163,11 @@ struct TraversalResult {
   bool reached_end = false;  ///< the cell holding `to` lies in the grid and was visited
 };
 
-/// Visits, in order, the grid cells that the segment from `from` to `to` crosses: a GridWalk from
-/// the cell of `from` to the cell of `to`, which takes exactly |Δi| + |Δj| + |Δk| steps and so
-/// always ends in the cell of `to`.
-///
-/// Cells outside the grid are never visited. Those before the entry are counted in
-/// `TraversalResult::skipped` in O(1) (the walk jumps to the entry cell); the walk ends where the
-/// segment leaves the grid.
-///
-/// @param visit  `bool(const Index3& cell, std::size_t linear, int m)` or the same returning void;
-///               `m` is the cell's position along the whole segment from `from` (c_m of
-///               docs/model.md). Returning false stops the walk.
-template <typename Visitor>
-TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,
-                         const Eigen::Vector3d& to, Visitor&& visit) {
-  TraversalResult result;
+/// Starts `walk` where `traverse` starts it: in the first grid cell the segment from `from` to
+/// `to` crosses, with m counted from the cell of `from`. False when the segment never enters the
+/// grid. `result.skipped` as traverse reports it; `result.entered` set when it enters.
+inline bool start_in_grid(const GridSpec& spec, const Eigen::Vector3d& from,
+                          const Eigen::Vector3d& to, GridWalk& walk, TraversalResult& result) {
   const Index3 first = spec.lattice_index(from);
   const Index3 last = spec.lattice_index(to);
   const Eigen::Vector3d dir = to - from;
@@ -186,10 +176,8 @@ TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,
   double t_exit = 1.0;
   if (!clip_to_grid(spec, from, dir, t_enter, t_exit) || t_enter > t_exit) {  // misses the box
     result.skipped = total;
-    return result;
+    return false;
   }
-
-  GridWalk walk;
   walk.start(spec, from, dir, first, last, first);
   if (!spec.contains(first)) {
     // Jump to the entry cell: the cell holding the entry point, pulled onto the grid where
@@ -206,14 +194,34 @@ TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,
     result.skipped = walk.m;
     if (!spec.contains(walk.cell)) {
       result.skipped = total;
-      return result;
+      return false;
     }
     walk.relink(spec);
   }
   result.entered = true;
+  return true;
+}
+
+/// Visits, in order, the grid cells that the segment from `from` to `to` crosses: a GridWalk from
+/// the cell of `from` to the cell of `to`, which takes exactly |Δi| + |Δj| + |Δk| steps and so
+/// always ends in the cell of `to`.
+///
+/// Cells outside the grid are never visited. Those before the entry are counted in
+/// `TraversalResult::skipped` in O(1) (the walk jumps to the entry cell); the walk ends where the
+/// segment leaves the grid.
+///
+/// @param visit  `bool(const Index3& cell, std::size_t linear, int m)` or the same returning void;
+///               `m` is the cell's position along the whole segment from `from` (c_m of
+///               docs/model.md). Returning false stops the walk.
+template <typename Visitor>
+TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,
+                         const Eigen::Vector3d& to, Visitor&& visit) {
+  TraversalResult result;
+  GridWalk walk;
+  if (!start_in_grid(spec, from, to, walk, result)) return result;
   // NOTE: the walk is monotonic along each axis, so it stays in the box of its entry and end
   // cells: only a segment that ends outside the grid can leave it.
-  const bool may_leave = !spec.contains(last);
+  const bool may_leave = !spec.contains(spec.lattice_index(to));
   for (;;) {
     ++result.visited;
     const auto linear = static_cast<std::size_t>(walk.linear);
