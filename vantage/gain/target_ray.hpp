@@ -27,8 +27,7 @@ class TargetWalk {
  public:
   /// Starts on the ray from `from` to the centre of `target` (a cell of the grid), at the first
   /// grid cell the ray enters. entered() is false when it never does.
-  TargetWalk(const GridSpec& spec, const Eigen::Vector3d& from, const Index3& target)
-      : target_(target) {
+  TargetWalk(const GridSpec& spec, const Eigen::Vector3d& from, const Index3& target) {
     const Eigen::Vector3d to = spec.center(target);
     const Index3 first = spec.lattice_index(from);
     const Eigen::Vector3d dir = to - from;
@@ -64,6 +63,7 @@ class TargetWalk {
     stride_[1] = step_.y() * static_cast<std::ptrdiff_t>(spec.dims.x());
     stride_[2] = step_.z() * static_cast<std::ptrdiff_t>(spec.dims.x()) * spec.dims.y();
     linear_ = static_cast<std::ptrdiff_t>(spec.linear(cell_));
+    target_linear_ = static_cast<std::ptrdiff_t>(spec.linear(target));
     for (int a = 0; a < 3; ++a) refresh(a);
     entered_ = true;
   }
@@ -75,18 +75,25 @@ class TargetWalk {
   std::size_t linear() const { return static_cast<std::size_t>(linear_); }
   /// Its position along the ray from the origin's cell: c_m of docs/model.md.
   int m() const { return m_; }
-  bool at_target() const { return cell_ == target_; }
+  /// NOTE: by linear index: the walk stays in the grid, where it names the cell.
+  bool at_target() const { return linear_ == target_linear_; }
 
   /// Moves to the next cell, along the axis whose boundary comes first (the lower axis on a tie).
   /// Only before the target.
+  /// NOTE: a branch per axis with constant indices, not an indexed select: the walk's state then
+  /// stays in registers (the race's lists, BM_DecisionAtScale).
   [[gnu::always_inline]] void advance() {
-    const int axis =
-        next_[0] <= next_[1] ? (next_[0] <= next_[2] ? 0 : 2) : (next_[1] <= next_[2] ? 1 : 2);
-    cell_[axis] += step_[axis];
-    linear_ += stride_[axis];
-    ++done_[axis];
-    ++m_;
-    refresh(axis);
+    if (next_[0] <= next_[1]) {
+      if (next_[0] <= next_[2]) {
+        step_along<0>();
+      } else {
+        step_along<2>();
+      }
+    } else if (next_[1] <= next_[2]) {
+      step_along<1>();
+    } else {
+      step_along<2>();
+    }
   }
 
   /// Leaves the box [lo, hi] of cells, which holds the walk's cell and not the target, in one
@@ -143,6 +150,14 @@ class TargetWalk {
   }
 
  private:
+  template <int A>
+  [[gnu::always_inline]] void step_along() {
+    cell_[A] += step_[A];
+    linear_ += stride_[A];
+    ++done_[A];
+    ++m_;
+    refresh(A);
+  }
   double boundary(int a, int k) const { return t0_[a] + k * dt_[a]; }
   /// The next boundary of axis a, or infinity when the walk takes no more steps along it.
   void refresh(int a) {
@@ -150,7 +165,6 @@ class TargetWalk {
         done_[a] < left_[a] ? boundary(a, done_[a]) : std::numeric_limits<double>::infinity();
   }
 
-  Index3 target_;
   Index3 cell_ = Index3::Zero();
   Eigen::Vector3d t0_ = Eigen::Vector3d::Zero();  ///< the first boundary's parameter per axis
   Eigen::Vector3d dt_ = Eigen::Vector3d::Zero();  ///< parameter between boundaries per axis
@@ -160,6 +174,7 @@ class TargetWalk {
   double next_[3] = {0.0, 0.0, 0.0};      ///< refresh(): the next boundary per axis
   std::ptrdiff_t stride_[3] = {0, 0, 0};  ///< linear step per axis, signed
   std::ptrdiff_t linear_ = 0;
+  std::ptrdiff_t target_linear_ = -1;
   int m_ = 0;
   bool entered_ = false;
 };
