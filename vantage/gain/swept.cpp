@@ -82,20 +82,29 @@ double ray_credit(const GridSpec& spec, const States& states, const FreeSpace& f
         continue;
       }
     }
-    const int a =
-        t_next[0] < t_next[1] ? (t_next[0] < t_next[2] ? 0 : 2) : (t_next[1] < t_next[2] ? 1 : 2);
-    const double t_leave = std::min(t_next[a], s_out);
-    if (state == CellState::kUnobserved) {
-      const double lo = std::max(t, r_min);
-      if (t_leave > lo) credit += v * (t_leave * t_leave * t_leave - lo * lo * lo);
-      v *= alpha;
-      if (v < epsilon) break;
-    }
-    t = std::max(t, t_leave);
-    cell[a] += step[a];
-    if (cell[a] < 0 || cell[a] >= spec.dims[a]) break;
-    linear += step[a] * stride[a];
-    t_next[a] += t_delta[a];
+    // NOTE: a branch per axis with constant indices, not an indexed select: the walk's state then
+    // stays in registers.
+    const auto leave_along = [&]<int A>() {
+      const double t_leave = std::min(t_next[A], s_out);
+      if (state == CellState::kUnobserved) {
+        const double lo = std::max(t, r_min);
+        if (t_leave > lo) credit += v * (t_leave * t_leave * t_leave - lo * lo * lo);
+        v *= alpha;
+        if (v < epsilon) return false;
+      }
+      t = std::max(t, t_leave);
+      cell[A] += step[A];
+      if (cell[A] < 0 || cell[A] >= spec.dims[A]) return false;
+      linear += step[A] * stride[A];
+      t_next[A] += t_delta[A];
+      return true;
+    };
+    const bool on = t_next[0] < t_next[1]
+                        ? (t_next[0] < t_next[2] ? leave_along.template operator()<0>()
+                                                 : leave_along.template operator()<2>())
+                        : (t_next[1] < t_next[2] ? leave_along.template operator()<1>()
+                                                 : leave_along.template operator()<2>());
+    if (!on) break;
   }
   return credit;
 }
