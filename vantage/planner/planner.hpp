@@ -88,7 +88,9 @@ enum class DecisionSearch {
   /// cast again at twice the rays a side, and the leaders of that raced on samples of their cells
   /// up to all of them (race.hpp); the winner is then evaluated in full for its report.
   /// Statistical and without a guarantee (docs/decision.md), for decisions in milliseconds.
-  /// Survival (by cells), greedy and Latombe; the others search exhaustively.
+  /// Survival (by cells), greedy and Latombe; the paper's model by cells, every candidate raced
+  /// on its exact per-target v_M (no sweep: docs/decision.md "The paper's model"); the others
+  /// search exhaustively.
   kSwept,
 };
 

@@ -43,7 +43,8 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                    "hundreds of views: every view ranked on one sample of 1 in 16 unobserved "
                    "cells; the same methods), swept (statistical, in milliseconds: every view "
                    "ranked by rays cast outward, the leaders raced on samples of their cells; "
-                   "survival by cells, greedy and latombe) or exhaustive (every view in full)")
+                   "survival by cells, greedy and latombe, and probabilistic by cells, every view "
+                   "raced) or exhaustive (every view in full)")
         ->capture_default_str();
   }
   cmd.add_option("--epsilon", epsilon, "early stop of a ray's model, in [0, 0.5)")
