@@ -81,6 +81,7 @@ TEST(FreeSpace, ARadiusIsTheDistanceToTheNearestBlockNotAllFree) {
 TEST(FreeSpace, RaysThatCrossFreeCubesSeeWhatCellByCellRaysSee) {
   const OccupancyGrid grid = cluttered();
   const ClassMap map(grid);
+  const GainMap snapshot(grid, 1);
   const GridSpec& spec = map.spec();
   std::vector<Index3> targets;
   for (std::size_t i = 0; i < grid.size(); ++i) {
@@ -91,11 +92,16 @@ TEST(FreeSpace, RaysThatCrossFreeCubesSeeWhatCellByCellRaysSee) {
   for (const Eigen::Vector3d& origin :
        {Eigen::Vector3d(-0.39, -0.35, -0.27), Eigen::Vector3d(0.05, 0.01, 0.02),
         Eigen::Vector3d(0.9, -0.7, 0.5)}) {
+    const int longest = max_ray_cells(spec, origin);
+    const SurvivalModel model(0.9, grid.params().p_min, longest);
     for (const Index3& t : targets) {
       const TargetPrediction cells = detail::survival_visibility(map, 0.9, origin, t, 1e-6);
       const TargetPrediction cubes =
           detail::survival_visibility(map, 0.9, origin, t, 1e-6, &map.free_space());
       ASSERT_EQ(cubes.seen, cells.seen) << t.transpose();
+      // The survival reading's own v_M, bit for bit.
+      ASSERT_EQ(cells.seen, detail::survival_ray_gain(snapshot, model, origin, t, 1e-6).seen)
+          << t.transpose();
       ASSERT_EQ(detail::greedy_gain(map, origin, t, &map.free_space()).seen,
                 detail::greedy_gain(map, origin, t).seen)
           << t.transpose();
