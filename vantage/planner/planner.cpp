@@ -233,33 +233,26 @@ std::vector<std::size_t> leaders(const std::vector<double>& scores,
   return order;
 }
 
-/// Ends a swept search on its race between the candidates `raced` (ascending): their last scores
-/// and the winner into the plan, the decision's time, and the winner's exact prediction after.
+/// Ends a swept search on its race between the candidates `raced` (ascending), by cells: their
+/// last scores and the winner into the plan, the decision's time, and the winner's exact
+/// prediction after.
 void finish_race(const OccupancyGrid& grid, std::span<const Candidate> candidates,
                  const Views& views, const PlannerConfig& config, const GainConfig& gain,
                  std::chrono::steady_clock::time_point start, const std::vector<std::size_t>& raced,
                  const std::vector<double>& factor, const detail::Race& race, Plan& plan) {
-  const bool cells = config.objective == GainObjective::kCells;
   for (std::size_t k = 0; k < raced.size(); ++k) {
     const std::size_t c = raced[k];
     plan.scores[c] = race.scores[k];
-    // NOTE: a counting method's gain is its count; the others' race on the objective alone.
-    const double value = race.scores[k] / factor[k];
-    if (method_traits(gain.method).counts) {
-      plan.gains[c].cells = plan.gains[c].gain = value;
-    } else if (cells) {
-      plan.gains[c].cells = value;
-    } else {
-      plan.gains[c].gain = value;
-    }
+    // NOTE: every race is by cells; a counting method's gain is its count.
+    plan.gains[c].cells = race.scores[k] / factor[k];
+    plan.gains[c].gain = method_traits(gain.method).counts ? plan.gains[c].cells : 0.0;
   }
   plan.best = raced[race.winner];
   plan.evaluated = raced.size();
   plan.seconds = since(start);
   report_choice(grid, views, config, gain, plan);
-  const ViewGain& chosen = plan.gains[plan.best];
   plan.scores[plan.best] =
-      (cells ? chosen.cells : chosen.gain) * travel_factor(config, candidates[plan.best]);
+      plan.gains[plan.best].cells * travel_factor(config, candidates[plan.best]);
 }
 
 /// The paper's race starts every candidate on a sample of about kSweptSample * kSweptFinal / n
