@@ -1,6 +1,7 @@
 // The swept search's last round (vantage/planner/race.hpp) against the exact sums: on the full
-// lists it is the exact argmax with the exact scores; from a sample it drops a clearly worse
-// finalist early and still names the best; the same for any thread count.
+// lists it is the exact argmax with the exact scores, for the survival reading and the paper's
+// model; from a sample it drops a clearly worse finalist early and still names the best; the
+// same for any thread count.
 
 #include "vantage/planner/race.hpp"
 
@@ -9,7 +10,9 @@
 #include <limits>
 #include <vector>
 
+#include "vantage/gain/exact.hpp"
 #include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/view_cells.hpp"
 #include "vantage/planner/choose.hpp"
 
 namespace vantage {
@@ -67,6 +70,34 @@ TEST(Race, OnTheFullListsItIsTheExactArgmax) {
   const detail::Race two = detail::race_candidates(classes, views, first, factor, gain, 8192);
   EXPECT_EQ(two.winner, sampled.winner);
   EXPECT_EQ(two.scores, sampled.scores);
+}
+
+// The paper's model raced on its per-target v_M (the swept search's lister for it): on the full
+// lists, the exact evaluation's argmax by cells and its sums.
+TEST(Race, ThePaperModelsRaceOnTheFullListsIsTheExactArgmax) {
+  constexpr std::size_t kAll = std::numeric_limits<std::size_t>::max();
+  const OccupancyGrid grid = slab_grid();
+  const GainMap map(grid, 1);
+  const std::vector<Frustum> views{view_from(-0.4), view_from(0.0), view_from(0.3)};
+  const std::vector<std::size_t> first{0, 1, 2, 3};
+  const std::vector<double> factor{1.0, 1.0, 1.0};
+  GainConfig gain;
+  gain.method = GainMethod::kProbabilistic;
+  gain.alpha = 0.997;
+  gain.evaluation = GainEvaluation::kExact;
+  gain.num_threads = 1;
+  const std::vector<ViewGain> exact = exact_view_gains(map, views, gain);
+  const std::vector<double> scores{exact[0].cells, exact[1].cells, exact[2].cells};
+  ASSERT_GT(scores[choose_best(scores)], 0.0);
+  const detail::Race race = detail::race_candidates(
+      unobserved_by_sample(ClassMap(grid), kAll), views, first, factor,
+      [&](std::span<const Frustum> raced, std::span<const std::uint32_t> cells) {
+        return paper_view_cells(map, raced, gain, cells);
+      });
+  EXPECT_TRUE(race.exact);
+  EXPECT_EQ(race.winner, choose_best(scores));
+  for (std::size_t k = 0; k < scores.size(); ++k)
+    EXPECT_NEAR(race.scores[k], scores[k], 1e-9 * scores[k]) << k;
 }
 
 }  // namespace
