@@ -21,10 +21,10 @@ namespace {
 /// v * (r1^3 - r0^3), v falling by alpha past each unobserved cell (1 for greedy's alpha), the
 /// ray ending in an occupied cell. Cells outside the grid are free. Amanatides-Woo in the ray's
 /// distance.
-template <typename States>
-double ray_credit(const GridSpec& spec, const States& states, const FreeSpace& free,
-                  const Eigen::Vector3d& o, const Eigen::Vector3d& d, double r_min, double r_max,
-                  double alpha, double epsilon) {
+double ray_credit(const ClassMap& map, const FreeSpace& free, const Eigen::Vector3d& o,
+                  const Eigen::Vector3d& d, double r_min, double r_max, double alpha,
+                  double epsilon) {
+  const GridSpec& spec = map.spec();
   double s_in = 0.0, s_out = r_max;
   if (!clip_to_grid(spec, o, d, s_in, s_out) || !(s_in < s_out)) return 0.0;
   const double h = spec.resolution;
@@ -50,7 +50,7 @@ double ray_credit(const GridSpec& spec, const States& states, const FreeSpace& f
   std::ptrdiff_t linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
   double v = 1.0, credit = 0.0, t = s_in;
   while (t < s_out) {
-    const CellState state = states(static_cast<std::size_t>(linear));
+    const CellState state = map.state(static_cast<std::size_t>(linear));
     if (state == CellState::kOccupied) break;
     if (state == CellState::kFree && !free.radius.empty()) {
       if (const int r = free.radius_at(cell); r > 0) {
@@ -119,9 +119,8 @@ Eigen::Vector2d jitter(int i, int j) {
 }
 
 /// One view's estimate [cells].
-template <typename States>
-double view_credit(const GridSpec& spec, const States& states, const FreeSpace& free,
-                   const Frustum& view, double alpha, const SweptConfig& config) {
+double view_credit(const ClassMap& map, const FreeSpace& free, const Frustum& view, double alpha,
+                   const SweptConfig& config) {
   const SensorFov& fov = view.fov();
   const double tan_h = std::tan(fov.h_fov / 2), tan_v = std::tan(fov.v_fov / 2);
   const double pitch = 2.0 * std::max(tan_h, tan_v) / config.rays_across;
@@ -137,8 +136,7 @@ double view_credit(const GridSpec& spec, const States& states, const FreeSpace& 
     const double norm2 = 1.0 + u * u + w * w;
     const double omega = du * dw / (norm2 * std::sqrt(norm2));
     const Eigen::Vector3d d = R * (Eigen::Vector3d(1.0, u, w) / std::sqrt(norm2));
-    return omega * ray_credit(spec, states, free, o, d, fov.min_range, fov.max_range, alpha,
-                              config.epsilon);
+    return omega * ray_credit(map, free, o, d, fov.min_range, fov.max_range, alpha, config.epsilon);
   };
   double sum = 0.0;
   for (int j = 0; j < nw; ++j) {
@@ -147,7 +145,7 @@ double view_credit(const GridSpec& spec, const States& states, const FreeSpace& 
       sum += cast(i + p.x(), j + p.y());
     }
   }
-  const double h = spec.resolution;
+  const double h = map.spec().resolution;
   return sum / (3.0 * h * h * h);
 }
 
@@ -166,10 +164,9 @@ std::vector<double> swept_view_counts(const ClassMap& map, std::span<const Frust
   std::vector<double> out(views.size(), 0.0);
   const FreeSpace none;
   const FreeSpace& free = config.skip_free ? map.free_space() : none;
-  const auto states = [&](std::size_t i) { return map.state(i); };
   run_with_threads(config.num_threads, [&] {
     tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
-      out[v] = view_credit(map.spec(), states, free, views[v], alpha, config);
+      out[v] = view_credit(map, free, views[v], alpha, config);
     });
   });
   return out;
