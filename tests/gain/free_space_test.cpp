@@ -47,13 +47,14 @@ OccupancyGrid cluttered() {
   return grid;
 }
 
-TEST(FreeSpace, ARadiusIsTheDistanceToTheNearestBlockNotAllFree) {
+TEST(FreeSpace, AnExtentIsTheLargestAllFreeCubeAheadInItsOctant) {
   const OccupancyGrid grid = cluttered();
   const FreeSpace free = free_space(grid.census());
   const GridSpec& spec = grid.spec();
   ASSERT_EQ(free.dims, Index3(10, 9, 7));
   // Blocks not all free, from the cells.
-  std::vector<bool> mixed(free.radius.size(), false);
+  const auto n = static_cast<std::size_t>(free.dims.prod());
+  std::vector<bool> mixed(n, false);
   for (std::size_t i = 0; i < grid.size(); ++i) {
     if (grid.state(i) != CellState::kFree) mixed[grid.census().block_of(spec.unravel(i))] = true;
   }
@@ -64,18 +65,25 @@ TEST(FreeSpace, ARadiusIsTheDistanceToTheNearestBlockNotAllFree) {
                   static_cast<int>(b / (nx * ny)));
   };
   int cubes = 0;
-  for (std::size_t b = 0; b < free.radius.size(); ++b) {
-    int expected = 0;
-    if (!mixed[b]) {
-      expected = 255;
-      for (std::size_t n = 0; n < free.radius.size(); ++n) {
-        if (mixed[n]) expected = std::min(expected, (block(n) - block(b)).cwiseAbs().maxCoeff());
+  for (int o = 0; o < 8; ++o) {
+    const Index3 sign((o & 1) ? 1 : -1, (o & 2) ? 1 : -1, (o & 4) ? 1 : -1);
+    for (std::size_t b = 0; b < n; ++b) {
+      // Brute force: one more than the least Chebyshev distance to a block not all free among
+      // those ahead of b in octant o (every offset's component of o's sign or 0).
+      int expected = 0;
+      if (!mixed[b]) {
+        expected = 255;
+        for (std::size_t m = 0; m < n; ++m) {
+          const Index3 k = (block(m) - block(b)).cwiseProduct(sign);
+          if (mixed[m] && (k.array() >= 0).all()) expected = std::min(expected, k.maxCoeff());
+        }
       }
+      ASSERT_EQ(free.extent[static_cast<std::size_t>(o)][b], expected)
+          << "octant " << o << " block " << b;
+      cubes += expected >= 3;
     }
-    ASSERT_EQ(free.radius[b], expected) << "block " << b;
-    cubes += expected >= 2;
   }
-  EXPECT_GT(cubes, 10);  // the grid has cubes worth crossing
+  EXPECT_GT(cubes, 40);  // the grid has cubes worth crossing
 }
 
 TEST(FreeSpace, RaysThatCrossFreeCubesSeeWhatCellByCellRaysSee) {

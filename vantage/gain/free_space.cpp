@@ -9,51 +9,43 @@ FreeSpace free_space(const BlockCensus& census) {
   FreeSpace free;
   free.dims = census.dims();
   const Index3 d = free.dims;
-  const auto at = [&](int x, int y, int z) {
-    return static_cast<std::size_t>(x) +
-           static_cast<std::size_t>(d.x()) *
-               (static_cast<std::size_t>(y) + static_cast<std::size_t>(d.y()) * z);
-  };
-  free.radius.resize(static_cast<std::size_t>(d.prod()));
-  for (std::size_t b = 0; b < free.radius.size(); ++b) {
-    free.radius[b] = census.classes(b) == class_bit(CellState::kFree) ? 255 : 0;
-  }
-  // The Chebyshev distance transform, two raster passes over the 26 neighbours: a free block's
-  // radius is one more than the least of its neighbours' (blocks past the grid do not limit it).
-  const auto pass = [&](int sign) {
-    const auto range = [&](int a, auto&& body) {
-      if (sign > 0) {
-        for (int i = 0; i < d[a]; ++i) body(i);
-      } else {
-        for (int i = d[a] - 1; i >= 0; --i) body(i);
-      }
-    };
-    range(2, [&](int z) {
-      range(1, [&](int y) {
-        range(0, [&](int x) {
-          std::uint8_t& r = free.radius[at(x, y, z)];
-          if (r == 0) return;
+  const auto n = static_cast<std::size_t>(d.prod());
+  const std::ptrdiff_t sx = 1, sy = d.x(), sz = static_cast<std::ptrdiff_t>(d.x()) * d.y();
+  std::vector<std::uint8_t> all_free(n);
+  for (std::size_t b = 0; b < n; ++b)
+    all_free[b] = census.classes(b) == class_bit(CellState::kFree);
+  // NOTE: the largest cube with a corner at each block, as the largest square of ones: one more
+  // than the least of the seven neighbours ahead (blocks past the grid do not limit it), each
+  // octant in one raster pass from its far corner.
+  for (int o = 0; o < 8; ++o) {
+    std::vector<std::uint8_t>& e = free.extent[static_cast<std::size_t>(o)];
+    e.assign(n, 0);
+    const int step[3] = {(o & 1) ? 1 : -1, (o & 2) ? 1 : -1, (o & 4) ? 1 : -1};
+    const std::ptrdiff_t stride[3] = {step[0] * sx, step[1] * sy, step[2] * sz};
+    for (int kz = 0; kz < d.z(); ++kz) {
+      const int z = step[2] > 0 ? d.z() - 1 - kz : kz;
+      const bool z_in = z + step[2] >= 0 && z + step[2] < d.z();
+      for (int ky = 0; ky < d.y(); ++ky) {
+        const int y = step[1] > 0 ? d.y() - 1 - ky : ky;
+        const bool y_in = y + step[1] >= 0 && y + step[1] < d.y();
+        for (int kx = 0; kx < d.x(); ++kx) {
+          const int x = step[0] > 0 ? d.x() - 1 - kx : kx;
+          const std::ptrdiff_t b = x + sy * y + sz * z;
+          if (!all_free[static_cast<std::size_t>(b)]) continue;
+          const bool x_in = x + step[0] >= 0 && x + step[0] < d.x();
           int least = 254;
-          // The 13 neighbours a raster pass in this direction has already visited.
-          for (int dz = -1; dz <= 0; ++dz) {
-            for (int dy = -1; dy <= 1; ++dy) {
-              for (int dx = -1; dx <= 1; ++dx) {
-                if (dz == 0 && (dy > 0 || (dy == 0 && dx >= 0))) continue;
-                const int nx = x + sign * dx, ny = y + sign * dy, nz = z + sign * dz;
-                if (nx < 0 || ny < 0 || nz < 0 || nx >= d.x() || ny >= d.y() || nz >= d.z()) {
-                  continue;
-                }
-                least = std::min<int>(least, free.radius[at(nx, ny, nz)]);
-              }
-            }
+          for (int m = 1; m < 8; ++m) {
+            const bool mx = m & 1, my = m & 2, mz = m & 4;
+            if ((mx && !x_in) || (my && !y_in) || (mz && !z_in)) continue;
+            const std::ptrdiff_t nb =
+                b + (mx ? stride[0] : 0) + (my ? stride[1] : 0) + (mz ? stride[2] : 0);
+            least = std::min<int>(least, e[static_cast<std::size_t>(nb)]);
           }
-          r = static_cast<std::uint8_t>(std::min<int>(r, least + 1));
-        });
-      });
-    });
-  };
-  pass(1);
-  pass(-1);
+          e[static_cast<std::size_t>(b)] = static_cast<std::uint8_t>(least + 1);
+        }
+      }
+    }
+  }
   return free;
 }
 

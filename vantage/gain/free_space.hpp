@@ -1,11 +1,13 @@
 #pragma once
 /// @file
 /// Where a ray may cross free space many cells at a time (docs/decision.md, "The swept search"):
-/// per block of 4^3 cells, the Chebyshev radius of the cube of blocks around it whose cells are
-/// all free. A free cell changes nothing on a ray of the survival reading or greedy's count, so a
-/// ray in such a cube may leave it in one step.
+/// per block of 4^3 cells and per octant of directions, the edge of the largest cube of blocks
+/// whose cells are all free that has the block at its corner and reaches out in the octant's
+/// directions. A free cell changes nothing on a ray of the survival reading or greedy's count,
+/// and a ray only ever moves on in its own octant's directions, so a ray in such a cube may leave
+/// it in one step.
 
-#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -15,31 +17,48 @@
 
 namespace vantage {
 
-/// Free cubes of blocks around each block.
+/// Octant of a direction whose per-axis steps are `step` (+1 or -1): bit a set when the walk
+/// moves towards higher indices on axis a.
+inline int octant_of(const Index3& step) {
+  return (step.x() > 0 ? 1 : 0) | (step.y() > 0 ? 2 : 0) | (step.z() > 0 ? 4 : 0);
+}
+
+/// Free cubes of blocks ahead of each block, per octant.
 struct FreeSpace {
   static constexpr int kShift = 2;
   static constexpr int kBlock = 1 << kShift;  ///< block edge [cells]
 
   Index3 dims = Index3::Zero();  ///< blocks along each axis
-  /// Per block: 0 when it holds a cell that is not free; else r >= 1, and every block within
-  /// Chebyshev distance r - 1 of it (in the grid) holds free cells only.
-  std::vector<std::uint8_t> radius;
+  /// extent[o][b]: 0 when block b holds a cell that is not free; else e >= 1, and every block
+  /// b + k (k_a in [0, e - 1] towards octant o's side on each axis a, within the grid) holds free
+  /// cells only. Blocks past the grid do not limit it.
+  std::array<std::vector<std::uint8_t>, 8> extent;
 
-  /// The radius of the block that holds `cell`.
-  std::uint8_t radius_at(const Index3& cell) const {
-    return radius[static_cast<std::size_t>(cell.x() >> kShift) +
-                  static_cast<std::size_t>(dims.x()) *
-                      (static_cast<std::size_t>(cell.y() >> kShift) +
-                       static_cast<std::size_t>(dims.y()) *
-                           static_cast<std::size_t>(cell.z() >> kShift))];
+  bool empty() const { return extent[0].empty(); }
+  /// The block that holds `cell`.
+  std::size_t block_of(const Index3& cell) const {
+    return static_cast<std::size_t>(cell.x() >> kShift) +
+           static_cast<std::size_t>(dims.x()) *
+               (static_cast<std::size_t>(cell.y() >> kShift) +
+                static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(cell.z() >> kShift));
   }
-  /// The cells [lo, hi] of the free cube around `cell`'s block, whose radius is r >= 1, cut to
-  /// the grid of `cell_dims` cells.
-  void cube(const Index3& cell, int r, const Index3& cell_dims, Index3& lo, Index3& hi) const {
+  /// The extent, for octant `octant`, of the block that holds `cell`.
+  int extent_at(int octant, const Index3& cell) const {
+    return extent[static_cast<std::size_t>(octant)][block_of(cell)];
+  }
+  /// The cells [lo, hi] of the free cube of extent e >= 1 ahead of `cell`'s block towards
+  /// `octant`, cut to the grid of `cell_dims` cells.
+  static void cube(const Index3& cell, int octant, int e, const Index3& cell_dims, Index3& lo,
+                   Index3& hi) {
     for (int a = 0; a < 3; ++a) {
       const int b = cell[a] >> kShift;
-      lo[a] = std::max(0, (b - (r - 1)) << kShift);
-      hi[a] = std::min(cell_dims[a] - 1, ((b + r) << kShift) - 1);
+      if ((octant >> a) & 1) {
+        lo[a] = b << kShift;
+        hi[a] = std::min(cell_dims[a] - 1, ((b + e) << kShift) - 1);
+      } else {
+        lo[a] = std::max(0, (b - e + 1) << kShift);
+        hi[a] = std::min(cell_dims[a] - 1, ((b + 1) << kShift) - 1);
+      }
     }
   }
 };

@@ -32,8 +32,10 @@ double ray_credit(const ClassMap& map, const FreeSpace& free, const Eigen::Vecto
   Index3 cell = spec.lattice_index(p).cwiseMax(Index3::Zero()).cwiseMin(spec.dims - Index3::Ones());
   int step[3];
   double t_next[3], t_delta[3];
+  int octant = 0;
   for (int a = 0; a < 3; ++a) {
     step[a] = d[a] > 0.0 ? 1 : (d[a] < 0.0 ? -1 : 0);
+    if (step[a] > 0) octant |= 1 << a;
     t_delta[a] = step[a] == 0 ? std::numeric_limits<double>::infinity() : h / std::abs(d[a]);
   }
   // The next boundary on each axis from the cell the ray is in.
@@ -52,11 +54,11 @@ double ray_credit(const ClassMap& map, const FreeSpace& free, const Eigen::Vecto
   while (t < s_out) {
     const CellState state = map.state(static_cast<std::size_t>(linear));
     if (state == CellState::kOccupied) break;
-    if (state == CellState::kFree && !free.radius.empty()) {
-      if (const int r = free.radius_at(cell); r > 0) {
+    if (state == CellState::kFree && !free.empty()) {
+      if (const int e = free.extent_at(octant, cell); e > 0) {
         // Out of the free cube in one step, into the cell past the face it leaves by.
         Index3 lo, hi;
-        free.cube(cell, r, spec.dims, lo, hi);
+        FreeSpace::cube(cell, octant, e, spec.dims, lo, hi);
         int exit = 0;
         double t_exit = std::numeric_limits<double>::infinity();
         for (int a = 0; a < 3; ++a) {

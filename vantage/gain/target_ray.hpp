@@ -65,10 +65,13 @@ class TargetWalk {
     linear_ = static_cast<std::ptrdiff_t>(spec.linear(cell_));
     target_linear_ = static_cast<std::ptrdiff_t>(spec.linear(target));
     for (int a = 0; a < 3; ++a) refresh(a);
+    octant_ = (step_[0] > 0 ? 1 : 0) | (step_[1] > 0 ? 2 : 0) | (step_[2] > 0 ? 4 : 0);
     entered_ = true;
   }
 
   bool entered() const { return entered_; }
+  /// The octant of the walk's steps (free_space.hpp's octant_of).
+  int octant() const { return octant_; }
   /// The cell the walk is in.
   const Index3& cell() const { return cell_; }
   /// Its linear index in the grid.
@@ -176,6 +179,7 @@ class TargetWalk {
   std::ptrdiff_t linear_ = 0;
   std::ptrdiff_t target_linear_ = -1;
   int m_ = 0;
+  int octant_ = 0;
   bool entered_ = false;
 };
 

@@ -43,10 +43,10 @@ struct GridCells {
 /// on the rays of the survival reading and greedy); false, and no step, when the cell's block is
 /// not in one.
 inline bool cross_free(const FreeSpace& free, const GridSpec& spec, TargetWalk& walk) {
-  const int r = free.radius_at(walk.cell());
-  if (r == 0) return false;
+  const int e = free.extent_at(walk.octant(), walk.cell());
+  if (e == 0) return false;
   Index3 lo, hi;
-  free.cube(walk.cell(), r, spec.dims, lo, hi);
+  FreeSpace::cube(walk.cell(), walk.octant(), e, spec.dims, lo, hi);
   walk.leave_box(lo, hi);
   return true;
 }
