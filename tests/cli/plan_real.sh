@@ -131,7 +131,12 @@ PY
 # The swept search (issue 25) on the Kinect frame and on FR-079 (Latombe): the pruned search's
 # choice and exact score; the others estimated, without greedy's reference; its times recorded.
 "$vantage" plan "$work/milk.yaml" --search swept --threads 2 --no-plots --out "$work/milk_swept" \
-  >/dev/null
+  >"$work/milk_swept.txt"
+# By cells, the table shows no gain in bits for the views not chosen ('-'), only their estimates.
+grep -Eq '^ +2 .* - ~ +[0-9]' "$work/milk_swept.txt" || {
+  echo "FAIL: milk_swept: the second row does not mark its gain in bits as not predicted"
+  exit 1
+}
 "$vantage" plan --map "$data/geb079.bt" --candidates frontier --sensor-height 0.5 --threads 2 \
   --method latombe --pose 0,0,0.5,0,0,0 --search swept --no-plots --out "$work/fr079_swept" \
   >/dev/null

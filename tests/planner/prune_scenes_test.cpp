@@ -45,6 +45,13 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
   EXPECT_EQ(plan.best, best) << what;
   EXPECT_EQ(plan.scores[plan.best], exact[best]) << what;
   EXPECT_FALSE(plan.estimated[plan.best]) << what;
+  // By the survival reading's cells, only the chosen view's gain in bits is predicted.
+  const bool by_cells =
+      method == PlannerMethod::kSurvival && config.objective == GainObjective::kCells;
+  EXPECT_EQ(plan.bits_of_chosen_only, by_cells) << what;
+  if (by_cells) {
+    EXPECT_GT(plan.gains[plan.best].gain, 0.0) << what;
+  }
   for (std::size_t c = 0; c < cands.size(); ++c) {
     if (plan.estimated[c]) {
       EXPECT_GE(plan.scores[c], exact[c]) << what << ": the bound of candidate " << c;

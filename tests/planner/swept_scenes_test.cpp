@@ -41,6 +41,10 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
   EXPECT_EQ(plan.best, best) << what << ": chose a view of " << exact[plan.best] / exact[best]
                              << " of the best's exact score";
   EXPECT_FALSE(plan.estimated[plan.best]) << what;
+  // By cells, no other view's gain in bits is predicted; greedy's gain is its count.
+  EXPECT_EQ(plan.bits_of_chosen_only,
+            method != PlannerMethod::kGreedy && method != PlannerMethod::kLatombe)
+      << what;
   if (paper) {
     // NOTE: every candidate enters the paper's race; the chosen one's score is its full
     // prediction, summed in another order than the exhaustive search's.

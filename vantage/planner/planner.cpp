@@ -249,6 +249,7 @@ void finish_race(const OccupancyGrid& grid, std::span<const Candidate> candidate
   }
   plan.best = raced[race.winner];
   plan.evaluated = raced.size();
+  plan.bits_of_chosen_only = !method_traits(gain.method).counts;
   plan.seconds = since(start);
   report_choice(grid, views, config, gain, plan);
   plan.scores[plan.best] =
@@ -382,6 +383,7 @@ Plan plan_pruned(const OccupancyGrid& grid, std::span<const Candidate> candidate
   plan.estimated = std::move(pruning.estimated);
   plan.scores = std::move(pruning.scores);
   plan.evaluated = pruning.evaluated;
+  plan.bits_of_chosen_only = score == detail::PrunedScore::kSurvivalCells;
   if (counts) gains_as_greedy_reference(plan);
   plan.seconds = since(start);
   if (score == detail::PrunedScore::kSurvivalCells) {

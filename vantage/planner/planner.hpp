@@ -153,6 +153,10 @@ struct Plan {
   /// the survival reading ranks by), evaluated after the decision and not part of `seconds` [s]
   double prediction_seconds = 0.0;
   std::size_t evaluated = 0;  ///< candidates evaluated in full (all but the estimated ones)
+  /// True when only the chosen candidate's ViewGain::gain is a prediction: a decision by the
+  /// expected cells seen (the survival reading's pruned search, the swept search but for
+  /// greedy's counts) computes no gain in bits for the others and leaves it 0.
+  bool bits_of_chosen_only = false;
   /// PlannerConfig::sequence: the planned views in the tour's order (`best` first), its length
   /// from the current pose [m] and the views' joint expected cells seen [cells]; else empty, 0.
   std::vector<std::size_t> sequence;

@@ -510,10 +510,13 @@ for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top
   // NOTE: a swept search predicts no greedy gain for the candidates ("-").
   const std::string greedy =
       plan.greedy_gains.empty() ? "-" : fmt::format("{:.1f}", plan.greedy_gains[i]);
-  fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {}{:>{}.1f}{} {:>19}{} {:>{}.3f}\n", r + 1, i,
+  // NOTE: a decision by cells predicts no gain in bits for the views it did not choose ("-").
+  const bool no_bits = plan.bits_of_chosen_only && i != plan.best;
+  const std::string bits = no_bits ? "-" : fmt::format("{:.1f}", plan.gains[i].gain);
+  fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {}{:>{}}{} {:>19}{} {:>{}.3f}\n", r + 1, i,
              fmt::format("({:.3f}, {:.3f}, {:.3f})", unsigned_zero(p.x(), 3),
                          unsigned_zero(p.y(), 3), unsigned_zero(p.z(), 3)),
-             unsigned_zero(yaw_deg(poses[i]), 1), mark, plan.gains[i].gain, gain_header.size(),
+             unsigned_zero(yaw_deg(poses[i]), 1), no_bits ? " " : mark, bits, gain_header.size(),
              show_cells
                  ? fmt::format(" {}{:>{}.1f}", mark, plan.gains[i].cells, cells_header.size() - 1)
                  : "",
@@ -591,8 +594,9 @@ void add_plan_command(CLI::App& app) {
       "seen is the expected number of unobserved cells the view sees [cells]; greedy, random "
       "and latombe count cells (latombe's score: greedy gain x exp(-lambda x travel)); yamauchi "
       "scores minus the travel [m]. The score column is what the method ranks by, in its unit "
-      "(the survival reading: cells, --objective bits|cells); '~' marks an estimated gain. Travel "
-      "is the straight line from --pose [m]. Writes "
+      "(the survival reading: cells, --objective bits|cells); '~' marks an estimated gain, '-' a "
+      "gain in bits that a decision by cells did not predict (plan.json: 0). Travel is the "
+      "straight line from --pose [m]. Writes "
       "plan.json, map.ot (lossless, for --map), map.bt (viewers), map.ply (occupied red, "
       "unobserved yellow) and map.png.");
   cmd->callback([o, cmd] {
