@@ -17,13 +17,8 @@
 
 namespace vantage {
 
-/// Octant of a direction whose per-axis steps are `step` (+1 or -1): bit a set when the walk
-/// moves towards higher indices on axis a.
-inline int octant_of(const Index3& step) {
-  return (step.x() > 0 ? 1 : 0) | (step.y() > 0 ? 2 : 0) | (step.z() > 0 ? 4 : 0);
-}
-
-/// Free cubes of blocks ahead of each block, per octant.
+/// Free cubes of blocks ahead of each block, per octant: octant o's bit a is set when a walk
+/// moves towards higher indices on axis a (a walk that never moves on an axis may take either).
 struct FreeSpace {
   static constexpr int kShift = 2;
   static constexpr int kBlock = 1 << kShift;  ///< block edge [cells]

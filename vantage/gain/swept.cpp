@@ -35,7 +35,7 @@ double ray_credit(const ClassMap& map, const FreeSpace& free, const Eigen::Vecto
   int octant = 0;
   for (int a = 0; a < 3; ++a) {
     step[a] = d[a] > 0.0 ? 1 : (d[a] < 0.0 ? -1 : 0);
-    if (step[a] > 0) octant |= 1 << a;
+    if (step[a] > 0) octant |= 1 << a;  // FreeSpace's octant (an axis not moved on: either)
     t_delta[a] = step[a] == 0 ? std::numeric_limits<double>::infinity() : h / std::abs(d[a]);
   }
   // The next boundary on each axis from the cell the ray is in.

@@ -70,7 +70,8 @@ class TargetWalk {
   }
 
   bool entered() const { return entered_; }
-  /// The octant of the walk's steps (free_space.hpp's octant_of).
+  /// The octant of the walk's steps: bit a set when it steps towards higher indices on axis a
+  /// (FreeSpace's octants).
   int octant() const { return octant_; }
   /// The cell the walk is in.
   const Index3& cell() const { return cell_; }
