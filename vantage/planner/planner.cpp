@@ -349,10 +349,11 @@ Plan plan_swept(const OccupancyGrid& grid, std::span<const Candidate> candidates
   return plan;
 }
 
-/// Whether the pruned search serves the method (PlannerConfig::search).
+/// Whether the pruned search serves the method (PlannerConfig::search): a target model (its
+/// per-target values are what prune.hpp bounds), or Latombe's weighting of greedy's.
 bool prunable(PlannerMethod method) {
-  return method == PlannerMethod::kSurvival || method == PlannerMethod::kProbabilistic ||
-         method == PlannerMethod::kGreedy || method == PlannerMethod::kLatombe;
+  return method != PlannerMethod::kRandom && method != PlannerMethod::kYamauchi &&
+         method_traits(gain_method_of(method)).ray != TargetRay::kNone;
 }
 
 /// The pruned search (prune.hpp) and, for the candidate it chooses, the full prediction.
