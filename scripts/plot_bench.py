@@ -138,6 +138,16 @@ def grid_axes(n):
     return fig, [ax for row in axes for ax in row]
 
 
+def legend_if_any(ax):
+    """A legend for the panel's labelled lines; a panel with none (no run of a method it draws
+    in that scene) says so instead of an empty legend."""
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8)
+    else:
+        ax.text(0.5, 0.5, "no run to draw", transform=ax.transAxes, ha="center", va="center",
+                color="0.5")
+
+
 def plot_curves(out, name, xlabel, scenes, g, curve):
     """One panel per scene with the mean +- std of unobserved cells of every (method, a):
     `curve(by_scan)` gives (xs, per-x lists over trials, line style, band opacity), or None."""
@@ -161,7 +171,7 @@ def plot_curves(out, name, xlabel, scenes, g, curve):
         ax.set_xlabel(xlabel)
         ax.set_ylabel("unobserved cells")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
+        legend_if_any(ax)
     for ax in axes[len(scenes):]:
         ax.axis("off")
     fig.tight_layout()
@@ -233,7 +243,7 @@ def plot_prediction_error(out, scenes, g):
         ax.set_xlabel("scan")
         ax.set_ylabel("|predicted - actual| cells seen [cells]")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=8)
+        legend_if_any(ax)
     for ax in axes[len(scenes):]:
         ax.axis("off")
     fig.tight_layout()

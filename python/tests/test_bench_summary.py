@@ -141,3 +141,17 @@ def test_levels_are_chosen_on_the_command_line(sweep, plot_bench):
             plot_bench.main(["plot_bench.py", str(sweep), "--levels", "0,90"])
     finally:
         plot_bench.LEVELS = (0.90, 0.95)
+
+
+def test_a_panel_with_nothing_to_draw_says_so_without_a_warning(tmp_path, plot_bench, caplog):
+    # Greedy and random predict no cells seen, so the prediction-error panels have no line: each
+    # says so, and matplotlib logs no warning of an empty legend.
+    lines = [HEADER]
+    for trial in range(2):
+        lines += rows("pile-12-s0001", "greedy", trial, GREEDY)
+        lines += rows("pile-12-s0001", "random", trial, GREEDY)
+    (tmp_path / "scans.csv").write_text("\n".join(lines) + "\n")
+    with caplog.at_level("WARNING"):
+        plot_bench.main(["plot_bench.py", str(tmp_path)])
+    assert not [r.getMessage() for r in caplog.records if "legend" in r.getMessage()]
+    assert (tmp_path / "prediction_error.png").stat().st_size > 0
