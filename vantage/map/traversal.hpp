@@ -161,17 +161,21 @@ struct TraversalResult {
   bool entered = false;      ///< the segment enters the grid at all
   bool stopped = false;      ///< the visitor asked to stop
   bool reached_end = false;  ///< the cell holding `to` lies in the grid and was visited
+  /// The cell holding `to` lies outside the grid, so the walk may leave it.
+  bool ends_outside = false;
 };
 
 /// Starts `walk` where `traverse` starts it: in the first grid cell the segment from `from` to
 /// `to` crosses, with m counted from the cell of `from`. False when the segment never enters the
-/// grid. `result.skipped` as traverse reports it; `result.entered` set when it enters.
+/// grid. `result.skipped` as traverse reports it; `result.entered` set when it enters;
+/// `result.ends_outside` set.
 inline bool start_in_grid(const GridSpec& spec, const Eigen::Vector3d& from,
                           const Eigen::Vector3d& to, GridWalk& walk, TraversalResult& result) {
   const Index3 first = spec.lattice_index(from);
   const Index3 last = spec.lattice_index(to);
   const Eigen::Vector3d dir = to - from;
   const int total = lattice_cells_between(first, last);
+  result.ends_outside = !spec.contains(last);
   double t_enter = 0.0;
   double t_exit = 1.0;
   if (!clip_to_grid(spec, from, dir, t_enter, t_exit) || t_enter > t_exit) {  // misses the box
@@ -221,7 +225,6 @@ TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,
   if (!start_in_grid(spec, from, to, walk, result)) return result;
   // NOTE: the walk is monotonic along each axis, so it stays in the box of its entry and end
   // cells: only a segment that ends outside the grid can leave it.
-  const bool may_leave = !spec.contains(spec.lattice_index(to));
   for (;;) {
     ++result.visited;
     const auto linear = static_cast<std::size_t>(walk.linear);
@@ -235,7 +238,7 @@ TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,
       result.reached_end = true;
       return result;
     }
-    if (may_leave && !spec.contains(walk.cell)) return result;  // left the grid
+    if (result.ends_outside && !spec.contains(walk.cell)) return result;  // left the grid
   }
 }
 

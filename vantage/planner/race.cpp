@@ -17,16 +17,11 @@ using Targets = std::vector<std::pair<std::uint32_t, double>>;
 
 Targets merged(std::span<const ViewCells> lists) {
   Targets out;
-  if (lists.size() == 1) {  // one view: its list is already ascending, one entry a cell
-    out.reserve(lists[0].cells.size());
-    for (std::size_t i = 0; i < lists[0].cells.size(); ++i)
-      out.emplace_back(lists[0].cells[i], lists[0].seen[i]);
-    return out;
-  }
   for (const ViewCells& list : lists) {
     for (std::size_t i = 0; i < list.cells.size(); ++i)
       out.emplace_back(list.cells[i], list.seen[i]);
   }
+  if (lists.size() == 1) return out;  // one view: its list is already ascending, one entry a cell
   std::stable_sort(out.begin(), out.end(),
                    [](const auto& a, const auto& b) { return a.first < b.first; });
   Targets sums;

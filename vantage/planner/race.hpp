@@ -2,9 +2,10 @@
 /// @file
 /// The swept search's last round (docs/decision.md, "The swept search"): a race between a few
 /// finalists (under the paper's model, every candidate) on nested hashed samples of the
-/// unobserved cells, each sample twice the one before, up to all of them. Every finalist's per-target visibilities on the same cells give
-/// each pair's difference and its sampling error; a finalist the leader beats by three standard
-/// errors drops out; the race ends with one left or on the full lists, which are exact.
+/// unobserved cells, each sample twice the one before, up to all of them. Every finalist's
+/// per-target visibilities on the same cells give each pair's difference and its sampling error;
+/// a finalist the leader beats by three standard errors drops out; the race ends with one left or
+/// on the full lists, which are exact.
 
 #include <cstddef>
 #include <cstdint>

@@ -64,7 +64,6 @@ TargetPrediction ray_gain(const Cells& map, const RayTables<Model>& tables,
   TraversalResult entry;
   if (!start_in_grid(spec, origin, to, walk, entry)) return {};
   const std::size_t target_linear = spec.linear(target);
-  const bool may_leave = !spec.contains(spec.lattice_index(to));
   RayOdds state;
   double p_prev = 0.0;
   bool first = true;
@@ -84,7 +83,7 @@ TargetPrediction ray_gain(const Cells& map, const RayTables<Model>& tables,
     }
     // The fast mode's early stop: a ray stops once it is hidden.
     if (state.hidden(epsilon) || !walk.advance()) return {};
-    if (may_leave && !spec.contains(walk.cell)) return {};
+    if (entry.ends_outside && !spec.contains(walk.cell)) return {};
   }
 }
 
