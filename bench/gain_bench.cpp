@@ -18,16 +18,11 @@ GainConfig with_threads(const benchmark::State& state) {
   return config;
 }
 
-double total(const std::vector<ViewGain>& gains) {
+/// The views' sum of one ViewGain member: `gain` [bits] or `targets` [cells].
+template <typename Member>
+double sum_of(const std::vector<ViewGain>& gains, Member ViewGain::*member) {
   double sum = 0.0;
-  for (const ViewGain& g : gains) sum += g.gain;
-  return sum;
-}
-
-/// The cells the views credited, summed over the views [cells].
-double credited(const std::vector<ViewGain>& gains) {
-  double sum = 0.0;
-  for (const ViewGain& g : gains) sum += static_cast<double>(g.targets);
+  for (const ViewGain& g : gains) sum += static_cast<double>(g.*member);
   return sum;
 }
 
@@ -40,8 +35,8 @@ void gain30(benchmark::State& state, Evaluate evaluate) {
   std::vector<ViewGain> gains;
   for (auto _ : state) gains = evaluate(world.grid, world.views, config);
   state.counters["views"] = static_cast<double>(world.views.size());
-  state.counters["gain_bits"] = total(gains);
-  state.counters["targets"] = credited(gains);
+  state.counters["gain_bits"] = sum_of(gains, &ViewGain::gain);
+  state.counters["targets"] = sum_of(gains, &ViewGain::targets);
 }
 
 void BM_Gain30_Exact(benchmark::State& state) {
@@ -102,10 +97,10 @@ void BM_Gain30_OctoMap(benchmark::State& state) {
     result = octomap_view_gains(*tree, world.grid.spec(), world.grid.params(), world.views, config);
   }
   state.counters["views"] = static_cast<double>(world.views.size());
-  state.counters["gain_bits"] = total(result.gains);
+  state.counters["gain_bits"] = sum_of(result.gains, &ViewGain::gain);
   // NOTE: a cell is credited by the first pixel ray that reaches it before the ray is hidden, so
   // fewer cells than the exact evaluation's targets, each at a visible ray's value.
-  state.counters["targets"] = credited(result.gains);
+  state.counters["targets"] = sum_of(result.gains, &ViewGain::targets);
   state.counters["rays"] = static_cast<double>(result.rays);
   state.counters["lookups"] = static_cast<double>(result.keys);
 }
