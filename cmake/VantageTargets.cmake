@@ -45,11 +45,12 @@ endfunction()
 
 # vantage_add_test(NAME <name> SOURCES ... DEPS ...)
 function(vantage_add_test)
-  cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${ARG_NAME} ${ARG_SOURCES})
   target_link_libraries(${ARG_NAME} PRIVATE ${ARG_DEPS} GTest::gtest_main)
   vantage_target_defaults(${ARG_NAME})
   gtest_discover_tests(${ARG_NAME} WORKING_DIRECTORY ${PROJECT_SOURCE_DIR}
                        PROPERTIES ENVIRONMENT "VANTAGE_SOURCE_DIR=${PROJECT_SOURCE_DIR}"
+                                  LABELS "${ARG_LABELS}"
                        DISCOVERY_TIMEOUT 60)
 endfunction()

@@ -16,9 +16,11 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "vantage/experiment/planning_settings.hpp"
 #include "vantage/experiment/recorded.hpp"
 #include "vantage/io/cloud_io.hpp"
 #include "vantage/planner/planner.hpp"
+#include "vantage/planner/search.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/ring.hpp"
 #include "vantage/views/sphere.hpp"
@@ -30,7 +32,7 @@ namespace {
 /// A Plan and the candidates ranked as `vantage plan` ranks them.
 struct RankedPlan {
   Plan plan;
-  std::vector<std::size_t> ranking;  // by score, highest first, the chosen candidate first
+  std::vector<std::size_t> ranking;  // Plan::ranking: the chosen first, estimates last
 };
 
 RankedPlan decide(const OccupancyGrid& grid, const DoubleArray& candidates, const SensorFov& fov,
@@ -43,37 +45,49 @@ RankedPlan decide(const OccupancyGrid& grid, const DoubleArray& candidates, cons
     py::gil_scoped_release release;
     out.plan = plan_next_view(grid, views, config, seed);
   }
-  out.ranking.resize(views.size());
-  std::iota(out.ranking.begin(), out.ranking.end(), std::size_t{0});
-  const std::vector<double>& scores = out.plan.scores;
-  std::stable_sort(out.ranking.begin(), out.ranking.end(),
-                   [&](std::size_t a, std::size_t b) { return scores[a] > scores[b]; });
-  std::swap(*std::find(out.ranking.begin(), out.ranking.end(), out.plan.best), out.ranking.front());
+  out.ranking = out.plan.ranking();
   return out;
 }
 
-PlannerConfig make_planner_config(const std::string& method, const GainConfig& gain, double lambda,
-                                  bool greedy_reference,
+/// PlannerConfig(...): the library's one builder (PlanningSettings, as the CLI's), then the
+/// GainConfig given, if one is (its method follows from `method`); without one, the method's own
+/// a, as `vantage plan` takes it.
+PlannerConfig make_planner_config(const std::string& method, const std::optional<GainConfig>& gain,
+                                  double lambda, bool greedy_reference,
                                   const std::optional<std::string>& objective,
-                                  const std::string& search, int sample, int horizon,
+                                  const std::optional<std::string>& search, int sample, int horizon,
                                   double travel_weight, int swept_rays) {
-  PlannerConfig config;
-  config.method = parse_planner_method(method);
-  config.gain = gain;
-  config.lambda = lambda;
-  config.greedy_reference = greedy_reference;
-  config.objective =
-      objective ? parse_gain_objective(*objective) : natural_objective(config.method);
-  config.search = parse_decision_search(search);
-  if (sample < 1 || !std::has_single_bit(static_cast<unsigned>(sample))) {
-    throw std::invalid_argument(cat("sample must be a power of two >= 1, got ", sample));
+  PlanningSettings settings;
+  settings.method = method;
+  settings.objective = objective.value_or("");
+  settings.search = search.value_or("");
+  if (gain) {
+    settings.evaluation = std::string(to_string(gain->evaluation));
+    settings.epsilon = gain->epsilon;
+    settings.threads = gain->num_threads;
   }
-  config.sample_bits = std::countr_zero(static_cast<unsigned>(sample));
-  config.swept_rays = swept_rays;
-  config.sequence.horizon = horizon;
-  config.sequence.travel_weight = travel_weight;
+  settings.lambda = lambda;
+  settings.sample = sample;
+  settings.horizon = horizon;
+  settings.travel_weight = travel_weight;
+  settings.swept_rays = swept_rays;
+  PlannerConfig config;
+  try {
+    config = settings.planner_config(kTableTopAlpha);
+  } catch (const SettingError& e) {
+    throw std::invalid_argument(cat(e.setting(), ": ", e.what()));
+  }
+  if (gain) config.gain = *gain;
+  config.greedy_reference = greedy_reference;
   config.validate();
   return config;
+}
+
+/// What PlannerConfig() and the calls that take a config default to: `vantage plan`'s, the
+/// survival reading by cells with the search that serves it fastest.
+PlannerConfig default_planner_config() {
+  return make_planner_config("survival", std::nullopt, PlannerConfig{}.lambda, false, std::nullopt,
+                             std::nullopt, 1, 1, 0.0, PlannerConfig{}.swept_rays);
 }
 
 /// The mapping settings `vantage plan` derives from a manifest with these options.
@@ -128,7 +142,10 @@ py::tuple plan_recorded(const std::vector<DoubleArray>& clouds, const DoubleArra
     throw std::invalid_argument(cat("got ", clouds.size(), " clouds but ", T_world_cloud.size(),
                                     " poses; give one pose per cloud"));
   }
-  config.greedy_reference = true;  // as `vantage plan`: its JSON lists each greedy gain
+  // NOTE: as `vantage plan`: greedy's prediction on every candidate, but after a swept search
+  // (it costs more than the decision itself).
+  config.greedy_reference =
+      !sequence_of(config).active() && resolve_search(config) != DecisionSearch::kSwept;
   check_grid_memory(spec, mapping_cost(config.gain.num_threads), "the plan's grid");
   Mapper mapper(
       spec, recorded_mapper_config(integration, table_segmentation, icp, config.gain.num_threads));
@@ -260,21 +277,23 @@ void bind_plan(py::module_& m) {
       "through the world origin (OctoMap's) that hold the box [m].");
 
   py::class_<PlannerConfig>(m, "PlannerConfig", "Settings of the next-best-view decision.")
-      .def(py::init(&make_planner_config), py::arg("method") = "probabilistic",
-           py::arg("gain") = GainConfig{}, py::arg("lambda_") = PlannerConfig{}.lambda,
-           py::arg("greedy_reference") = false, py::arg("objective") = std::nullopt,
-           py::arg("search") = "exhaustive", py::arg("sample") = 16, py::arg("horizon") = 1,
-           py::arg("travel_weight") = 0.0, py::arg("swept_rays") = PlannerConfig{}.swept_rays,
-           "method: a name as `vantage explore --method` takes ('survival', 'probabilistic', "
-           "'greedy', 'random', 'latombe', 'yamauchi', 'sequence' or a metric); gain: a "
-           "GainConfig (its method follows from `method`); lambda_: latombe's travel penalty "
-           "[1/m]; greedy_reference: also predict every candidate's greedy gain; objective: "
-           "'bits' or 'cells' (default: the method's own); search: 'exhaustive', 'pruned', "
-           "'screened', 'sampled' or 'swept' (docs/decision.md); sample: the sampled search's "
-           "rate, one unobserved cell in `sample`; horizon, travel_weight: plan that many views "
-           "ahead and "
-           "tour them (docs/decision.md, 'Planning a sequence') [views, 1/m]; swept_rays: the "
-           "swept search's rays across a view's image in its first round, in [1, 4096].")
+      .def(
+          py::init(&make_planner_config), py::arg("method") = "survival",
+          py::arg("gain") = std::nullopt, py::arg("lambda_") = PlannerConfig{}.lambda,
+          py::arg("greedy_reference") = false, py::arg("objective") = std::nullopt,
+          py::arg("search") = std::nullopt, py::arg("sample") = 1, py::arg("horizon") = 1,
+          py::arg("travel_weight") = 0.0, py::arg("swept_rays") = PlannerConfig{}.swept_rays,
+          "method: a name as `vantage explore --method` takes ('survival', the default as in "
+          "`vantage plan`, 'probabilistic', 'greedy', 'random', 'latombe', 'yamauchi', "
+          "'sequence' or a metric); gain: a GainConfig (its method follows from `method`; "
+          "default None: the method's own a, as `vantage plan`); lambda_: latombe's travel penalty "
+          "[1/m]; greedy_reference: also predict every candidate's greedy gain; objective: "
+          "'bits' or 'cells' (default: the method's own); search: 'swept', 'pruned' or "
+          "'exhaustive' (docs/decision.md; default None: the fastest that serves the method, as "
+          "`vantage plan`); sample: a sequence's values on one unobserved cell in `sample` "
+          "(1: exact); horizon, travel_weight: plan that many views ahead and tour them "
+          "(docs/decision.md, 'Planning a sequence') [views, 1/m]; swept_rays: the "
+          "swept search's rays across a view's image in its first round, in [1, 4096].")
       .def_property_readonly(
           "method", [](const PlannerConfig& c) { return std::string(to_string(c.method)); },
           "How the next view is chosen.")
@@ -283,8 +302,12 @@ void bind_plan(py::module_& m) {
       .def_readonly("greedy_reference", &PlannerConfig::greedy_reference,
                     "Whether every candidate's greedy gain is predicted too.")
       .def_property_readonly(
-          "search", [](const PlannerConfig& c) { return std::string(to_string(c.search)); },
-          "How the candidates are searched.")
+          "search",
+          [](const PlannerConfig& c) {
+            return sequence_of(c).active() ? std::string("sequence")
+                                           : std::string(to_string(resolve_search(c)));
+          },
+          "The search that decides: the one given, or the fastest that serves the method.")
       .def_property_readonly(
           "objective", [](const PlannerConfig& c) { return std::string(to_string(c.objective)); },
           "What the method ranks by: bits or cells.")
@@ -306,8 +329,21 @@ void bind_plan(py::module_& m) {
       .def_property_readonly(
           "scores", [](const RankedPlan& p) { return p.plan.scores; }, "What was maximised.")
       .def_readonly("ranking", &RankedPlan::ranking,
-                    "Candidate indices by score, highest first, the chosen one first (the order "
-                    "of `vantage plan`'s table and JSON).")
+                    "Candidate indices, the chosen one first, then those evaluated in full by "
+                    "score, then the estimated ones by score (the order of `vantage plan`'s table "
+                    "and JSON).")
+      .def_property_readonly(
+          "search", [](const RankedPlan& p) { return std::string(to_string(p.plan.search)); },
+          "The search that decided: swept, pruned or exhaustive.")
+      .def_property_readonly(
+          "estimated",
+          [](const RankedPlan& p) {
+            std::vector<bool> out(p.plan.scores.size());
+            for (std::size_t c = 0; c < out.size(); ++c) out[c] = p.plan.is_estimate(c);
+            return out;
+          },
+          "Per candidate: whether its gains and score are the search's estimate or upper bound, "
+          "not a full evaluation.")
       .def_property_readonly(
           "seconds", [](const RankedPlan& p) { return p.plan.seconds; },
           "Wall time of the decision [s].")
@@ -323,7 +359,7 @@ void bind_plan(py::module_& m) {
       });
 
   m.def("plan_next_view", &decide, py::arg("grid"), py::arg("candidates"), py::arg("fov"),
-        py::arg("config") = PlannerConfig{}, py::arg("seed") = 1,
+        py::arg("config") = default_planner_config(), py::arg("seed") = 1,
         "Scores K x 4 x 4 candidate sensor poses seen with `fov` on the grid and chooses one "
         "(eq. 1; ties to the lower index, 'random' uses `seed`). Returns a Plan.");
 
@@ -381,7 +417,8 @@ void bind_plan(py::module_& m) {
   m.def("plan", &plan_recorded, py::arg("clouds"), py::arg("poses"), py::arg("fov"),
         py::arg("spec"), py::arg("candidates"), py::arg("frame") = "x_forward",
         py::arg("table_segmentation") = false, py::arg("icp") = false,
-        py::arg("integration") = "paper", py::arg("config") = PlannerConfig{}, py::arg("seed") = 1,
+        py::arg("integration") = "paper", py::arg("config") = default_planner_config(),
+        py::arg("seed") = 1,
         "Real scans in, next view out, as `vantage plan` does: maps the clouds (N x 3 arrays in "
         "the cloud frame `frame`, 'x_forward' or 'optical') at their 4 x 4 poses T_world_cloud "
         "into a fresh grid of `spec`, then scores the candidate sensor poses (x forward). "

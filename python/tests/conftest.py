@@ -39,15 +39,14 @@ def cli_error(vantage_bin, *args):
 
 @pytest.fixture(scope="session")
 def own_scans(tmp_path_factory, vantage_bin, source_dir):
-    """The own-scans example made by its own script, in a scratch copy, and `vantage plan --json
-    --method probabilistic` (the library's default method; the CLI's is survival) run on it:
-    (folder, the CLI's plan.json as a dict, the CLI's results folder)."""
+    """The own-scans example made by its own script, in a scratch copy, and `vantage plan --json`
+    with its defaults (the survival reading, the swept search; the bindings' defaults too) run on
+    it: (folder, the CLI's plan.json as a dict, the CLI's results folder)."""
     folder = tmp_path_factory.mktemp("own-scans")
     example = source_dir / "examples" / "own-scans"
     subprocess.run([str(example / "make-data.sh"), str(folder), str(vantage_bin)], check=True,
                    capture_output=True)
     out = folder / "cli-results"
-    run = subprocess.run([str(vantage_bin), "plan", str(folder), "--json", "--method",
-                          "probabilistic", "--out", str(out)],
+    run = subprocess.run([str(vantage_bin), "plan", str(folder), "--json", "--out", str(out)],
                          check=True, capture_output=True, text=True)
     return folder, json.loads(run.stdout), out

@@ -69,13 +69,20 @@ def test_fast_and_exact_agree_and_threads_do_not_matter(setup):
 
 def test_plan_chooses_the_highest_gain(setup):
     _, grid, poses = setup
-    plan = vt.plan_next_view(grid, poses, FOV)
-    gains = [g.gain for g in plan.gains]
-    assert plan.best == int(np.argmax(gains))
+    plan = vt.plan_next_view(grid, poses, FOV)  # `vantage plan`'s: survival, the swept search
+    assert plan.search == "swept"
+    every = vt.plan_next_view(grid, poses, FOV, vt.PlannerConfig(search="exhaustive"))
+    assert every.best == int(np.argmax([g.cells for g in every.gains]))  # it ranks by cells
+    assert plan.best == every.best
+    paper = vt.PlannerConfig(method="probabilistic", search="exhaustive")
+    bits = vt.plan_next_view(grid, poses, FOV, paper)
+    assert bits.best == int(np.argmax([g.gain for g in bits.gains]))
     assert plan.ranking[0] == plan.best and sorted(plan.ranking) == list(range(len(poses)))
     assert plan.greedy_gains == []  # not asked for
     greedy = vt.plan_next_view(grid, poses, FOV, vt.PlannerConfig(method="greedy"))
-    assert greedy.best == int(np.argmax(greedy.scores))
+    counted = vt.plan_next_view(
+        grid, poses, FOV, vt.PlannerConfig(method="greedy", search="exhaustive"))
+    assert greedy.best == int(np.argmax(counted.scores))
 
 
 def test_expected_cells_seen_lie_between_nothing_and_every_target(setup):

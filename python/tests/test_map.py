@@ -114,26 +114,32 @@ def test_a_plan_says_what_it_chose(spec):
 
 
 def test_the_planner_takes_the_clis_settings(spec):
-    """PlannerConfig names what `vantage explore` names: the method's own objective, the search,
-    the sampled search's rate, the swept search's rays, the sequence; bad values raise
-    ValueError."""
+    """PlannerConfig names what `vantage explore` names: the method's own objective, the search
+    (by default the fastest that serves the method), the swept search's rays, the sequence; bad
+    values, and a search that does not serve the method, raise ValueError."""
     sequence = vt.PlannerConfig(method="sequence")
-    assert (sequence.objective, sequence.horizon, sequence.search) == ("cells", 3, "exhaustive")
+    assert (sequence.objective, sequence.horizon, sequence.search) == ("cells", 3, "sequence")
     assert vt.PlannerConfig(method="probabilistic").objective == "bits"
+    assert vt.PlannerConfig(method="probabilistic").search == "pruned"
+    assert vt.PlannerConfig(method="survival").search == "swept"
+    assert vt.PlannerConfig(method="unobserved-voxel").search == "exhaustive"
     grid = vt.OccupancyGrid(spec)
     candidates = vt.ring_candidates(spec)
-    exact = vt.plan_next_view(grid, candidates, FOV, vt.PlannerConfig(method="survival"))
-    every = vt.PlannerConfig(method="survival", search="sampled", sample=1)
-    assert every.search == "sampled"
-    sampled = vt.plan_next_view(grid, candidates, FOV, every)
-    assert sampled.best == exact.best
+    exact = vt.plan_next_view(
+        grid, candidates, FOV, vt.PlannerConfig(method="survival", search="exhaustive"))
+    assert exact.search == "exhaustive" and not any(exact.estimated)
+    proven = vt.plan_next_view(
+        grid, candidates, FOV, vt.PlannerConfig(method="survival", search="pruned"))
+    assert proven.search == "pruned" and proven.best == exact.best
     planned = vt.plan_next_view(grid, candidates, FOV, sequence)
     assert 0 <= planned.best < len(candidates)
     swept = vt.PlannerConfig(method="survival", search="swept", swept_rays=48)
     assert (swept.search, swept.swept_rays) == ("swept", 48)
     # An empty grid's ring ties many views exactly: the swept search's choice scores the best.
     chosen = vt.plan_next_view(grid, candidates, FOV, swept)
+    assert chosen.search == "swept" and not chosen.estimated[chosen.best]
     assert chosen.scores[chosen.best] == pytest.approx(exact.scores[exact.best], rel=1e-9)
+    assert chosen.ranking[0] == chosen.best
     with pytest.raises(ValueError, match="swept_rays"):
         vt.PlannerConfig(method="survival", search="swept", swept_rays=0)
     with pytest.raises(ValueError, match="power of two"):
@@ -142,6 +148,8 @@ def test_the_planner_takes_the_clis_settings(spec):
         vt.PlannerConfig(method="sequence", objective="bits")
     with pytest.raises(ValueError, match="decision search"):
         vt.PlannerConfig(search="best")
+    with pytest.raises(ValueError, match="does not serve unobserved-voxel"):
+        vt.PlannerConfig(method="unobserved-voxel", search="swept")
 
 
 def test_a_copy_is_independent(spec):

@@ -47,7 +47,7 @@ if key(loop) != key(once):
     fail("planning from step 1's map.ot plus the new cloud ranks or scores differently")
 if loop["next_best_view"]["index"] != once["next_best_view"]["index"]:
     fail("the loop chose another view")
-if loop["version"] != 3 or loop["units"]["predicted_gain"] != "bits":
+if loop["version"] != 4 or loop["units"]["predicted_gain"] != "bits":
     fail(f"plan.json's version/units: {loop.get('version')} {loop.get('units')}")
 
 yamauchi, latombe, greedy = load("yamauchi"), load("latombe"), load("greedy")

@@ -82,10 +82,13 @@ TEST(Bench, RefusesToResumeAFolderWithOtherSettings) {
     EXPECT_NE(std::string(e.what()).find("sweep.json"), std::string::npos) << e.what();
   }
   EXPECT_EQ(testing::read_text(dir / "scans.csv"), rows);
-  // The sampled search's rate and the hemisphere's radii change a trial's rows too.
+  // A sequence's sample rate, the search and the hemisphere's radii change a trial's rows too.
   BenchConfig sparser = config;
-  sparser.exploration.planner.sample_bits += 2;
+  sparser.exploration.planner.sequence.sample_bits += 2;
   EXPECT_THROW(run_bench(dir, sparser), std::invalid_argument);
+  BenchConfig searched = config;
+  searched.exploration.planner.search = DecisionSearch::kExhaustive;
+  EXPECT_THROW(run_bench(dir, searched), std::invalid_argument);
   BenchConfig wider = config;
   wider.exploration.hemisphere.radii = {1.2};
   EXPECT_THROW(run_bench(dir, wider), std::invalid_argument);

@@ -11,6 +11,7 @@
 
 #include "test_scene.hpp"
 #include "vantage/experiment/results.hpp"
+#include "vantage/gain/view_gain.hpp"
 #include "vantage/io/cloud_io.hpp"
 #include "vantage/io/octomap_io.hpp"
 

@@ -10,6 +10,7 @@
 #include <random>
 #include <vector>
 
+#include "vantage/gain/bounds.hpp"
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/target_ray.hpp"
 #include "vantage/map/traversal.hpp"

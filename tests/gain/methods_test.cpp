@@ -47,7 +47,7 @@ TEST(Methods, AMetricHasAnEvaluationAndATargetModelARay) {
     if (t.kind == MethodKind::kMetric) {
       EXPECT_NE(t.metric, nullptr) << t.name;
       EXPECT_EQ(t.ray, TargetRay::kNone) << t.name;
-      EXPECT_FALSE(t.has_objective || t.counts || t.fast_mode || t.sampled) << t.name;
+      EXPECT_FALSE(t.has_objective || t.counts || t.fast_mode) << t.name;
     } else {
       EXPECT_EQ(t.metric, nullptr) << t.name;
       EXPECT_NE(t.ray, TargetRay::kNone) << t.name;
@@ -57,15 +57,11 @@ TEST(Methods, AMetricHasAnEvaluationAndATargetModelARay) {
 }
 
 // The traits say what the evaluations do: a counting method's bits are its cells and whole
-// numbers; a method without the fast mode gives its exact values under kFast; the sampled
-// estimates serve exactly the methods marked sampled.
+// numbers; a method without the fast mode gives its exact values under kFast.
 TEST(Methods, TheTraitsDescribeWhatTheEvaluationsDo) {
   const OccupancyGrid grid = test::row_grid();
   const std::vector<Frustum> views = {test::looking_along_x({-0.5, 0.0, 0.0}),
                                       test::looking_along_x({0.25, 0.0, 0.0})};
-  const GainMap map(grid, 1);
-  std::vector<std::uint32_t> sample;
-  for (std::uint32_t i = 0; i < grid.size(); ++i) sample.push_back(i);
   for (const MethodTraits& t : gain_methods()) {
     if (t.kind != MethodKind::kTargetModel) continue;
     GainConfig config;
@@ -88,11 +84,6 @@ TEST(Methods, TheTraitsDescribeWhatTheEvaluationsDo) {
       }
     }
     EXPECT_GT(total, 0.0) << t.name;
-    if (t.sampled) {
-      EXPECT_EQ(sampled_view_gains(map, views, sample, config).size(), views.size()) << t.name;
-    } else {
-      EXPECT_THROW(sampled_view_gains(map, views, sample, config), std::invalid_argument) << t.name;
-    }
   }
 }
 

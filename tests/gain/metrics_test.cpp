@@ -12,6 +12,7 @@
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/fast.hpp"
 #include "vantage/gain/ray_model.hpp"
+#include "vantage/gain/view_gain.hpp"
 
 namespace vantage {
 namespace {

@@ -1,7 +1,8 @@
 #pragma once
 // The decision oracles' states (prune_scenes_test.cpp, swept_scenes_test.cpp): a built-in table
-// top after 1, 3 and 6 paper-mode scans with its ring views not yet taken, travel from the last
-// scan's pose, and every candidate's exact sums to hold a search's choice to.
+// top after 1, 3 and 6 paper-mode scans with its ring views not yet taken (and on tabletop-4 its
+// arm's hemisphere views), travel from the last scan's pose, and every candidate's exact sums to
+// hold a search's choice to.
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/world.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/views/hemisphere.hpp"
 #include "vantage/views/sphere.hpp"
 
 namespace vantage::oracle {
@@ -92,6 +94,23 @@ void for_each_state(const sim::World& world, const std::string& name, F&& f) {
     }
     f(cat(name, " after ", k + 1, " scans, ring"), grid, ring, k + 1, pose);
   }
+}
+
+/// An arm's hemisphere views over the scene's target (as explore's --candidates hemisphere takes
+/// them: HemisphereConfig's defaults, the scene's arm), travel the straight line from `here`.
+inline std::vector<Candidate> hemisphere_candidates(const sim::Scene& scene,
+                                                    const Eigen::Vector3d& here) {
+  HemisphereConfig hemisphere;
+  hemisphere.center = scene.mount.target;
+  if (scene.arm) {
+    hemisphere.base = scene.arm->base;
+    hemisphere.reach = scene.arm->reach;
+  }
+  std::vector<Candidate> views;
+  for (const Eigen::Isometry3d& p : hemisphere_poses(hemisphere)) {
+    views.push_back({Frustum(p, scene.fov()), (p.translation() - here).norm()});
+  }
+  return views;
 }
 
 /// `n` sphere views around the scene's ring centre at the ring's radius, travel from `here`.

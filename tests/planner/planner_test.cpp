@@ -3,7 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
+#include "vantage/planner/search.hpp"
+#include "vantage/util/text.hpp"
 #include "vantage/views/ring.hpp"
 
 namespace vantage {
@@ -46,60 +50,78 @@ TEST(Planner, GainMethodsPreferTheViewOfTheUnknownHalf) {
   }
 }
 
-// With every unobserved cell in the sample, the sampled search's estimates are the exact sums
-// and its choice the exhaustive exact search's.
-TEST(Planner, TheSampledSearchOfEveryCellIsTheExhaustiveSearch) {
+// With no search named, each method gets the fastest registered search that serves it, and the
+// plan says which decided; its choice is the exhaustive search's.
+TEST(Planner, TheDefaultSearchIsTheFastestThatServesTheMethod) {
   HalfKnownBlock s;
-  for (const PlannerMethod method : {PlannerMethod::kSurvival, PlannerMethod::kProbabilistic,
-                                     PlannerMethod::kGreedy, PlannerMethod::kLatombe}) {
+  struct Case {
+    PlannerMethod method;
+    GainObjective objective;
+    DecisionSearch expected;
+  };
+  for (const Case& c :
+       {Case{PlannerMethod::kSurvival, GainObjective::kCells, DecisionSearch::kSwept},
+        Case{PlannerMethod::kProbabilistic, GainObjective::kCells, DecisionSearch::kSwept},
+        Case{PlannerMethod::kGreedy, GainObjective::kBits, DecisionSearch::kSwept},
+        Case{PlannerMethod::kLatombe, GainObjective::kBits, DecisionSearch::kSwept},
+        Case{PlannerMethod::kProbabilistic, GainObjective::kBits, DecisionSearch::kPruned},
+        Case{PlannerMethod::kSurvival, GainObjective::kBits, DecisionSearch::kPruned},
+        Case{PlannerMethod::kUnobservedVoxel, GainObjective::kBits, DecisionSearch::kExhaustive},
+        Case{PlannerMethod::kRandom, GainObjective::kBits, DecisionSearch::kExhaustive},
+        Case{PlannerMethod::kYamauchi, GainObjective::kBits, DecisionSearch::kExhaustive}}) {
     PlannerConfig config;
-    config.method = method;
-    config.objective = natural_objective(method);
-    config.gain.evaluation = GainEvaluation::kExact;
+    config.method = c.method;
+    config.objective = c.objective;
     config.gain.alpha = 0.99;
+    const std::string what = cat(to_string(c.method), " by ", to_string(c.objective));
+    EXPECT_EQ(resolve_search(config), c.expected) << what;
+    const Plan plan = plan_next_view(s.grid, s.candidates, config);
+    EXPECT_EQ(plan.search, c.expected) << what;
     config.search = DecisionSearch::kExhaustive;
-    const Plan exact = plan_next_view(s.grid, s.candidates, config);
-    config.search = DecisionSearch::kSampled;
-    config.sample_bits = 0;
-    const Plan sampled = plan_next_view(s.grid, s.candidates, config);
-    EXPECT_EQ(sampled.best, exact.best) << to_string(method);
-    ASSERT_EQ(sampled.scores.size(), exact.scores.size());
-    for (std::size_t c = 0; c < exact.scores.size(); ++c) {
-      EXPECT_NEAR(sampled.scores[c], exact.scores[c], 1e-9 * (1.0 + exact.scores[c]))
-          << to_string(method) << " candidate " << c;
-      EXPECT_EQ(sampled.estimated[c], c != sampled.best) << to_string(method);
-    }
-    EXPECT_GT(exact.scores[exact.best], 0.0) << to_string(method);
-    EXPECT_EQ(sampled.evaluated, 1u);
+    const Plan exhaustive = plan_next_view(s.grid, s.candidates, config);
+    EXPECT_EQ(plan.best, exhaustive.best) << what;
+    EXPECT_EQ(exhaustive.search, DecisionSearch::kExhaustive) << what;
   }
 }
 
-// On a sample of one cell in four, greedy's estimates are four times whole counts, the chosen
-// candidate's report is its exact count, and nothing depends on the thread count.
-TEST(Planner, TheSampledSearchScalesItsSampleAndIsTheSameForAnyThreads) {
+// A search named for a method it does not serve is refused, naming those that do; nothing falls
+// back to another search without saying so.
+TEST(Planner, ASearchThatDoesNotServeTheMethodIsRefused) {
   HalfKnownBlock s;
   PlannerConfig config;
-  config.method = PlannerMethod::kGreedy;
-  config.search = DecisionSearch::kSampled;
-  config.sample_bits = 2;
-  config.gain.num_threads = 1;
-  const Plan one = plan_next_view(s.grid, s.candidates, config);
-  config.gain.num_threads = 2;
-  const Plan two = plan_next_view(s.grid, s.candidates, config);
-  EXPECT_EQ(one.best, 0u);
-  EXPECT_EQ(one.best, two.best);
-  for (std::size_t c = 0; c < one.gains.size(); ++c) {
-    EXPECT_EQ(one.gains[c].cells, two.gains[c].cells) << c;
-    if (c != one.best) {
-      EXPECT_EQ(std::fmod(one.gains[c].cells, 4.0), 0.0) << c;
-    }
+  config.method = PlannerMethod::kUnobservedVoxel;
+  config.search = DecisionSearch::kSwept;
+  try {
+    (void)plan_next_view(s.grid, s.candidates, config);
+    FAIL() << "the swept search served a metric";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("swept search does not serve unobserved-voxel"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("use exhaustive"), std::string::npos) << message;
   }
-  config.search = DecisionSearch::kExhaustive;
-  const Plan exact = plan_next_view(s.grid, s.candidates, config);
-  EXPECT_EQ(one.gains[one.best].cells, exact.gains[one.best].cells);
-  EXPECT_NE(one.gains[0].cells, 0.0);
-  config.sample_bits = 17;
-  EXPECT_THROW(config.validate(), std::invalid_argument);
+  config.method = PlannerMethod::kProbabilistic;
+  config.objective = GainObjective::kBits;
+  EXPECT_THROW((void)resolve_search(config), std::invalid_argument);
+  config.search = DecisionSearch::kPruned;
+  EXPECT_EQ(resolve_search(config), DecisionSearch::kPruned);
+  config.method = PlannerMethod::kSequence;
+  config.objective = GainObjective::kCells;
+  EXPECT_THROW(config.validate(), std::invalid_argument);  // a sequence takes no search
+  EXPECT_EQ(parse_decision_search("pruned"), DecisionSearch::kPruned);
+  EXPECT_THROW((void)parse_decision_search("screened"), std::invalid_argument);
+}
+
+// The ranking lists the chosen candidate first, then the ones evaluated in full by score, then
+// the estimates by score, even where an estimate scores above the choice.
+TEST(Planner, TheRankingListsNoEstimateAboveTheChoice) {
+  Plan plan;
+  plan.best = 2;
+  plan.scores = {5.0, 9.0, 4.0, 3.0, 7.0};
+  plan.estimated = {false, true, false, false, true};
+  EXPECT_EQ(plan.ranking(), (std::vector<std::size_t>{2, 0, 3, 1, 4}));
+  plan.estimated.clear();  // every candidate evaluated in full
+  EXPECT_EQ(plan.ranking(), (std::vector<std::size_t>{2, 1, 4, 0, 3}));
 }
 
 // `--method sequence` is the survival reading planned kSequenceDefaults' views ahead, unless
@@ -174,6 +196,9 @@ TEST(Planner, ACandidateOfSeveralViewsSumsThem) {
     PlannerConfig config;
     config.method = method;
     config.greedy_reference = true;
+    // NOTE: every candidate's gains in full, to hold each sum to its views' (the default search
+    // evaluates the chosen one in full only).
+    config.search = DecisionSearch::kExhaustive;
     const Plan single = plan_next_view(s.grid, s.candidates, config);
     std::vector<Candidate> grouped = {s.candidates[0], s.candidates[1], s.candidates[2]};
     grouped[2].more_views = {s.candidates[0].view, s.candidates[1].view};

@@ -3,7 +3,7 @@
 // model; from a sample it drops a clearly worse finalist early and still names the best; the
 // same for any thread count.
 
-#include "vantage/planner/race.hpp"
+#include "vantage/planner/searches/race.hpp"
 
 #include <gtest/gtest.h>
 

@@ -12,6 +12,7 @@
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
+#include "vantage/planner/sequence.hpp"
 #include "vantage/sim/world.hpp"
 
 namespace vantage {

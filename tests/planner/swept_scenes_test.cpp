@@ -1,9 +1,10 @@
-// The oracle of the swept decision (PlannerConfig::search = kSwept, docs/decision.md) on the
-// built-in table tops of vantage::sim: after 1, 3 and 6 paper-mode scans with the ring views not
-// yet taken, and on tabletop-4 after one scan a 200-view sphere. The search is statistical, so
-// the oracle is what it measures: its choice must be the exhaustive exact search's in every
-// state, for the survival reading (cells), greedy, Latombe and the paper's model (cells); the
-// chosen candidate's reported gain is its full evaluation; 1 and 2 threads decide alike.
+// The oracle of the default decision (no search named: the swept search for these methods,
+// docs/decision.md) on the built-in table tops of vantage::sim: after 1, 3 and 6 paper-mode scans
+// with the ring views not yet taken, on tabletop-4 the arm's hemisphere views after the same
+// scans, and on tabletop-4 after one scan a 200-view sphere. The search is statistical, so the
+// oracle is what it measures: its choice must be the exhaustive exact search's in every state,
+// for the survival reading (cells), greedy, Latombe and the paper's model (cells); the chosen
+// candidate's reported gain is its full evaluation; 1 and 2 threads decide alike.
 
 #include <gtest/gtest.h>
 
@@ -30,7 +31,6 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
   config.method = method;
   config.objective = GainObjective::kCells;
   config.gain.alpha = method == PlannerMethod::kSurvival ? kSurvivalAlpha : kTableTopAlpha;
-  config.search = DecisionSearch::kSwept;
   config.gain.num_threads = 1;
   const std::vector<double> exact = oracle::exact_scores(grid, cands, reference, config);
   const std::size_t best = choose_best(exact);
@@ -38,6 +38,7 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
   const bool paper = method == PlannerMethod::kProbabilistic;
   const std::string what = cat(state, ", ", to_string(method));
   ASSERT_EQ(plan.scores.size(), cands.size()) << what;
+  EXPECT_EQ(plan.search, DecisionSearch::kSwept) << what;
   EXPECT_EQ(plan.best, best) << what << ": chose a view of " << exact[plan.best] / exact[best]
                              << " of the best's exact score";
   EXPECT_FALSE(plan.estimated[plan.best]) << what;
@@ -54,7 +55,9 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
     const ViewGain& full = method == PlannerMethod::kSurvival ? reference.survival[plan.best]
                                                               : reference.greedy[plan.best];
     EXPECT_EQ(plan.gains[plan.best].cells, full.cells) << what;
-    EXPECT_LE(plan.evaluated, 3u) << what;
+    // NOTE: the race's finalists: the best three within 15 % and every near-tie within 5 %, up to
+    // eight (searches/swept.cpp).
+    EXPECT_LE(plan.evaluated, 8u) << what;
   }
   std::printf("%s: chose %zu (best %zu) of %zu\n", what.c_str(), plan.best, best, cands.size());
   if (!two_threads) return;
@@ -79,6 +82,15 @@ TEST_P(SweptDecision, ChoosesWhatExhaustiveExactSearchChooses) {
         check_state(state, grid, ring, reference, PlannerMethod::kLatombe);
         // NOTE: the swept search serves the paper's model by cells (its v_M) only.
         check_state(state, grid, ring, reference, PlannerMethod::kProbabilistic, scans == 1);
+        if (name == "tabletop-4") {
+          const std::vector<Candidate> arm =
+              oracle::hemisphere_candidates(world.scene(), pose.translation());
+          const Reference arm_reference = oracle::reference_of(grid, arm);
+          const std::string where = cat(name, " after ", scans, " scans, hemisphere");
+          check_state(where, grid, arm, arm_reference, PlannerMethod::kSurvival, scans == 1);
+          check_state(where, grid, arm, arm_reference, PlannerMethod::kGreedy);
+          check_state(where, grid, arm, arm_reference, PlannerMethod::kLatombe);
+        }
         if (scans == 1 && name == "tabletop-4") {
           const std::vector<Candidate> views =
               oracle::sphere_candidates(world.scene(), 200, pose.translation());

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "vantage/gain/view_gain.hpp"
 #include "vantage/perception/registration.hpp"
 #include "vantage/perception/voxel_filter.hpp"
 #include "vantage/planner/choose.hpp"
@@ -55,6 +56,7 @@ struct Decision {
   std::optional<double> predicted, greedy_predicted;
   std::optional<double> predicted_cells;  ///< the method's prediction in cells seen
   std::optional<double> alpha;            ///< the a the probabilistic method decided with
+  std::string search;                     ///< what decided: a search's name, or "sequence"
   double seconds = 0.0, candidate_seconds = 0.0, reference_seconds = 0.0;
   double travel = 0.0;
   bool fallback = false;
@@ -151,6 +153,7 @@ class Explorer {
       record.path = std::move(next.path);
       record.candidates = next.candidates;
       record.considered = std::move(next.considered);
+      record.search = std::move(next.search);
 
       // --alpha auto: what the view about to be scanned would see under every candidate a, set
       // against what it does see. The first scan calibrates too (on the empty map).
@@ -315,6 +318,7 @@ class Explorer {
     d.predicted = plan.gains[best].gain;
     d.predicted_cells = plan.gains[best].cells;
     d.greedy_predicted = greedy_of(plan, chosen, best, d);
+    d.search = plan.sequence.empty() ? std::string(to_string(plan.search)) : "sequence";
     if (has_observability(planner_.method)) d.alpha = planner_.gain.alpha;
   }
 
@@ -327,7 +331,7 @@ class Explorer {
     } else if (j == plan.best) {
       r.greedy_predicted_gain = d.greedy_predicted;
     }
-    r.estimated = !plan.estimated.empty() && plan.estimated[j];
+    r.estimated = plan.is_estimate(j);
     return r;
   }
 

@@ -65,8 +65,9 @@ CandidateSet parse_candidate_set(std::string_view name);
 
 /// Settings of one exploration run.
 struct ExplorationConfig {
-  /// Method, alpha, evaluation, search. greedy_reference is not needed: greedy's prediction is
-  /// made for the chosen view only, after the decision (ScanRecord::greedy_predicted_gain).
+  /// Method, alpha, evaluation, search (none: the fastest that serves the method). greedy_reference
+  /// is not needed: greedy's prediction is made for the chosen view only, after the decision
+  /// (ScanRecord::greedy_predicted_gain).
   PlannerConfig planner;
   MapperConfig mapper;    ///< registration, table segmentation, integration
   int scans = 10;         ///< N, the number of scans to take (the first included)
@@ -121,8 +122,8 @@ struct CandidateRecord {
   /// view taken, after the decision), none for the rest.
   std::optional<double> greedy_predicted_gain;
   double predicted_cells = 0.0;  ///< the method's expected cells seen [cells]
-  /// The screened search (PlannerConfig::search) dropped this candidate: its predicted gain and
-  /// cells are the screen's sampling estimates, not a full evaluation.
+  /// The search that decided did not evaluate this candidate in full: its predicted gain and
+  /// cells are the swept search's estimate or the pruned search's upper bound (Plan::estimated).
   bool estimated = false;
 };
 
@@ -138,6 +139,9 @@ struct ScanRecord {
   /// cells seen E, the other methods' greedy count [cells]
   std::optional<double> predicted_cells;
   std::optional<double> alpha;  ///< the a the probabilistic method chose this view with
+  /// What decided on this view: the search (swept, pruned, exhaustive) or "sequence"; empty for
+  /// the first scan.
+  std::string search;
   /// --alpha auto: the view's expected cells seen under each candidate a of the fit, before the
   /// scan (ExplorationConfig::observability.alphas) [cells]
   std::vector<double> calibration;

@@ -44,8 +44,8 @@ json config_json(const ExplorationConfig& config) {
         {"prior", config.observability.prior},
         {"recency", config.observability.recency}}},
       {"evaluation", to_string(gain.evaluation)},
-      {"search", to_string(config.planner.search)},
-      {"sample", 1 << config.planner.sample_bits},
+      {"search", config.planner.search ? to_string(*config.planner.search) : "default"},
+      {"sample", 1 << config.planner.sequence.sample_bits},
       {"swept_rays", config.planner.swept_rays},
       {"epsilon", gain.epsilon},
       {"lambda", config.planner.lambda},
@@ -163,6 +163,7 @@ json scan_json(const ScanRecord& r) {
       r.greedy_predicted_gain ? json(*r.greedy_predicted_gain) : json(nullptr);
   j["predicted_cells"] = r.predicted_cells ? json(*r.predicted_cells) : json(nullptr);
   j["alpha"] = r.alpha ? json(*r.alpha) : json(nullptr);
+  j["search"] = r.search.empty() ? json(nullptr) : json(r.search);
   if (!r.calibration.empty()) j["calibration_cells"] = r.calibration;
   json considered = json::array();
   for (const CandidateRecord& c : r.considered) {

@@ -453,7 +453,8 @@ void note_candidates(const json& decisions, std::size_t cap, json& data) {
   }
   if (estimated > 0) {
     data["notes"].push_back(fmt::format(
-        "{} candidates' gains are the screened search's estimates, not full evaluations",
+        "{} candidates' gains are the deciding search's estimates (swept: rays cast outward) or "
+        "upper bounds (pruned: the map's blocks), not full evaluations",
         estimated));
   }
 }

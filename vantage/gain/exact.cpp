@@ -118,12 +118,12 @@ std::vector<std::vector<std::size_t>> views_by_origin(std::span<const Frustum> v
 
 template <typename Model>
 std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
-                                       const GainConfig& config, int outside_sample) {
+                                       const GainConfig& config) {
   config.validate();
   require_model_method(config, "exact_view_gains");
   return detail::with_predictor<Model>(
       config, map.params().p_min, longest_ray(map.spec(), views), [&](const auto& predict) {
-        return sum_by_origin(map, views, config.num_threads, outside_sample,
+        return sum_by_origin(map, views, config.num_threads,
                              [&](const Eigen::Vector3d& origin, const Index3& target) {
                                return predict(map, origin, target);
                              });
@@ -132,10 +132,10 @@ std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frust
 
 template std::vector<ViewGain> exact_view_gains<PaperModel>(const GainMap&,
                                                             std::span<const Frustum>,
-                                                            const GainConfig&, int);
+                                                            const GainConfig&);
 template std::vector<ViewGain> exact_view_gains<BlindModel>(const GainMap&,
                                                             std::span<const Frustum>,
-                                                            const GainConfig&, int);
+                                                            const GainConfig&);
 
 bool in_cell_sample(std::uint64_t i, int bits) {
   return bits <= 0 || (mix64(i) >> (64 - bits)) == 0;
@@ -188,76 +188,6 @@ std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<cons
                                        const GainConfig& config) {
   config.validate();
   return exact_view_gains(GainMap(grid, config.num_threads), views, config);
-}
-
-std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const Frustum> views,
-                                           std::span<const std::uint32_t> cells,
-                                           const GainConfig& config) {
-  config.validate();
-  if (!method_traits(config.method).sampled) {
-    throw std::invalid_argument(cat("sampled_view_gains: gain.method ", to_string(config.method),
-                                    " has no sampled estimates"));
-  }
-  const GridSpec& spec = map.spec();
-  // NOTE: as in exact_view_gains, views from one origin share each cell's ray. Work is cut into
-  // (group, chunk of cells) slots that are summed in order afterwards, so a few views still
-  // spread over all threads and the sums do not depend on them.
-  const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
-  std::vector<CellBox> boxes;
-  for (const Frustum& view : views) boxes.push_back(cells_under(spec, view));
-  constexpr std::size_t kChunk = 512;
-  const std::size_t chunks = (cells.size() + kChunk - 1) / kChunk;
-  std::vector<SampleSums> slots(views.size() * chunks);  // [view][chunk]
-  detail::with_predictor(
-      config, map.params().p_min, longest_ray(spec, views), [&](const auto& predict) {
-        run_with_threads(config.num_threads, [&] {
-          tbb::parallel_for(std::size_t{0}, groups.size() * chunks, [&](std::size_t slot) {
-            const std::vector<std::size_t>& members = groups[slot / chunks];
-            const std::size_t chunk = slot % chunks;
-            const std::size_t begin = chunk * kChunk;
-            const std::size_t end = std::min(cells.size(), begin + kChunk);
-            const Eigen::Vector3d origin = views[members.front()].origin();
-            std::vector<std::size_t> holding;  // the members whose frustum holds the cell
-            for (std::size_t i = begin; i < end; ++i) {
-              if (map.value(cells[i]).state != CellState::kUnobserved) continue;
-              const Index3 cell = spec.unravel(cells[i]);
-              const Eigen::Vector3d center = spec.center(cell);
-              holding.clear();
-              for (const std::size_t v : members) {
-                const CellBox& box = boxes[v];
-                if ((cell.array() >= box.lo.array()).all() &&
-                    (cell.array() <= box.hi.array()).all() && views[v].contains(center)) {
-                  holding.push_back(v);
-                }
-              }
-              if (holding.empty()) continue;
-              const TargetPrediction p = predict(map, origin, cell);
-              for (const std::size_t v : holding) {
-                SampleSums& sum = slots[v * chunks + chunk];
-                sum.gain += p.gain;
-                sum.gain_sq += p.gain * p.gain;
-                sum.cells += p.seen;
-                sum.cells_sq += p.seen * p.seen;
-                ++sum.targets;
-                sum.shared += holding.size() > 1 ? 1 : 0;
-              }
-            }
-          });
-        });
-      });
-  std::vector<SampleSums> sums(views.size());
-  for (std::size_t v = 0; v < views.size(); ++v) {
-    for (std::size_t c = 0; c < chunks; ++c) {
-      const SampleSums& s = slots[v * chunks + c];
-      sums[v].gain += s.gain;
-      sums[v].gain_sq += s.gain_sq;
-      sums[v].cells += s.cells;
-      sums[v].cells_sq += s.cells_sq;
-      sums[v].targets += s.targets;
-      sums[v].shared += s.shared;
-    }
-  }
-  return sums;
 }
 
 ViewGain exact_view_gain(const OccupancyGrid& grid, const Frustum& view, const GainConfig& config) {

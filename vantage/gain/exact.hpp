@@ -13,17 +13,16 @@
 #include "vantage/gain/class_map.hpp"
 #include "vantage/gain/model.hpp"
 #include "vantage/gain/snapshot.hpp"
-#include "vantage/gain/view_gain.hpp"
+#include "vantage/gain/types.hpp"
 
 namespace vantage {
 
 /// Exact evaluation of every view on a snapshot, whatever `config.evaluation` says, with the ray
 /// model `Model` (model.hpp; instantiated for PaperModel and BlindModel). With `config.epsilon` =
-/// 0 it is the literal model. `outside_sample` > 0 leaves out the cells of that sample
-/// (in_cell_sample), which a caller has evaluated already.
+/// 0 it is the literal model.
 template <typename Model = PaperModel>
 std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frustum> views,
-                                       const GainConfig& config, int outside_sample = 0);
+                                       const GainConfig& config);
 
 /// Whether the cell of linear index `i` is in the sample of `bits`: the top `bits` bits of a
 /// SplitMix64 hash of `i` are zero (rate 2^-bits). Each sample holds those of more bits. A hash,
@@ -31,7 +30,7 @@ std::vector<ViewGain> exact_view_gains(const GainMap& map, std::span<const Frust
 bool in_cell_sample(std::uint64_t i, int bits);
 
 /// The linear indices of the unobserved cells in the sample of `bits`, ascending: the targets
-/// the sampled search (and a sequence planned on its sample) evaluates.
+/// a sequence planned on a sample evaluates (SequenceConfig::sample_bits).
 std::vector<std::uint32_t> unobserved_sample(const ClassMap& map, int bits);
 /// The unobserved cells by the nested samples they first enter, from the smallest sample
 /// expected to hold at most `max_size` of them (one in 2^b for the least such b) to all of them:
@@ -58,28 +57,6 @@ std::vector<double> survival_cells_by_alpha(const OccupancyGrid& grid,
 /// The indices of `views` grouped by origin (exactly equal): each group in view order, the groups
 /// in the order of their first view. Views from one origin share each target's ray.
 std::vector<std::vector<std::size_t>> views_by_origin(std::span<const Frustum> views);
-
-/// One view's exact predictions summed over a sample of its targets (the screened decision,
-/// vantage/planner/screen.hpp): the sums and the sums of squares a sampling estimate and its
-/// variance need.
-struct SampleSums {
-  double gain = 0.0;        ///< sum of g over the sampled targets [bits]
-  double gain_sq = 0.0;     ///< sum of g^2 [bits^2]
-  double cells = 0.0;       ///< sum of v_M [cells]
-  double cells_sq = 0.0;    ///< sum of v_M^2
-  std::size_t targets = 0;  ///< sampled targets inside the frustum
-  /// ... of which another view from the same origin also holds: 0 for every view of a sweep
-  /// whose frusta do not overlap, whose sums are then independent samples.
-  std::size_t shared = 0;
-};
-
-/// The exact evaluation (a method with sampled estimates, methods.hpp) restricted to `cells`: the
-/// linear indices of unobserved cells, each evaluated, for every view whose frustum holds its
-/// centre, on its own ray exactly as exact_view_gains does. Sums run in the order of `cells`, so
-/// the result is the same for any thread count. Throws std::invalid_argument for another method.
-std::vector<SampleSums> sampled_view_gains(const GainMap& map, std::span<const Frustum> views,
-                                           std::span<const std::uint32_t> cells,
-                                           const GainConfig& config);
 
 /// Predicted gain of one target cell seen from `origin`, whatever its state (known cells are
 /// evaluated too; the view sums skip them). Follows the literal model whatever `config.epsilon`

@@ -10,7 +10,7 @@
 
 #include "vantage/gain/fast_layout.hpp"
 #include "vantage/gain/model.hpp"
-#include "vantage/gain/view_gain.hpp"
+#include "vantage/gain/types.hpp"
 
 namespace vantage {
 

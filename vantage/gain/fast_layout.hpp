@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "vantage/gain/snapshot.hpp"
-#include "vantage/gain/view_gain.hpp"
+#include "vantage/gain/types.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage::detail {

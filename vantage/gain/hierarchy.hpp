@@ -2,8 +2,8 @@
 /// @file
 /// The map's summary by blocks and what it buys the decision (docs/decision.md, "The pruned
 /// search"): rays that cross a block of one class in one step (the survival reading's expected
-/// cells seen and greedy's count, exactly as cell by cell), and an upper bound on every view's
-/// score from block counts alone.
+/// cells seen and greedy's count, exactly as cell by cell); bounds.hpp bounds every view's score
+/// from the same blocks.
 
 #include <cstddef>
 #include <cstdint>
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "vantage/gain/snapshot.hpp"
-#include "vantage/gain/view_gain.hpp"
+#include "vantage/gain/types.hpp"
 #include "vantage/map/occupancy_grid.hpp"
 #include "vantage/views/frustum.hpp"
 
@@ -88,23 +88,5 @@ enum class CountRule { kSurvivalCells, kGreedy };
 std::vector<ViewGain> count_view_gains(const GainMap& map, const ClassBlocks* blocks,
                                        std::span<const Frustum> views, CountRule rule,
                                        const GainConfig& config);
-
-/// What a bound bounds.
-enum class BoundKind {
-  kSurvivalCells,  ///< the survival reading's expected cells seen [cells]
-  kCount,          ///< greedy's count [cells]
-  kAllCells,       ///< any per-target value in [0, 1], such as the paper's v_M [cells]
-  kSurvivalBits,   ///< the survival reading's eq. (4) gain, at most H(p) of a reachable cell [bits]
-  kEntropy,        ///< any per-target gain at most H(p), such as the paper's eq. (4) [bits]
-};
-
-/// An upper bound on each view's sum, from the blocks its frustum may touch: their unobserved
-/// cells (reachable ones, but for kEntropy and kAllCells), each weighted for kSurvivalCells by
-/// alpha^n with n a lower bound on the unobserved cells before it on any ray from the view's origin
-/// (its depth in unobserved space on the origin's side). The views must be among those `blocks` was
-/// made for.
-std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec& spec,
-                                      const GainMap& map, std::span<const Frustum> views,
-                                      BoundKind kind, double alpha);
 
 }  // namespace vantage

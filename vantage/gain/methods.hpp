@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "vantage/gain/view_gain.hpp"
+#include "vantage/gain/types.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
@@ -55,9 +55,6 @@ struct MethodTraits {
   /// Has the fast evaluation (rays cast outward, fast.hpp); the other target models take the
   /// exact one for kFast and kAuto.
   bool fast_mode;
-  /// Sampled estimates (sampled_view_gains) serve it: the sampled search, and the screened one
-  /// for the methods with an objective.
-  bool sampled;
   /// A metric that reads each cell's distance to the nearest occupied cell.
   bool needs_distances;
   MetricFn metric;  ///< a metric's evaluation; nullptr for a target model

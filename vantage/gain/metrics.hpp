@@ -18,8 +18,9 @@
 #include <string_view>
 #include <vector>
 
+#include "vantage/gain/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
-#include "vantage/gain/view_gain.hpp"
+#include "vantage/gain/types.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
@@ -32,13 +33,6 @@ bool is_volumetric_metric(GainMethod method);
 /// otherwise silently give the paper's model for a metric.
 void require_model_method(const GainConfig& config, std::string_view who);
 
-/// D, the distance [cells] within which an unobserved cell counts as near an occupied one:
-/// the proximity count's cut-off and the area factor's "occplane" test.
-inline constexpr double kProximityCells = 4.0;
-/// The area factor's desired fractions of rays on occupied cells and on occplane cells
-/// (Vasquez-Gomez et al. 2014; rpg's defaults).
-inline constexpr double kAreaOccupied = 0.2;
-inline constexpr double kAreaOccplane = 0.8;
 /// The fast evaluation casts every kFastSubsample-th ray of the exact one along each image axis,
 /// as rpg subsamples the camera image.
 inline constexpr int kFastSubsample = 3;
@@ -55,14 +49,5 @@ std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frus
 /// The same on the grid, which is only read.
 std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                         const GainConfig& config);
-
-/// Vasquez-Gomez's area factor f(x; alpha) of a fraction x in [0, 1] (Vasquez-Gomez, Sucar &
-/// Murrieta-Cid, 2014; Delmerico et al. 2018, §3.2): the cubic that rises from f(0) = 0 to its
-/// peak f(alpha) = 1 and falls back to f(1) = 0, flat at all three.
-double area_factor(double x, double alpha);
-
-/// Per cell, the Euclidean distance [cells] between its centre and the nearest occupied cell's,
-/// where it is at most `radius`; +infinity elsewhere (0 in occupied cells).
-std::vector<float> occupied_distance(const GainMap& map, double radius);
 
 }  // namespace vantage

@@ -9,6 +9,7 @@
 
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/view_gain.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {

@@ -17,9 +17,9 @@
 #include <vector>
 
 #include "vantage/gain/ray_model.hpp"
-#include "vantage/gain/view_gain.hpp"
+#include "vantage/gain/types.hpp"
 #include "vantage/map/occupancy_grid.hpp"
-#include "vantage/planner/planner.hpp"
+#include "vantage/planner/types.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {

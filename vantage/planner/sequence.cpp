@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -10,6 +11,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "vantage/gain/exact.hpp"
 #include "vantage/gain/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/snapshot.hpp"
@@ -275,6 +277,53 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
   for (const std::size_t i : tour.order) plan.tour.push_back(shortlist[i]);
   plan.tour_length = tour.length;
   plan.first = plan.tour.front();
+  return plan;
+}
+
+Plan decide_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> candidates,
+                        const PlannerConfig& config) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto since = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+  };
+  std::vector<Frustum> views;
+  std::vector<double> travel;
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    if (!candidates[c].more_views.empty()) {
+      throw std::invalid_argument(cat("planner.sequence plans single views; candidate ", c,
+                                      " is a sweep of ", candidates[c].more_views.size() + 1,
+                                      " views"));
+    }
+    views.push_back(candidates[c].view);
+    travel.push_back(candidates[c].travel);
+  }
+  GainConfig gain = config.gain;
+  gain.method = gain_method_of(config.method);
+  const SequenceConfig sequence_config = sequence_of(config);
+  SequencePlan sequence = plan_sequence(grid, views, travel, gain, sequence_config);
+  Plan plan;
+  plan.best = sequence.first;
+  plan.gains = std::move(sequence.gains);
+  plan.scores = std::move(sequence.scores);
+  plan.evaluated = candidates.size();
+  plan.sequence = std::move(sequence.tour);
+  plan.tour_length = sequence.tour_length;
+  plan.sequence_value = sequence.value;
+  const bool counts = method_traits(gain.method).counts;
+  const bool sampled = sequence_config.sample_bits > 0;
+  if (sampled) plan.estimated.assign(plan.gains.size(), true);
+  if (counts) {
+    for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
+  }
+  plan.seconds = since(start);
+  if (!counts || sampled) {
+    // NOTE: the cells decided; the bits of eq. (4) are the chosen view's report (as pruned).
+    const auto predict_start = std::chrono::steady_clock::now();
+    plan.gains[plan.best] = exact_view_gain(grid, views[plan.best], gain);
+    plan.prediction_seconds = since(predict_start);
+    if (sampled) plan.estimated[plan.best] = false;
+    if (counts) plan.greedy_gains[plan.best] = plan.gains[plan.best].gain;
+  }
   return plan;
 }
 

@@ -16,64 +16,14 @@
 #include <span>
 #include <vector>
 
+#include "vantage/gain/types.hpp"
 #include "vantage/gain/view_cells.hpp"
-#include "vantage/gain/view_gain.hpp"
 #include "vantage/map/occupancy_grid.hpp"
+#include "vantage/planner/sequence_config.hpp"
+#include "vantage/planner/types.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
-
-/// How far the sensor travels between two views: the rule of the robot that carries it.
-struct TravelRule {
-  enum class Kind {
-    kStraightLine,  ///< an arm: the sensor's straight-line path
-    /// A robot walking around a table: the arc between the two bearings about `center` at
-    /// `radius`, plus the change in distance from `center` (horizontal).
-    kRingWalk,
-  };
-  Kind kind = Kind::kStraightLine;
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< kRingWalk: the ring's centre [m]
-  double radius = 1.0;                               ///< kRingWalk: the ring's radius [m]
-
-  /// Travel from `from` to `to` [m].
-  double operator()(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
-};
-
-/// Settings of the sequence decision. horizon 1 with travel_weight 0 is the one-view decision.
-struct SequenceConfig {
-  /// K: views in the planned sequence, in [1, kMaxHorizon]; the tour is ordered by brute force
-  /// over its K! orders.
-  int horizon = 1;
-  /// What a metre of tour costs, as a share of the best single view's value at this decision
-  /// [1/m]: the sequence maximises J(S) - travel_weight * max_c J({c}) * tour(S). Relative, so
-  /// one weight means the same early in a run (thousands of cells in view) and late (tens).
-  double travel_weight = 0.0;
-  /// M: only the M candidates of highest single-view value take part (ties: the lower index);
-  /// their per-cell visibilities are what the sequence holds in memory [views], >= 1.
-  int shortlist = 40;
-  /// Travel between two candidates' sensor positions. The travel from the current pose to a
-  /// candidate is the candidate's own.
-  TravelRule travel;
-  /// 0: every view's values exact. k > 0: every view's per-cell visibilities on the sampled
-  /// search's hashed sample of one unobserved cell in 2^k, values scaled by 2^k (estimates; the
-  /// shortlist then costs nothing), in [0, 16].
-  int sample_bits = 0;
-
-  static constexpr int kMaxHorizon = 6;
-
-  /// Whether the decision plans a sequence (horizon > 1 or a travel weight).
-  bool active() const { return horizon > 1 || travel_weight > 0.0; }
-  /// Throws std::invalid_argument naming the field.
-  void validate() const;
-};
-
-/// What PlannerMethod::kSequence plans when its SequenceConfig plans one view: K = 3 views, a
-/// metre of tour at 0.1 of the best view's value (the ring's best setting, RESULTS.md).
-struct SequenceDefaults {
-  int horizon;
-  double travel_weight;  ///< [1/m]
-};
-inline constexpr SequenceDefaults kSequenceDefaults{3, 0.1};
 
 /// An open tour from the sensor's pose through some views.
 struct OpenTour {
@@ -115,5 +65,11 @@ struct SequencePlan {
 SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> views,
                            std::span<const double> travel, const GainConfig& gain,
                            const SequenceConfig& config);
+
+/// The decision by a sequence (PlannerConfig::sequence active, or PlannerMethod::kSequence): the
+/// tour's first view, and for it the full prediction after the decision. Throws
+/// std::invalid_argument for a candidate of several views.
+Plan decide_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> candidates,
+                        const PlannerConfig& config);
 
 }  // namespace vantage

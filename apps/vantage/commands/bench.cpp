@@ -104,9 +104,14 @@ BenchConfig bench_config(const BenchOptions& o) {
     config.objectives.push_back(parse_gain_objective(name));
   }
   config.trials = o.trials;
-  // NOTE: the methods are the trials'; the first stands in so the shared settings can be checked.
+  // NOTE: the methods are the trials'; each is checked against the shared settings (a --search
+  // that does not serve one is refused before any trial), and the first stands in.
   PlanningOptions planning = o.planning;
-  planning.method = o.methods.empty() ? planning.method : o.methods.front();
+  for (const std::string& m : o.methods) {
+    planning.method = m;
+    (void)planning.planner_config();
+  }
+  planning.method = o.methods.empty() ? o.planning.method : o.methods.front();
   config.exploration.planner = planning.planner_config();
   config.exploration.mapper.integration.mode = parse_integration_mode(o.mapping.integration);
   config.exploration.mapper.integration.hole_filling.enabled = o.mapping.hole_filling;

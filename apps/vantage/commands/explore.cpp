@@ -18,6 +18,7 @@
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/octomap_io.hpp"
+#include "vantage/planner/search.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/util/memory.hpp"
 
@@ -121,7 +122,9 @@ void run(const ExploreOptions& o) {
     fmt::print(
         "exploring {} with {} ({} evaluation, {} search{}), {} scans from start {}, "
         "seed {}\n",
-        scene.name, o.planning.method, o.planning.evaluation, o.planning.search,
+        scene.name, o.planning.method, o.planning.evaluation,
+        sequence_of(config.planner).active() ? "sequence"
+                                             : to_string(resolve_search(config.planner)),
         has_observability(config.planner.method)
             ? fmt::format(", a = {}, ranking by {}", alpha.label(),
                           to_string(config.planner.objective))

@@ -4,14 +4,35 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
-#include <bit>
 #include <thread>
 
 #include "shell.hpp"
 #include "vantage/experiment/exploration.hpp"
+#include "vantage/planner/search.hpp"
 #include "vantage/util/memory.hpp"
 
 namespace vantage::cli {
+
+namespace {
+
+/// A refused setting as the option that gave it: --name: message (exit 2).
+template <typename F>
+auto as_option(F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const SettingError& e) {
+    const std::string option = e.setting() == "planner" ? "" : fmt::format("--{}: ", e.setting());
+    throw UsageError(option + e.what());
+  }
+}
+
+std::vector<std::string> search_names() {
+  std::vector<std::string> names;
+  for (const SearchTraits& s : decision_searches()) names.emplace_back(s.search.name);
+  return names;
+}
+
+}  // namespace
 
 void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
   cmd.add_option("--method,-m", method,
@@ -35,17 +56,16 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                  "gain evaluation: auto (the cheaper of the two on each map state), fast or exact")
       ->capture_default_str();
   if (search_option) {
-    cmd.add_option("--search", search,
-                   "how the candidates are searched (docs/decision.md): screened (statistical: "
-                   "sampled estimates drop the views that cannot win; survival and "
-                   "probabilistic), pruned (exact: upper bounds from the map's blocks skip them; "
-                   "survival, probabilistic, greedy and latombe), sampled (statistical, for "
-                   "hundreds of views: every view ranked on one sample of 1 in 16 unobserved "
-                   "cells; the same methods), swept (statistical, in milliseconds: every view "
-                   "ranked by rays cast outward, the leaders raced on samples of their cells; "
-                   "survival by cells, greedy and latombe, and probabilistic by cells, every view "
-                   "raced) or exhaustive (every view in full)")
-        ->capture_default_str();
+    std::string help =
+        "how the candidates are searched (docs/decision.md); by default the first of these that "
+        "serves the method:";
+    for (const SearchTraits& s : decision_searches()) {
+      help += fmt::format(" {} ({});", s.search.name, s.guarantee);
+    }
+    help.back() = '.';
+    cmd.add_option("--search", search, help)
+        ->check(CLI::IsMember(search_names()))
+        ->default_str("the fastest that serves the method");
   }
   cmd.add_option("--epsilon", epsilon, "early stop of a ray's model, in [0, 0.5)")
       ->check(number_in(0.0, 0.5, /*open_low=*/false, /*open_high=*/true))
@@ -67,8 +87,8 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
       ->check(number_in(0.0, 1e3))
       ->capture_default_str();
   cmd.add_option("--sample", sample,
-                 "the sampled search's rate: every view ranked on one unobserved cell in N, a "
-                 "power of two in [1, 65536] (--search sampled; with a sequence, its values too)")
+                 "a sequence's per-cell values on one unobserved cell in N, a power of two in "
+                 "[1, 65536] (estimates, for hundreds of views; 1: exact)")
       ->check(whole_in(1, 65536))
       ->capture_default_str();
   cmd.add_option("--swept-rays", swept_rays,
@@ -131,39 +151,11 @@ void CandidateOptions::apply(ExplorationConfig& config) const {
 }
 
 AlphaSetting PlanningOptions::alpha_setting(double literal) const {
-  if (alpha.empty()) return {false, literal};
-  try {
-    return parse_alpha_setting(alpha, literal);
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(fmt::format("--alpha: {}", e.what()));
-  }
+  return as_option([&] { return PlanningSettings::alpha_setting(literal); });
 }
 
 PlannerConfig PlanningOptions::planner_config(double literal_alpha) const {
-  return from_options([&] { return make_planner_config(literal_alpha); });
-}
-
-PlannerConfig PlanningOptions::make_planner_config(double literal_alpha) const {
-  PlannerConfig config;
-  config.method = parse_planner_method(method);
-  config.objective =
-      objective.empty() ? natural_objective(config.method) : parse_gain_objective(objective);
-  config.gain.alpha = alpha_setting(default_alpha(config.method, literal_alpha)).value;
-  config.gain.evaluation = parse_gain_evaluation(evaluation);
-  config.search = parse_decision_search(search);
-  config.gain.epsilon = epsilon;
-  config.gain.num_threads = threads;
-  config.lambda = lambda;
-  config.sequence.horizon = horizon;
-  config.sequence.travel_weight = travel_weight;
-  config.sequence.shortlist = shortlist;
-  if (!std::has_single_bit(static_cast<unsigned>(sample))) {
-    throw UsageError(fmt::format("--sample: must be a power of two, got {}", sample));
-  }
-  config.sample_bits = std::countr_zero(static_cast<unsigned>(sample));
-  config.swept_rays = swept_rays;
-  config.validate();
-  return config;
+  return as_option([&] { return PlanningSettings::planner_config(literal_alpha); });
 }
 
 void MappingOptions::add_to(CLI::App& cmd) {

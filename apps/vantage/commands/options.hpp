@@ -7,6 +7,7 @@
 #include <string>
 
 #include "vantage/experiment/exploration.hpp"
+#include "vantage/experiment/planning_settings.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/perception/mapper.hpp"
 #include "vantage/planner/observability.hpp"
@@ -20,34 +21,16 @@ inline constexpr const char* kNoStopProjectionHelp =
     "keep the paper's fallback for a frontier centroid the robot cannot reach (drive as close "
     "as possible, section 5.3.1) instead of moving it to its region's nearest reachable cell";
 
-/// --method, --alpha, --objective, --evaluation, --search, --epsilon, --lambda, --threads.
-struct PlanningOptions {
-  std::string method = "probabilistic";
-  std::string alpha;      ///< a number, "auto", or empty: the caller's literal default
-  std::string objective;  ///< bits, cells, or empty: the method's own (natural_objective)
-  std::string evaluation = "auto";
-  std::string search = "screened";
-  double epsilon = GainConfig{}.epsilon;
-  double lambda = PlannerConfig{}.lambda;
-  int threads = 0;
-  int horizon = SequenceConfig{}.horizon;                 ///< --horizon K
-  double travel_weight = SequenceConfig{}.travel_weight;  ///< --travel-weight W [1/m]
-  int shortlist = SequenceConfig{}.shortlist;             ///< --shortlist M
-  int sample = 1 << PlannerConfig{}.sample_bits;          ///< --sample N: one cell in N
-  int swept_rays = PlannerConfig{}.swept_rays;            ///< --swept-rays
-
-  /// `search`: offer --search (explore, bench); without it the planner keeps the screened default
-  /// of `search` unless the command sets its own.
+/// --method, --alpha, --objective, --evaluation, --search, --epsilon, --lambda, --threads and
+/// the sequence's and the swept search's options: the library's PlanningSettings, which also
+/// builds the PlannerConfig (the one builder the CLI and Python share).
+struct PlanningOptions : PlanningSettings {
+  /// `search`: offer --search (explore, bench, plan).
   void add_to(CLI::App& cmd, bool search = true);
-  /// --alpha as a setting; without it `literal` (the scene kind's a), which is also auto's prior.
-  /// Throws std::invalid_argument naming the bad option.
+  /// --alpha as a setting; without it `literal`. Throws UsageError naming the option.
   AlphaSetting alpha_setting(double literal = kTableTopAlpha) const;
-  /// Throws std::invalid_argument naming the bad option. Under --alpha auto, gain.alpha is the
-  /// fit's prior.
+  /// The decision's settings; throws UsageError naming the option (exit 2), before any work.
   PlannerConfig planner_config(double literal_alpha = kTableTopAlpha) const;
-
- private:
-  PlannerConfig make_planner_config(double literal_alpha) const;
 };
 
 /// --candidates ring|hemisphere, --arm-base, --reach, --view-spacing (explore, bench tabletop).

@@ -25,6 +25,7 @@
 #include "vantage/io/map_files.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/io/ply_export.hpp"
+#include "vantage/planner/search.hpp"
 #include "vantage/util/memory.hpp"
 #include "vantage/views/frontier.hpp"
 #include "vantage/views/hemisphere.hpp"
@@ -58,8 +59,9 @@ struct PlanOptions {
 };
 
 /// plan.json's format: 2 added version, units, the robot's pose, travel and yaw; 3 the sensor,
-/// the clouds, units per objective and the estimated flag.
-constexpr int kPlanJsonVersion = 3;
+/// the clouds, units per objective and the estimated flag; 4 the search that decided, and the
+/// candidates listed as Plan::ranking orders them.
+constexpr int kPlanJsonVersion = 4;
 
 bool needs_pose(PlannerMethod method) {
   return method == PlannerMethod::kLatombe || method == PlannerMethod::kYamauchi;
@@ -243,7 +245,8 @@ void run(const PlanOptions& o) {
   }
   PlannerConfig planner = o.planning.planner_config();
   // NOTE: greedy's prediction on every candidate costs more than a swept decision itself.
-  planner.greedy_reference = planner.search != DecisionSearch::kSwept;
+  planner.greedy_reference =
+      !sequence_of(planner).active() && resolve_search(planner) != DecisionSearch::kSwept;
   const GainUnits units = gain_units(planner);
   if (!o.sensor_height.empty() && o.candidates != "frontier") {
     throw UsageError("--sensor-height places frontier candidates: give --candidates frontier");
@@ -415,17 +418,10 @@ for (const Eigen::Isometry3d& pose : poses) {
   candidates.push_back({Frustum(pose, fov), travel});
 }
 const Plan plan = plan_next_view(grid, candidates, planner, /*seed=*/1);
-const auto estimated = [&](std::size_t i) {
-  return i < plan.estimated.size() && plan.estimated[i];
-};
-
-// Best first (for random, the drawn one), then by score; ties keep the candidates' order.
-std::vector<std::size_t> ranking(candidates.size());
-std::iota(ranking.begin(), ranking.end(), std::size_t{0});
-std::stable_sort(ranking.begin(), ranking.end(),
-                 [&](std::size_t a, std::size_t b) { return plan.scores[a] > plan.scores[b]; });
-const auto best = std::find(ranking.begin(), ranking.end(), plan.best);
-std::rotate(ranking.begin(), best, best + 1);
+const auto estimated = [&](std::size_t i) { return plan.is_estimate(i); };
+// The chosen view first (for random, the drawn one), then those evaluated in full by score, then
+// the estimated ones: no estimate is listed above the choice it lost to.
+const std::vector<std::size_t> ranking = plan.ranking();
 
 const CellCounts counts = grid.counts();
 const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(frame).transpose();
@@ -458,6 +454,7 @@ json out = {{"version", kPlanJsonVersion},
             {"alpha", planner.gain.alpha},
             {"objective", units.objective},
             {"evaluation", to_string(planner.gain.evaluation)},
+            {"search", to_string(plan.search)},
             {"sensor", sensor_json(fov)},
             {"clouds", clouds},
             {"frames", {{"sensor", "x forward, y left, z up"}, {"cloud_frame", to_string(frame)}}},
@@ -524,21 +521,24 @@ for (std::size_t r = 0; r < ranking.size() && r < static_cast<std::size_t>(o.top
              score_header.size());
 }
 if (any_estimated) {
-  fmt::print("{}\n", planner.search == DecisionSearch::kPruned
-                         ? "~ not evaluated: the search's upper bound on this view's gain and "
-                           "score, below the chosen view's score"
-                         : "~ not evaluated in full: the search's estimate of this view's gain "
-                           "and score");
+  fmt::print("{}\n", plan.search == DecisionSearch::kPruned
+                         ? "~ not evaluated: the pruned search's upper bound on this view's gain "
+                           "and score, below the chosen view's score"
+                         : "~ not evaluated in full: the swept search's estimate of this view's "
+                           "gain and score, listed after the views evaluated in full (its rays "
+                           "weigh a cell by the part of its volume they sweep, so an estimate may "
+                           "exceed the chosen view's exact score: the leaders were raced on "
+                           "their exact cells)");
 }
 fmt::print(
-    "\nnext best view: candidate {} ({} method{}), score {:.1f} {}, decided in {:.3f} s\n"
-    "  at {}\n  as --pose: {}\n",
+    "\nnext best view: candidate {} ({} method{}, {} search), score {:.1f} {}, decided in "
+    "{:.3f} s\n  at {}\n  as --pose: {}\n",
     plan.best, to_string(planner.method),
     has_observability(planner.method)
         ? fmt::format(", a = {}, ranked by {}", planner.gain.alpha, units.objective)
         : "",
-    plan.scores[plan.best], units.score, plan.seconds, describe_pose(poses[plan.best]),
-    pose_argument(poses[plan.best]));
+    to_string(plan.search), plan.scores[plan.best], units.score, plan.seconds,
+    describe_pose(poses[plan.best]), pose_argument(poses[plan.best]));
 if (robot) fmt::print("robot at {} ({})\n", describe_pose(*robot), robot_source);
 fmt::print("map: {} unobserved, {} free, {} occupied cells\nresults: {}/plan.json, map.ot{}\n",
            counts.unobserved, counts.free, counts.occupied, dir.string(),
@@ -574,9 +574,6 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("--range", o->range, "min,max range without a manifest [m]")
       ->capture_default_str();
   o->planning.method = "survival";
-  // NOTE: the pruned search's choice is the exhaustive exact one's, proven; the candidates it
-  // never evaluated are listed with their upper bounds, marked as estimates.
-  o->planning.search = "pruned";
   o->planning.add_to(*cmd);
   cmd->add_option("--pose", o->pose,
                   "the robot's sensor pose now, x,y,z,roll,pitch,yaw [m, deg], for the travel of "

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "vantage/gain/snapshot.hpp"
-#include "vantage/gain/view_gain.hpp"
+#include "vantage/gain/types.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/views/frustum.hpp"

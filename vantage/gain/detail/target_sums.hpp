@@ -16,7 +16,7 @@
 
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/snapshot.hpp"
-#include "vantage/gain/view_gain.hpp"
+#include "vantage/gain/types.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/parallel.hpp"
 
@@ -45,8 +45,8 @@ inline CellBox boxes_under(const GridSpec& spec, std::span<const Frustum> views,
 /// in the same (z, y) order, and the rows and cells it does not hold add nothing.
 template <typename CellGain>
 void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
-                             std::span<const std::size_t> members, int outside_sample,
-                             CellGain&& cell_gain, std::vector<ViewGain>& gains) {
+                             std::span<const std::size_t> members, CellGain&& cell_gain,
+                             std::vector<ViewGain>& gains) {
   const GridSpec& spec = map.spec();
   const std::size_t k = members.size();
   std::vector<CellBox> boxes;
@@ -64,7 +64,6 @@ void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
       for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
         const std::size_t linear = spec.linear(cell);
         if (map.value(linear).state != CellState::kUnobserved) continue;
-        if (outside_sample > 0 && in_cell_sample(linear, outside_sample)) continue;
         const Eigen::Vector3d center = spec.center(cell);
         bool evaluated = false;
         TargetPrediction prediction;
@@ -109,15 +108,15 @@ inline int longest_ray(const GridSpec& spec, std::span<const Frustum> views) {
 /// origin and every view's sum is bit for bit its own. Origins run in parallel.
 template <typename CellGain>
 std::vector<ViewGain> sum_by_origin(const GainMap& map, std::span<const Frustum> views,
-                                    int num_threads, int outside_sample, CellGain&& cell_gain) {
+                                    int num_threads, CellGain&& cell_gain) {
   std::vector<ViewGain> gains(views.size());
   const std::vector<std::vector<std::size_t>> groups = views_by_origin(views);
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(std::size_t{0}, groups.size(), [&](std::size_t g) {
       const Eigen::Vector3d origin = views[groups[g].front()].origin();
       sum_over_shared_targets(
-          map, views, groups[g], outside_sample,
-          [&](const Index3& target) { return cell_gain(origin, target); }, gains);
+          map, views, groups[g], [&](const Index3& target) { return cell_gain(origin, target); },
+          gains);
     });
   });
   return gains;

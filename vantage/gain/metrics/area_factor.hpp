@@ -4,7 +4,7 @@
 /// as a metric type of detail/metric_rays.hpp; registered in gain/methods.cpp.
 
 #include "vantage/gain/detail/metric_rays.hpp"
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/metrics/shared.hpp"
 
 namespace vantage {
 

@@ -1,4 +1,4 @@
-#include "vantage/planner/race.hpp"
+#include "vantage/planner/searches/race.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,14 +1,46 @@
-#include "vantage/planner/prune.hpp"
+// The pruned search (DecisionSearch::kPruned; docs/decision.md, "The pruned search"): the
+// exhaustive exact search's argmax, proven, without every candidate's evaluation. Every candidate
+// gets an upper bound on its score from the map's block summary (hierarchy.hpp); candidates are
+// evaluated exactly in the order of their bounds, and the search stops when no bound left can beat
+// the best exact score. Deterministic: the bounds, the order and the exact evaluations do not
+// depend on threads. It serves the target models (the paper's, the survival reading, greedy's
+// count) and Latombe's weighting of greedy's.
 
 #include <algorithm>
 #include <limits>
 #include <numeric>
 
+#include "vantage/gain/bounds.hpp"
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/planner/search.hpp"
 
-namespace vantage::detail {
+namespace vantage {
+namespace {
+
+/// What a pruned search scores by.
+enum class PrunedScore {
+  kSurvivalCells,  ///< the survival reading's expected cells seen [cells]
+  kGreedy,         ///< greedy's count [cells], times the candidate's factor (Latombe)
+  kBits,           ///< eq. (4)'s gain under config.method (probabilistic or survival) [bits]
+  kModelCells,     ///< the paper's model's expected cells seen, sum of v_M [cells]
+};
+
+/// What the pruned search found.
+struct Pruning {
+  /// Per candidate: its exact prediction where `estimated` is false, else its upper bound in
+  /// the score's field (cells, or gain for kBits; ViewGain::targets 0).
+  std::vector<ViewGain> gains;
+  std::vector<bool> estimated;  ///< per candidate: not evaluated, `gains` holds its bound
+  std::vector<double> scores;   ///< per candidate: the score, exact or its bound
+  std::size_t best = 0;         ///< the candidate with the highest exact score (ties: lower index)
+  std::size_t evaluated = 0;    ///< candidates evaluated exactly
+};
+
+/// Chooses among the candidates whose views are `frusta[first[c] .. first[c + 1])`; candidate c's
+/// score is the sum over its views of the view's value times `factor[c]`, in view order, exactly
+/// as the exhaustive search sums it.
 Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> frusta,
                          std::span<const std::size_t> first, std::span<const double> factor,
                          const GainConfig& config, PrunedScore score) {
@@ -113,4 +145,44 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
   return out;
 }
 
-}  // namespace vantage::detail
+bool serves(const PlannerConfig& config) {
+  return ranks_by_gain(config.method) &&
+         method_traits(gain_method_of(config.method)).kind == MethodKind::kTargetModel;
+}
+
+Plan run(const SearchInput& in) {
+  const bool counts = method_traits(in.gain.method).counts;
+  // NOTE: what the method ranks by decides the score; the paper's model's cells have no
+  // reachability to prune by (its visibility never reaches 0).
+  PrunedScore score = PrunedScore::kBits;
+  if (counts) {
+    score = PrunedScore::kGreedy;
+  } else if (in.config.objective == GainObjective::kCells) {
+    score = in.config.method == PlannerMethod::kSurvival ? PrunedScore::kSurvivalCells
+                                                         : PrunedScore::kModelCells;
+  }
+  Pruning pruning = prune_candidates(in.grid, in.views.frusta, in.views.first, in.travel_factors(),
+                                     in.gain, score);
+  Plan plan;
+  plan.search = DecisionSearch::kPruned;
+  plan.best = pruning.best;
+  plan.gains = std::move(pruning.gains);
+  plan.estimated = std::move(pruning.estimated);
+  plan.scores = std::move(pruning.scores);
+  plan.evaluated = pruning.evaluated;
+  plan.bits_of_chosen_only = score == PrunedScore::kSurvivalCells;
+  plan.seconds = in.seconds();
+  report_choice(in, plan);
+  return plan;
+}
+
+}  // namespace
+
+extern const SearchTraits kPrunedSearch;
+const SearchTraits kPrunedSearch = {
+    DecisionSearch::kPruned,
+    "exact evaluations in the order of upper bounds from the map's blocks: the exhaustive exact "
+    "choice, proven; the target models (probabilistic, survival, greedy) and latombe",
+    &serves, &run};
+
+}  // namespace vantage

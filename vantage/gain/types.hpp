@@ -1,0 +1,90 @@
+#pragma once
+/// @file
+/// The gain layer's shared types, at its bottom (docs/architecture.md): which model predicts a
+/// cell's gain (GainMethod, whose traits live in the registry, methods.hpp), how a view's gain is
+/// evaluated (GainEvaluation), the settings (GainConfig) and the result (ViewGain).
+
+#include <cstddef>
+#include <string_view>
+
+#include "vantage/gain/ray_model.hpp"
+
+namespace vantage {
+
+/// How the gain of one target cell is predicted.
+enum class GainMethod {
+  kProbabilistic,  ///< the paper's visibility HMM and occupancy filter, parameter alpha
+  kGreedy,  ///< simple greedy: 1 if nothing occupied lies before the cell (infinite visibility)
+  /// The survival reading of the visibility (survival.hpp, docs/model.md): a ray survives each
+  /// unobserved cell with probability alpha, free cells always, occupied cells never; the
+  /// paper's occupancy filter on top. Exact evaluation only (kFast and kAuto take it).
+  kSurvival,
+  // The field's volumetric metrics (vantage/gain/metrics.hpp, docs/model.md "The field's
+  // metrics"): sums over the cells the view's rays cross, not per-target predictions.
+  kOcclusionAware,   ///< entropy weighted by visibility, eq. M1
+  kUnobservedVoxel,  ///< unobserved cells reached, eq. M2
+  kRearSideVoxel,    ///< occupied cells reached from unobserved ones, eq. M3
+  kRearSideEntropy,  ///< visible entropy on rays that end on a rear side, eq. M4
+  kProximityCount,   ///< unobserved cells near occupied ones, eq. M5
+  kAverageEntropy,   ///< Kriegel's mean entropy of the cells reached, eq. M6
+  kAreaFactor,       ///< Vasquez-Gomez's area factor, eq. M7
+};
+
+std::string_view to_string(GainMethod method);
+/// Parses "probabilistic", "survival", "greedy" or a metric's name (occlusion-aware,
+/// unobserved-voxel, rear-side-voxel, rear-side-entropy, proximity-count, average-entropy,
+/// area-factor); throws std::invalid_argument naming the value.
+GainMethod parse_gain_method(std::string_view name);
+
+/// How a view's gain is computed from the per-cell model.
+enum class GainEvaluation {
+  /// One ray from the sensor to the centre of every unobserved cell in the frustum: the paper's
+  /// definition and the reference.
+  kExact,
+  /// Rays cast outward through the frustum, each carrying the model's state along itself and
+  /// crediting the cells it owns (vantage/gain/fast.hpp, docs/fast-gain.md).
+  kFast,
+  /// Whichever of the two costs less on this map state and these views, by counts taken before
+  /// any ray is cast (docs/fast-gain.md, "Choosing per map state"). Deterministic.
+  kAuto,
+};
+
+std::string_view to_string(GainEvaluation evaluation);
+/// Parses "exact", "fast" or "auto"; throws std::invalid_argument naming the value.
+GainEvaluation parse_gain_evaluation(std::string_view name);
+
+/// Settings of a gain evaluation.
+struct GainConfig {
+  GainMethod method = GainMethod::kProbabilistic;
+  GainEvaluation evaluation = GainEvaluation::kAuto;  ///< used by evaluate_views
+  double alpha = kTableTopAlpha;                      ///< observability parameter a, in (0, 1]
+  /// Early stop, in [0, 0.5): a ray stops once its visibility falls below epsilon. In the fast
+  /// mode an unobserved cell whose posterior lies within epsilon of 0.5 ("pinned", gain below
+  /// 3 epsilon^2 bits) is not credited, and a pinned ray crosses uniform unobserved space in one
+  /// jump. 0 gives the literal model of docs/model.md.
+  double epsilon = 1e-6;
+  /// Fast mode: spacing of neighbouring rays at the farthest cell in view [cells], in (0, 1].
+  /// At most 1/sqrt(2) (the default) guarantees that every cell in view is crossed by the ray
+  /// that owns it.
+  double ray_spacing = 0.7071;
+  int num_threads = 0;  ///< 0 = all cores; results are identical for any count
+
+  /// Throws std::invalid_argument naming the field.
+  void validate() const;
+};
+
+/// The predicted gain of one view.
+struct ViewGain {
+  double gain = 0.0;  ///< expected information gain of the view, eq. (1) [bits]
+  /// Expected number of the unobserved cells in view that the view sees, E (docs/model.md "The
+  /// expected number of cells seen"): the sum of v_M, the visibility of each target [cells]. For
+  /// greedy, its count of unblocked targets (= gain). The fast mode adds the cells it leaves
+  /// uncredited (a pinned posterior) at the visibility of the ray that carries them.
+  double cells = 0.0;
+  /// Exact mode: the unobserved cells inside the frustum. Fast mode: those it credited; the same
+  /// cells with epsilon = 0, without those behind a ray's early stop and those deep in uniform
+  /// unobserved space with a pinned posterior otherwise.
+  std::size_t targets = 0;
+};
+
+}  // namespace vantage

@@ -1,0 +1,175 @@
+#pragma once
+/// @file
+/// The planner's shared types, at the bottom of its layer: what a decision is asked (the method,
+/// what it ranks by, the search, PlannerConfig), what it chooses among (Candidate) and what it
+/// returns (Plan). Nothing above them is needed to include this file; docs/architecture.md.
+
+#include <cstddef>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "vantage/gain/types.hpp"
+#include "vantage/planner/sequence_config.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage {
+
+/// How the next view is chosen.
+enum class PlannerMethod {
+  kProbabilistic,  ///< highest expected gain under the paper's visibility model
+  kSurvival,       ///< the same under the survival reading of it (gain/survival.hpp)
+  kGreedy,         ///< highest simple-greedy gain (infinite visibility)
+  kRandom,         ///< a uniformly random candidate, seeded
+  kLatombe,        ///< González-Baños & Latombe: greedy gain * exp(-lambda * travel)
+  kYamauchi,       ///< the candidate nearest by travel distance
+  // The highest value of one of the field's volumetric metrics (vantage/gain/metrics.hpp).
+  kOcclusionAware,
+  kUnobservedVoxel,
+  kRearSideVoxel,
+  kRearSideEntropy,
+  kProximityCount,
+  kAverageEntropy,
+  kAreaFactor,
+  /// Plans past the next scan (sequence.hpp, docs/decision.md "Planning a sequence"): the
+  /// survival reading's expected cells, the views that jointly see the most toured from the
+  /// current pose, PlannerConfig::sequence, or kSequenceDefaults when that plans one view.
+  kSequence,
+};
+
+std::string_view to_string(PlannerMethod method);
+/// Whether the method predicts with the survival reading of the visibility (survival, sequence):
+/// its a is a chance per unobserved cell, fitted online by default, and it ranks by cells.
+bool uses_survival_reading(PlannerMethod method);
+/// Parses probabilistic, greedy, random, latombe, yamauchi or a metric's name (as GainMethod's);
+/// throws std::invalid_argument.
+PlannerMethod parse_planner_method(std::string_view name);
+/// The gain method a planner method scores by: probabilistic, survival, a metric, or greedy for
+/// the rest.
+GainMethod gain_method_of(PlannerMethod method);
+/// Whether the method predicts with a visibility model of parameter a (probabilistic, survival):
+/// it takes --alpha (auto too) and --objective, and reports its expected cells seen.
+bool has_observability(PlannerMethod method);
+/// Whether the method ranks candidates by a gain (not random or Yamauchi's nearest).
+bool ranks_by_gain(PlannerMethod method);
+
+/// What the probabilistic method maximises over the candidates.
+enum class GainObjective {
+  kBits,   ///< the expected information gain of eq. (1), ViewGain::gain [bits]
+  kCells,  ///< the expected number of unobserved cells seen, ViewGain::cells [cells]
+};
+
+std::string_view to_string(GainObjective objective);
+/// Parses "bits" or "cells"; throws std::invalid_argument naming the value.
+GainObjective parse_gain_objective(std::string_view name);
+/// What a method ranks by when not told: the survival reading its expected cells seen (what its
+/// a is fitted to), the paper's method the information gain of eq. (1).
+GainObjective natural_objective(PlannerMethod method);
+
+/// How the candidates are searched for the best (vantage/planner/searches/, docs/decision.md): a
+/// search by the name its file registers (search.hpp), so that adding one takes its file and one
+/// registry row. The three built in are named here.
+struct DecisionSearch {
+  std::string_view name;
+
+  /// Every candidate ranked by rays cast outward; the leaders raced on nested samples of their
+  /// cells up to all of them (searches/swept.cpp). Milliseconds; the exhaustive exact choice in
+  /// every oracle state, not proven.
+  static const DecisionSearch kSwept;
+  /// Exact evaluations in the order of upper bounds from the map's blocks, until no bound left
+  /// can beat the best (searches/pruned.cpp): the exhaustive exact choice, proven.
+  static const DecisionSearch kPruned;
+  /// Every candidate evaluated in full (searches/exhaustive.cpp): the reference.
+  static const DecisionSearch kExhaustive;
+
+  friend bool operator==(const DecisionSearch&, const DecisionSearch&) = default;
+};
+inline constexpr DecisionSearch DecisionSearch::kSwept{"swept"};
+inline constexpr DecisionSearch DecisionSearch::kPruned{"pruned"};
+inline constexpr DecisionSearch DecisionSearch::kExhaustive{"exhaustive"};
+
+/// The search's name.
+inline std::string_view to_string(DecisionSearch search) { return search.name; }
+/// The registered search named `name` ("swept", "pruned", "exhaustive", ...); throws
+/// std::invalid_argument naming the value and the searches there are.
+DecisionSearch parse_decision_search(std::string_view name);
+
+/// Settings of the decision.
+struct PlannerConfig {
+  PlannerMethod method = PlannerMethod::kProbabilistic;
+  /// What the probabilistic and survival methods rank by; the others count cells whatever it
+  /// says.
+  GainObjective objective = GainObjective::kBits;
+  /// Gain evaluation settings; `gain.method` is set from `method` (gain_method_of).
+  GainConfig gain;
+  double lambda = 0.5;  ///< kLatombe's travel penalty [1/m]
+  /// The search; none: the fastest that serves the method (resolve_search, search.hpp). A
+  /// search named here that does not serve the method is refused by resolve_search, which
+  /// plan_next_view calls, naming the searches that do.
+  std::optional<DecisionSearch> search;
+  /// The swept search's rays across a view's image (SweptConfig::rays_across), in [1, 4096].
+  int swept_rays = 32;
+  /// Also predict every candidate's greedy gain when the method uses another, so predictions can
+  /// be compared on the same poses (the paper's Fig. 11).
+  bool greedy_reference = false;
+  /// Plan a sequence of views and take its tour's first (sequence.hpp) when active (horizon > 1
+  /// or a travel weight); survival (ranking by cells) and greedy only. It evaluates every
+  /// candidate exactly (or on its own sample, SequenceConfig::sample_bits): no search serves it.
+  SequenceConfig sequence;
+
+  /// Throws std::invalid_argument naming the field.
+  void validate() const;
+};
+
+/// A candidate view and what it costs to get there.
+struct Candidate {
+  Frustum view;
+  double travel = 0.0;    ///< travel distance from the robot [m]; 0 where motion is free
+  bool reachable = true;  ///< false: the robot can only get close (the paper's fallback)
+  /// Further views from the same place (the other steps of an office stop's 360° sweep): the
+  /// candidate's gains and score are sums over `view` and these.
+  std::vector<Frustum> more_views = {};
+};
+
+/// The decision and everything behind it.
+struct Plan {
+  std::size_t best = 0;  ///< index of the chosen candidate
+  /// The search that decided (for a sequence: kExhaustive, its exact evaluation).
+  DecisionSearch search = DecisionSearch::kExhaustive;
+  std::vector<ViewGain> gains;  ///< each candidate's predicted gain under the method's model
+  /// Per candidate: true where `gains` and `scores` are the search's estimate (swept) or upper
+  /// bound (pruned), not a full evaluation; empty when every candidate was evaluated in full.
+  std::vector<bool> estimated;
+  std::vector<double> greedy_gains;  ///< each candidate's greedy gain (when requested or used)
+  std::vector<double> scores;        ///< what was maximised
+  double seconds = 0.0;              ///< wall time of the decision [s]
+  /// ... of which evaluating the greedy reference (PlannerConfig::greedy_reference), which the
+  /// decision itself does not need [s]
+  double reference_seconds = 0.0;
+  /// A search that decided on estimates or bounds: the chosen candidate's full prediction (gain
+  /// in bits beside the cells), evaluated after the decision and not part of `seconds` [s]
+  double prediction_seconds = 0.0;
+  std::size_t evaluated = 0;  ///< candidates evaluated in full (all but the estimated ones)
+  /// True when only the chosen candidate's ViewGain::gain is a prediction: a decision by the
+  /// expected cells seen (the survival reading's pruned search, the swept search but for
+  /// greedy's counts) computes no gain in bits for the others and leaves it 0.
+  bool bits_of_chosen_only = false;
+  /// PlannerConfig::sequence: the planned views in the tour's order (`best` first), its length
+  /// from the current pose [m] and the views' joint expected cells seen [cells]; else empty, 0.
+  std::vector<std::size_t> sequence;
+  double tour_length = 0.0;
+  double sequence_value = 0.0;
+
+  /// Whether candidate c's gains and score are an estimate or a bound, not a full evaluation.
+  bool is_estimate(std::size_t c) const { return c < estimated.size() && estimated[c]; }
+  /// The candidates, the chosen one first, then those evaluated in full by score, then the
+  /// estimated ones by score (ties: the lower index), so that no estimate is listed above the
+  /// choice it lost to.
+  std::vector<std::size_t> ranking() const;
+};
+
+/// The sequence the decision plans: `config.sequence`, with kSequenceDefaults' horizon and
+/// travel weight for PlannerMethod::kSequence when it plans one view.
+SequenceConfig sequence_of(const PlannerConfig& config);
+
+}  // namespace vantage
