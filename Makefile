@@ -1,6 +1,7 @@
 # Vantage: two commands do all the set-up on a fresh Debian machine.
 #   make demo   installs what it needs, builds, and runs the main job on the default scene
-#   make test   installs what it needs, builds, and runs the whole test suite
+#   make test   installs what it needs, builds, and runs the quick suite (all but label `slow`)
+#   make test-slow  the slow tests (scene oracles, renders, sweeps); CI runs both
 #   make fuzz   builds the libFuzzer harnesses (clang) and runs each for FUZZ_SECONDS (docs/fuzzing.md)
 #   make tsan   the parallel parts under ThreadSanitizer, against a TBB built with it (docs/fuzzing.md)
 PRESET ?= release
@@ -8,7 +9,7 @@ BUILD_DIR := build/$(PRESET)
 VANTAGE := $(BUILD_DIR)/apps/vantage/vantage
 FUZZ_SECONDS ?= 60
 
-.PHONY: all deps configure build demo test bench fuzz tsan format clean
+.PHONY: all deps configure build demo test test-slow bench fuzz tsan format clean
 
 all: build
 
@@ -31,7 +32,10 @@ demo: build
 	@echo "pictures: results/demo/unobserved.png, results/demo/map.png"
 
 test: build
-	@ctest --preset $(PRESET)
+	@ctest --preset $(PRESET) --label-exclude slow
+
+test-slow: build
+	@ctest --preset $(PRESET) --label-regex slow
 
 bench: build
 	@$(BUILD_DIR)/bench/vantage_bench

@@ -1,0 +1,69 @@
+#!/usr/bin/env bash
+# The decision with no search option, through the CLI, as a user runs it (issue 35's targets;
+# BENCHMARK.md, "One planner"): explore on tabletop-4 (the decisions after scans 2-8), plan over
+# 200 and 1 000 sphere views of tabletop-4's map after one scan, plan on the shared Kinect and
+# stereo frames, and FR-079 with frontier candidates and Latombe; then Python's plan with its
+# defaults on the same Kinect frame. Prints each decision's seconds.plan [ms] (less greedy's
+# reference, which the decision does not need) and the search that decided. Every figure goes with
+# the machine, its load and the yardstick of the same run (`vantage_bench
+# --benchmark_filter=BM_Gain30_OctoMap/2`), which this script does not run.
+#
+#   scripts/bench-defaults.sh [BUILD_DIR] [RUNS]      # default build/release, 3 runs each
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build/release}
+runs=${2:-3}
+vantage="$build/apps/vantage/vantage"
+data=tests/data/real
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+threads=2
+
+# The shared frames' manifests, as tests/cli/plan_real.sh writes them.
+sed "s|file: milk_cartoon|file: $PWD/$data/milk_cartoon|" "$data/milk.yaml" >"$work/milk.yaml"
+cat >"$work/mug.yaml" <<YAML
+clouds: [{file: $PWD/$data/table_scene_mug_stereo_textured.pcd}]
+sensor: {frame: optical, fov_deg: {horizontal: 60, vertical: 45}, min_range: 0.4, max_range: 3.0}
+roi: {min: [-0.4, -0.4, 0.7], max: [0.4, 0.4, 1.1]}
+resolution: 0.01
+options: {table_segmentation: true, skip_non_finite: true}
+YAML
+"$vantage" explore --scene tabletop-4 --scans 1 --threads "$threads" --no-plots --quiet \
+  --out "$work/one" >/dev/null
+
+echo "lscpu: $(lscpu | sed -n 's/^Model name: *//p'); load: $(cut -d' ' -f1-3 /proc/loadavg)"
+report() {  # NAME FILE: a plan.json's decision
+  /usr/bin/python3 - "$1" "$2" <<'PY'
+import json, sys
+p = json.load(open(sys.argv[2]))
+s = p["seconds"]
+print(f"{sys.argv[1]:<34} {1e3 * (s['plan'] - s['reference']):8.1f} ms  {p['search']:<10} "
+      f"{len(p['candidates'])} views")
+PY
+}
+for r in $(seq "$runs"); do
+  "$vantage" explore --scene tabletop-4 --scans 8 --threads "$threads" --no-plots --quiet \
+    --out "$work/explore$r" >/dev/null
+  /usr/bin/python3 - "$work/explore$r/run.json" <<'PY'
+import json, statistics, sys
+run = json.load(open(sys.argv[1]))
+ms = [1e3 * (s["seconds"]["plan"] - s["seconds"]["reference"]) for s in run["scans"][:-1]]
+searches = sorted({s["search"] for s in run["scans"] if s.get("search")})
+print(f"{'explore tabletop-4, scans 2-8':<34} {statistics.median(ms):8.1f} ms  "
+      f"{','.join(searches):<10} median of {len(ms)} (max {max(ms):.1f})")
+PY
+  for n in 200 1000; do
+    "$vantage" plan --map "$work/one/map.ot" --candidates sphere --views "$n" \
+      --threads "$threads" --no-plots --json --out "$work/sphere$n-$r" >/dev/null
+    report "plan, $n sphere views" "$work/sphere$n-$r/plan.json"
+  done
+  for frame in milk mug; do
+    "$vantage" plan "$work/$frame.yaml" --threads "$threads" --no-plots --json \
+      --out "$work/$frame-$r" >/dev/null
+    report "plan, $frame frame" "$work/$frame-$r/plan.json"
+  done
+  "$vantage" plan --map "$data/geb079.bt" --candidates frontier --sensor-height 0.5 \
+    --method latombe --pose 0,0,0.5,0,0,0 --threads "$threads" --no-plots --json \
+    --out "$work/fr079-$r" >/dev/null
+  report "plan, FR-079 frontier, latombe" "$work/fr079-$r/plan.json"
+done
