@@ -10,10 +10,10 @@
 
 #include "examples/architecture/exact_search.cpp"  // NOLINT: the example is one file
 #include "examples/architecture/frontier_voxel.hpp"
+#include "tests/planner/views_around.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/metrics/unobserved_voxel.hpp"
 #include "vantage/planner/planner.hpp"
-#include "vantage/views/ring.hpp"
 
 namespace vantage {
 namespace {
@@ -26,13 +26,7 @@ struct HalfFreeBlock {
     for (std::size_t i = 0; i < grid.size(); ++i) {
       if (grid.spec().unravel(i).x() < 10) grid.miss(i);
     }
-    for (int k = 0; k < 4; ++k) {
-      const double a = k * M_PI / 2;
-      const Eigen::Vector3d eye(1.5 * std::cos(a), 1.5 * std::sin(a), 0.3);
-      candidates.push_back({Frustum(look_at(eye, Eigen::Vector3d::Zero()),
-                                    SensorFov{deg2rad(60), deg2rad(45), 0.2, 4.0}),
-                            4.0 - k, true});
-    }
+    candidates = test::views_around_block();
   }
 };
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "tests/planner/views_around.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/ring.hpp"
@@ -25,14 +26,7 @@ struct HalfKnownBlock {
       if (cell.x() < 10) grid.miss(i);
       if (cell.x() == 10) grid.hit(i);
     }
-    // Four views around the block, from +x, +y, -x, -y, with travel 4, 3, 2, 1 m.
-    for (int k = 0; k < 4; ++k) {
-      const double a = k * M_PI / 2;
-      const Eigen::Vector3d eye(1.5 * std::cos(a), 1.5 * std::sin(a), 0.3);
-      candidates.push_back({Frustum(look_at(eye, Eigen::Vector3d::Zero()),
-                                    SensorFov{deg2rad(60), deg2rad(45), 0.2, 4.0}),
-                            4.0 - k, true});
-    }
+    candidates = test::views_around_block();
   }
 };
 
