@@ -379,7 +379,7 @@ TEST_F(ViewerTest, AnOversizedResultsFileIsRefusedUnread) {
   const std::filesystem::path file = tmp_ / "run" / "run.json";
   std::filesystem::resize_file(file, kMaxViewerFileBytes + 1);
   const std::string error = view_error(tmp_ / "run", config_);
-  EXPECT_NE(error.find("more than the 1 GiB vantage view reads"), std::string::npos) << error;
+  EXPECT_NE(error.find("more than the 1 GiB a results file may have"), std::string::npos) << error;
 }
 
 TEST_F(ViewerTest, AGridBeyondTheMemoryBudgetIsRefusedBeforeItIsAllocated) {

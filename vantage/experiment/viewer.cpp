@@ -21,6 +21,7 @@
 
 #include "vantage/experiment/viewer_assets.hpp"
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/util/memory.hpp"
 #include "vantage/views/frustum.hpp"
@@ -100,30 +101,15 @@ class Field {
 /// The bytes of a results file: a regular file (a FIFO would block, a device never end) of at
 /// most kMaxViewerFileBytes, after the memory budget has room for them.
 std::string read_results_file(const fs::path& file, const ViewerConfig& config) {
-  if (const std::string why = not_a_readable_file(file); !why.empty()) {
-    throw std::runtime_error(fmt::format("{}: {}", file.string(), why));
+  try {
+    const std::uintmax_t size = require_input_file(file, InputKind::kResults);
+    // NOTE: the text, and the parse's transient copies of a candidate at a time.
+    check_memory({0, 0.0, 2.0 * static_cast<double>(size) + kViewerFixedBytes}, config.max_memory,
+                 fmt::format("vantage view of {}", file.string()));
+    return read_input_file(file, InputKind::kResults);
+  } catch (const FormatError& e) {
+    throw std::runtime_error(fmt::format("{}: {}", file.string(), e.what()));
   }
-  std::error_code ec;
-  const std::uintmax_t size = fs::file_size(file, ec);
-  if (!ec && size > kMaxViewerFileBytes) {
-    throw std::runtime_error(fmt::format("{}: {} bytes, more than the {} vantage view reads",
-                                         file.string(), size,
-                                         describe_bytes(static_cast<double>(kMaxViewerFileBytes))));
-  }
-  // NOTE: the text, and the parse's transient copies of a candidate at a time.
-  check_memory({0, 0.0, 2.0 * static_cast<double>(ec ? 0 : size) + kViewerFixedBytes},
-               config.max_memory, fmt::format("vantage view of {}", file.string()));
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error(fmt::format("{}: cannot be read", file.string()));
-  std::string text;
-  text.resize(static_cast<std::size_t>(ec ? 0 : size));
-  in.read(text.data(), static_cast<std::streamsize>(text.size()));
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (in.peek() != std::char_traits<char>::eof()) {  // grew since: read no further than the cap
-    throw std::runtime_error(
-        fmt::format("{}: changed while it was read (or is larger than it says)", file.string()));
-  }
-  return text;
 }
 
 /// Called with each candidate of a results file (its list: 0 for plan.json, the scan's index
