@@ -15,16 +15,18 @@ file(WRITE ${hard}/front.yaml "clouds: [{file: front.pcd, pose: ${identity}}]\n$
 file(REMOVE ${hard}/fifo.txt ${hard}/zero.txt)
 execute_process(COMMAND mkfifo ${hard}/fifo.txt)
 file(CREATE_LINK /dev/zero ${hard}/zero.txt SYMBOLIC)
+# Refused before the manifest is read (the manifest here does not exist), not after the mapping.
 add_test(NAME cli.plan_candidates_fifo
-         COMMAND ${expect} --code 1 --absent ${hard}/out_fifo "fifo.txt: is a FIFO, not a regular file"
-                 $<TARGET_FILE:vantage> plan ${hard}/front.yaml --candidates ${hard}/fifo.txt --no-plots
+         COMMAND ${expect} --code 1 --absent ${hard}/out_fifo "--candidates ${hard}/fifo.txt: is a FIFO, not a regular file"
+                 $<TARGET_FILE:vantage> plan ${hard}/missing.yaml --candidates ${hard}/fifo.txt --no-plots
                  --out ${hard}/out_fifo)
 add_test(NAME cli.plan_candidates_dev_zero
          COMMAND ${expect} --code 1 --absent ${hard}/out_zero "zero.txt: is a character device, not a regular file"
-                 $<TARGET_FILE:vantage> plan ${hard}/front.yaml --candidates ${hard}/zero.txt --no-plots
+                 $<TARGET_FILE:vantage> plan ${hard}/missing.yaml --candidates ${hard}/zero.txt --no-plots
                  --out ${hard}/out_zero)
 
 # 2. Work sized before it starts.
+file(READ ${PROJECT_SOURCE_DIR}/scenes/tabletop-1.yaml tabletop_one)
 string(REPEAT "0 1 0 1 0 0 0 1\n" 100001 many_poses)
 file(WRITE ${hard}/many_poses.txt "${many_poses}")
 add_test(NAME cli.plan_candidates_too_many
@@ -35,6 +37,11 @@ vantage_cli_usage(plan_views_too_many "--views 1000000 makes 3000000 candidate v
                   plan --map ${hard}/missing.ot --views 1000000)
 vantage_cli_usage(explore_view_spacing_tiny "hemisphere.spacing (--view-spacing) 1e-09 m makes about"
                   explore --candidates hemisphere --view-spacing 1e-9 --scans 1)
+string(REPLACE "objects:\n" "objects:\n  - {type: sphere, radius: 0.01, pose: [0, 0, 0.8], repeat: {count: [1000, 1000], step: [0.001, 0.001]}}\n"
+       many_spheres "${tabletop_one}")
+file(WRITE ${hard}/many_spheres.yaml "${many_spheres}")
+vantage_cli_failure(scene_objects_too_many "places 1000000 copies, which makes more than the 10000 objects"
+                    scene ${hard}/many_spheres.yaml)
 file(READ ${PROJECT_SOURCE_DIR}/scenes/office-large-sparse.yaml office_sparse)
 string(REPLACE "stop_spacing: 0.5" "stop_spacing: 0.1" many_stops "${office_sparse}")
 file(WRITE ${hard}/many_stops.yaml "${many_stops}")
@@ -46,7 +53,6 @@ vantage_cli_usage(ray_cells_hex "--cells: '0x1p-3' (item 0) is not a number" ray
 file(WRITE ${hard}/res_twice.bt "# Octomap OcTree binary file\nid OcTree\nsize 0\nres 0.1\nres 10\ndata\n")
 vantage_cli_failure(plan_octomap_res_twice "res_twice.bt: header: 'res' is given twice"
                     plan --map ${hard}/res_twice.bt)
-file(READ ${PROJECT_SOURCE_DIR}/scenes/tabletop-1.yaml tabletop_one)
 string(REPLACE "objects:\n" "objects:\n  - {type: sphere, radius: 1e10, pose: [0, 0, 0.8]}\n" huge_sphere "${tabletop_one}")
 file(WRITE ${hard}/huge_sphere.yaml "${huge_sphere}")
 vantage_cli_failure(scene_sphere_radius_huge "radius: must be at most 100000 m, got 1e+10"

@@ -22,6 +22,7 @@
 #include "vantage/experiment/recorded.hpp"
 #include "vantage/experiment/results.hpp"
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/io/map_files.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/io/ply_export.hpp"
@@ -302,6 +303,13 @@ void run(const PlanOptions& o) {
           fmt::format("--views {} makes {} candidate views, more than the {} a "
                       "decision scores (docs/robustness.md, \"Limits\")",
                       o.views, views, kMaxCandidateViews));
+    }
+  }
+  // NOTE: a pose file is opened as every input is, before the map is built: a FIFO, a device or
+  // a file past its kind's size is refused here, not after the mapping.
+  if (!named_candidates) {
+    if (const std::string why = input_file_problem(o.candidates, InputKind::kPoses); !why.empty()) {
+      throw std::runtime_error(fmt::format("--candidates {}: {}", o.candidates, why));
     }
   }
   const auto start = std::chrono::steady_clock::now();
