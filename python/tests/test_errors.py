@@ -168,3 +168,25 @@ def test_a_grid_beyond_the_memory_is_refused_before_it_is_allocated(call):
     line = run.stdout.strip()
     assert "1024 x 1024 x 1024 cells needs about" in line, line
     assert "\n" not in line
+
+
+# issue 39: a call of a wrong type raised pybind11's 3-9 line "incompatible function arguments";
+# now one TypeError line naming the argument and the type it must be.
+@pytest.mark.parametrize("call, words", [
+    (lambda: vt.GridSpec((0, 0, 0), "fine", (10, 10, 10)),
+     "GridSpec(): argument 'resolution' must be float, got str"),
+    (lambda: vt.OccupancyGrid("spec"),
+     "OccupancyGrid(): argument 'spec' must be vantage.GridSpec, got str"),
+    (lambda: vt.GridSpec((0, 0, 0), 0.1, (10, 10, 10), bogus=1),
+     "GridSpec(): no argument named 'bogus'"),
+    (lambda: vt.entropy_bits("half"), "entropy_bits(): argument 'p' must be float, got str"),
+    (lambda: vt.OccupancyGrid(SPEC).integrate(np.ones((1, 3)), np.eye(4), "fov"),
+     "OccupancyGrid.integrate(): argument 'fov' must be"),
+])
+def test_a_wrong_type_is_one_line_naming_the_argument(call, words):
+    with pytest.raises(TypeError) as raised:
+        call()
+    message = str(raised.value)
+    assert "\n" not in message, message
+    assert words in message, message
+    assert "incompatible" not in message, message
