@@ -190,3 +190,13 @@ def test_a_wrong_type_is_one_line_naming_the_argument(call, words):
     assert "\n" not in message, message
     assert words in message, message
     assert "incompatible" not in message, message
+
+
+# issue 39: the candidate limit is the library's, the same for Python as for `plan --views`.
+def test_candidate_counts_beyond_the_limit_are_refused_before_they_are_made():
+    with pytest.raises(ValueError, match=r"make 300000 views, more than the 100000"):
+        vt.ring_candidates(((0, 0, 0), (1, 1, 1)), positions=100000)
+    with pytest.raises(ValueError, match=r"make 300000 views, more than the 100000"):
+        vt.ring_poses((0, 0, 0), 1.0, 1.0, 100000)
+    with pytest.raises(ValueError, match=r"sphere.views \(200000\) is more than the 100000"):
+        vt.sphere_poses((0, 0, 0), 1.0, 200000)
