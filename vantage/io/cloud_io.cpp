@@ -79,6 +79,14 @@ PointCloud read_point_cloud(const fs::path& path, const CloudReadOptions& option
   PointCloud cloud;
   try {
     const std::string bytes = read_input_file(path, InputKind::kPointCloud);
+    // NOTE: an extension that lies is said as such, not as the other format's first complaint
+    // (a PLY file named .pcd: "unknown PCD header key 'ply'").
+    const std::string_view expected = format == Format::kPcd ? "a PCD point cloud" : "a PLY file";
+    if (const std::string_view found = sniff_format(std::string_view(bytes).substr(0, 4096));
+        !found.empty() && found != expected) {
+      throw FormatError(
+          cat("holds ", found, ", not what its ", lower_extension(path), " extension says"));
+    }
     cloud = format == Format::kPcd ? detail::parse_pcd(bytes) : parse_ply_cloud(bytes);
     if (options.skip_non_finite) {
       const std::size_t skipped =
