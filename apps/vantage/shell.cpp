@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/frustum.hpp"
@@ -143,6 +144,19 @@ void check_output_file(const std::filesystem::path& path, std::string_view optio
     throw std::runtime_error(
         fmt::format("{} {}: {} {}", option, path.string(), folder.string(),
                     fs::exists(folder, error) ? "is not a folder" : "does not exist"));
+  }
+}
+
+void check_picture_format(const std::filesystem::path& path, std::string_view option) {
+  static constexpr std::array<std::string_view, 14> kFormats = {
+      ".png",  ".pdf",  ".svg", ".svgz", ".jpg", ".jpeg", ".tif",
+      ".tiff", ".webp", ".eps", ".ps",   ".pgf", ".raw",  ".rgba"};
+  const std::string extension = lower_extension(path);
+  if (std::find(kFormats.begin(), kFormats.end(), extension) == kFormats.end()) {
+    throw UsageError(fmt::format(
+        "{} {}: '{}' is not a picture format (give .png, .pdf, .svg, .jpg or another of "
+        "matplotlib's)",
+        option, printable(path.string(), 200), printable(extension, 20)));
   }
 }
 

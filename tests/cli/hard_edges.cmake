@@ -97,3 +97,9 @@ vantage_cli_usage(scan_out_format "--out: ${hard}/o.xyz: unsupported point-cloud
 vantage_cli_usage(scan_out_no_extension "unsupported point-cloud format ''"
                   scan --scene tabletop-1 --view 0 --out ${hard}/o)
 vantage_cli_usage(plan_map_format "--map: " plan --map ${hard}/m.txt)
+# A picture's format is its extension's, decided before the scene's or the ray's work (the plot
+# script failed after it, or wrote d.png for `--out d`).
+vantage_cli_usage(scene_out_picture_format "--out ${hard}/d.txt: '.txt' is not a picture format"
+                  scene tabletop-1 --out ${hard}/d.txt)
+vantage_cli_usage(ray_plot_picture_format "--plot ${hard}/r: '' is not a picture format"
+                  ray --scenario 4 --plot ${hard}/r)
