@@ -129,6 +129,10 @@ def manifest_seeds():
           "vertical: 45}, min_range: &r 0.1, max_range: 2}\nroi: {min: [0, 0, 0], "
           "max: [1, 1, 1]}\nresolution: *r\n")
     write("manifest", "bad_pose.yaml", MANIFEST.replace("-0.90", ".nan"))
+    # issue 39: a pose file, which the harness also reads as one (plan --candidates FILE).
+    write("manifest", "poses.txt",
+          "# timestamp tx ty tz qx qy qz qw\n0 1 0 1 0 0 0 1\n1 0 1 1 0 0 0.7071068 0.7071068\n"
+          "\n2 -1 0 1.2 0 0 1 0\n")
 
 
 def scene_seeds():
