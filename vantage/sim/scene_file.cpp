@@ -449,10 +449,11 @@ struct Parser {
 
   /// An office's floor stops, counted before any is made (kMaxFloorStops).
   void check_floor_stops(const YamlField& root) const {
-    if (scene.kind != SceneKind::kOffice) return;
+    if (scene.kind != SceneKind::kOffice || scene.floor_area.isEmpty()) return;
     const Eigen::Vector2d sizes = scene.floor_area.sizes();
-    const double stops = std::floor(sizes.x() / scene.robot.stop_spacing) *
-                         std::floor(sizes.y() / scene.robot.stop_spacing);
+    // As the ground truth lays them out: at least one stop along each side.
+    const double stops = std::max(1.0, std::floor(sizes.x() / scene.robot.stop_spacing)) *
+                         std::max(1.0, std::floor(sizes.y() / scene.robot.stop_spacing));
     if (stops > static_cast<double>(kMaxFloorStops)) {
       const auto robot = root.get("robot");
       const std::string what =
