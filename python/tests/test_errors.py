@@ -180,6 +180,9 @@ def test_a_grid_beyond_the_memory_is_refused_before_it_is_allocated(call):
     (lambda: vt.GridSpec((0, 0, 0), 0.1, (10, 10, 10), bogus=1),
      "GridSpec(): no argument named 'bogus'"),
     (lambda: vt.entropy_bits("half"), "entropy_bits(): argument 'p' must be float, got str"),
+    (lambda: vt.ring_candidates(((0, 0, 0), (1, 1, 1)), positions="x"),
+     "ring_candidates(): argument 'positions' must be Optional[int], got str"),
+    (lambda: vt.read_point_cloud(3), "read_point_cloud(): argument 'path' must be os.PathLike"),
     (lambda: vt.OccupancyGrid(SPEC).integrate(np.ones((1, 3)), np.eye(4), "fov"),
      "OccupancyGrid.integrate(): argument 'fov' must be"),
 ])

@@ -43,6 +43,9 @@ def _parameters(text):
 
 def _fits(value, kind):
     """Whether `value` can be what pybind11 calls `kind`; True when the kind is not known here."""
+    optional = _re.fullmatch(r"Optional\[(.*)\]", kind)
+    if optional:
+        return value is None or _fits(value, optional.group(1))
     if kind == "float":
         return isinstance(value, _numbers.Real) and not isinstance(value, bool)
     if kind == "int":

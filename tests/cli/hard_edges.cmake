@@ -103,3 +103,7 @@ vantage_cli_usage(scene_out_picture_format "--out ${hard}/d.txt: '.txt' is not a
                   scene tabletop-1 --out ${hard}/d.txt)
 vantage_cli_usage(ray_plot_picture_format "--plot ${hard}/r: '' is not a picture format"
                   ray --scenario 4 --plot ${hard}/r)
+# scan --out into a missing folder is refused before the scan, as every output is.
+add_test(NAME cli.scan_out_no_folder
+         COMMAND ${expect} --code 1 --absent ${hard}/none "--out ${hard}/none/o.pcd: ${hard}/none does not exist"
+                 $<TARGET_FILE:vantage> scan --scene tabletop-1 --view 0 --out ${hard}/none/o.pcd)
