@@ -1,9 +1,14 @@
 #include "vantage/io/input_file.hpp"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
-#include <fstream>
+#include <cerrno>
+#include <cstring>
 #include <system_error>
 
 #include "vantage/io/format_parsing.hpp"
@@ -76,22 +81,36 @@ std::uintmax_t require_input_file(const fs::path& path, InputKind kind) {
 }
 
 std::string read_input_file(const fs::path& path, InputKind kind, std::size_t max_bytes) {
-  const std::uintmax_t size = require_input_file(path, kind);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FormatError("cannot open for reading");
+  (void)require_input_file(path, kind);
+  // NOTE: opened without blocking and checked again on the descriptor: a path swapped for a FIFO
+  // between the check and the open neither blocks nor is read.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) throw FormatError("cannot open for reading");
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  struct stat info {};
+  if (::fstat(fd, &info) != 0 || !S_ISREG(info.st_mode)) {
+    throw FormatError("is not a regular file (it changed while it was opened)");
+  }
   // NOTE: one byte past the limit tells a file that grew since it was measured.
   const std::uintmax_t limit = max_input_bytes(kind);
   const std::size_t cap = static_cast<std::size_t>(std::min<std::uintmax_t>(max_bytes, limit + 1));
   std::string bytes;
-  bytes.reserve(static_cast<std::size_t>(std::min<std::uintmax_t>(size, cap)));
+  bytes.reserve(static_cast<std::size_t>(
+      std::min<std::uintmax_t>(static_cast<std::uintmax_t>(info.st_size), cap)));
   char buffer[1 << 16];
-  while (bytes.size() < cap && (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)) {
-    bytes.append(buffer, static_cast<std::size_t>(in.gcount()));
+  while (bytes.size() < cap) {
+    const ssize_t n = ::read(fd, buffer, std::min(sizeof(buffer), cap - bytes.size()));
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw FormatError(cat("read failed: ", std::strerror(errno)));
+    if (n == 0) break;
+    bytes.append(buffer, static_cast<std::size_t>(n));
   }
-  if (in.bad()) throw FormatError("read failed");
-  if (bytes.size() > limit)
+  if (bytes.size() > limit) {
     throw FormatError(cat("grew while it was read: ", too_large(bytes.size(), kind)));
-  if (bytes.size() > max_bytes) bytes.resize(max_bytes);
+  }
   return bytes;
 }
 
