@@ -129,6 +129,10 @@ def manifest_seeds():
           "vertical: 45}, min_range: &r 0.1, max_range: 2}\nroi: {min: [0, 0, 0], "
           "max: [1, 1, 1]}\nresolution: *r\n")
     write("manifest", "bad_pose.yaml", MANIFEST.replace("-0.90", ".nan"))
+    # issue 39: a pose file, which the harness also reads as one (plan --candidates FILE).
+    write("manifest", "poses.txt",
+          "# timestamp tx ty tz qx qy qz qw\n0 1 0 1 0 0 0 1\n1 0 1 1 0 0 0.7071068 0.7071068\n"
+          "\n2 -1 0 1.2 0 0 1 0\n")
 
 
 def scene_seeds():
@@ -143,6 +147,19 @@ def scene_seeds():
           "sensor: hokuyo\nmount: {height: 1.0, target: [0, 0, 0.5]}\n"
           "candidates: {generator: ring, radius: 1.0, positions: 3, yaw_offsets_deg: [0]}\n"
           "start_poses: ring\n")
+    # issue 39: mesh references, to the files the harness puts beside the scene: the four
+    # formats, then one seed for each file the mesh reader refuses.
+    def meshes(names):
+        return ("name: meshes\nkind: tabletop\ngrid: {origin: [0, 0, 0], resolution: 0.1, "
+                "dims: [4, 4, 4]}\ntable: {size: [1, 1], height: 0.5}\nobjects:\n"
+                + "".join(f"  - {{type: mesh, file: {name}, scale: 0.1, pose: [0, 0, 0.5]}}\n"
+                          for name in names)
+                + "sensor: hokuyo\nmount: {height: 1.0, target: [0, 0, 0.5]}\n"
+                "candidates: {generator: ring, radius: 1.0, positions: 3, yaw_offsets_deg: [0]}\n"
+                "start_poses: ring\n")
+    write("scene", "mesh-files.yaml", meshes(["m.obj", "m.off", "m.ply", "m.stl"]))
+    for name in ("lie.off", "m.xyz", "huge.off"):
+        write("scene", f"mesh-{name.replace('.', '-')}.yaml", meshes([name]))
 
 
 def bt_node(codes):

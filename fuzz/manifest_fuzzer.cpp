@@ -1,8 +1,10 @@
-// libFuzzer harness: the manifest reader (read_manifest of a `manifest.yaml`). Beside it lie the
+// libFuzzer harness: the manifest reader (read_manifest of a `manifest.yaml`), and the same bytes
+// as a TUM pose file (read_tum_trajectory). Beside it lie the
 // files the seeds name (fuzz/make_seeds.py): a.pcd with a VIEWPOINT, a.ply, 2.5.pcd (a stamp in
 // its name) and trajectory.txt (TUM), so that the fuzzer gets past "file not found".
 #include "fuzz/harness.hpp"
 #include "vantage/io/manifest.hpp"
+#include "vantage/io/trajectory.hpp"
 
 namespace {
 
@@ -29,5 +31,12 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const auto path = vantage::fuzz::write_input(data, size, "manifest.yaml");
   vantage::fuzz::expect_clean([&] { vantage::read_manifest(path); });
+  // NOTE: the same bytes as a pose file (a manifest's trajectory, `plan --candidates FILE`;
+  // issue 39): the TUM reader is a line reader, which text mutated from manifests and the TUM
+  // seed exercises, without a harness of its own.
+  const auto poses = vantage::fuzz::write_input(data, size, "poses.txt");
+  vantage::fuzz::expect_clean([&] {
+    vantage::fuzz::sink = static_cast<double>(vantage::read_tum_trajectory(poses).size());
+  });
   return 0;
 }

@@ -19,6 +19,7 @@
 #include <stdexcept>
 
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/frustum.hpp"
@@ -123,9 +124,17 @@ CLI::Validator seed_value() {
       "SEED in [0, 2^64 - 1]");
 }
 
-void check_output_file(const std::filesystem::path& path, std::string_view option) {
+void check_output_file(const std::filesystem::path& path, std::string_view option,
+                       const std::vector<std::filesystem::path>& inputs) {
   namespace fs = std::filesystem;
   std::error_code error;
+  for (const fs::path& input : inputs) {
+    std::error_code a, b;
+    if (fs::exists(input, a) && fs::exists(path, b) && fs::equivalent(path, input, error)) {
+      throw std::runtime_error(fmt::format("{} {} is an input of this run ({}): write elsewhere",
+                                           option, path.string(), input.string()));
+    }
+  }
   if (fs::is_directory(path, error)) {
     throw std::runtime_error(
         fmt::format("{} {} is a directory, not a file", option, path.string()));
@@ -135,6 +144,19 @@ void check_output_file(const std::filesystem::path& path, std::string_view optio
     throw std::runtime_error(
         fmt::format("{} {}: {} {}", option, path.string(), folder.string(),
                     fs::exists(folder, error) ? "is not a folder" : "does not exist"));
+  }
+}
+
+void check_picture_format(const std::filesystem::path& path, std::string_view option) {
+  static constexpr std::array<std::string_view, 14> kFormats = {
+      ".png",  ".pdf",  ".svg", ".svgz", ".jpg", ".jpeg", ".tif",
+      ".tiff", ".webp", ".eps", ".ps",   ".pgf", ".raw",  ".rgba"};
+  const std::string extension = lower_extension(path);
+  if (std::find(kFormats.begin(), kFormats.end(), extension) == kFormats.end()) {
+    throw UsageError(fmt::format(
+        "{} {}: '{}' is not a picture format (give .png, .pdf, .svg, .jpg or another of "
+        "matplotlib's)",
+        option, printable(path.string(), 200), printable(extension, 20)));
   }
 }
 
@@ -160,15 +182,15 @@ std::vector<double> parse_numbers(std::string_view text, std::string_view what) 
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t end = std::min(text.find(',', start), text.size());
-    const std::string item(text.substr(start, end - start));
-    char* stop = nullptr;
-    errno = 0;
-    const double value = std::strtod(item.c_str(), &stop);
-    if (item.empty() || stop != item.c_str() + item.size() || errno == ERANGE) {
+    const std::string_view item = text.substr(start, end - start);
+    // NOTE: the strict reader every number of a file goes through: no hexadecimal ("0x1p-3" is
+    // no occupancy), no leading space, no overflow to infinity.
+    const std::optional<double> value = parse_number(item);
+    if (!value) {
       throw UsageError(fmt::format("{}: '{}' (item {}) is not a number", what, printable(item, 40),
                                    numbers.size()));
     }
-    numbers.push_back(value);
+    numbers.push_back(*value);
     start = end + 1;
   }
   return numbers;

@@ -62,8 +62,15 @@ CLI::Validator memory_size();
 CLI::Validator seed_value();
 
 /// Refuses an output file that cannot be made: `path` is a directory, or its folder is missing or
-/// not a folder. Throws std::runtime_error naming `option` and the path.
-void check_output_file(const std::filesystem::path& path, std::string_view option);
+/// not a folder (no output creates folders), or it is one of the run's `inputs` (the same file
+/// by any path). Throws std::runtime_error naming `option` and the path.
+void check_output_file(const std::filesystem::path& path, std::string_view option,
+                       const std::vector<std::filesystem::path>& inputs = {});
+
+/// Refuses a picture whose extension is none of the formats the plot scripts write (matplotlib's:
+/// png, pdf, svg, jpg, ...), as a usage error (exit 2) before any work; the script would fail only
+/// after it, or add ".png" to a name without an extension.
+void check_picture_format(const std::filesystem::path& path, std::string_view option);
 
 /// A file in the system's temporary folder, removed when this goes out of scope: the data a plot
 /// script reads, never left beside the picture.

@@ -168,3 +168,38 @@ def test_a_grid_beyond_the_memory_is_refused_before_it_is_allocated(call):
     line = run.stdout.strip()
     assert "1024 x 1024 x 1024 cells needs about" in line, line
     assert "\n" not in line
+
+
+# issue 39: a call of a wrong type raised pybind11's 3-9 line "incompatible function arguments";
+# now one TypeError line naming the argument and the type it must be.
+@pytest.mark.parametrize("call, words", [
+    (lambda: vt.GridSpec((0, 0, 0), "fine", (10, 10, 10)),
+     "GridSpec(): argument 'resolution' must be float, got str"),
+    (lambda: vt.OccupancyGrid("spec"),
+     "OccupancyGrid(): argument 'spec' must be vantage.GridSpec, got str"),
+    (lambda: vt.GridSpec((0, 0, 0), 0.1, (10, 10, 10), bogus=1),
+     "GridSpec(): no argument named 'bogus'"),
+    (lambda: vt.entropy_bits("half"), "entropy_bits(): argument 'p' must be float, got str"),
+    (lambda: vt.ring_candidates(((0, 0, 0), (1, 1, 1)), positions="x"),
+     "ring_candidates(): argument 'positions' must be Optional[int], got str"),
+    (lambda: vt.read_point_cloud(3), "read_point_cloud(): argument 'path' must be os.PathLike"),
+    (lambda: vt.OccupancyGrid(SPEC).integrate(np.ones((1, 3)), np.eye(4), "fov"),
+     "OccupancyGrid.integrate(): argument 'fov' must be"),
+])
+def test_a_wrong_type_is_one_line_naming_the_argument(call, words):
+    with pytest.raises(TypeError) as raised:
+        call()
+    message = str(raised.value)
+    assert "\n" not in message, message
+    assert words in message, message
+    assert "incompatible" not in message, message
+
+
+# issue 39: the candidate limit is the library's, the same for Python as for `plan --views`.
+def test_candidate_counts_beyond_the_limit_are_refused_before_they_are_made():
+    with pytest.raises(ValueError, match=r"make 300000 views, more than the 100000"):
+        vt.ring_candidates(((0, 0, 0), (1, 1, 1)), positions=100000)
+    with pytest.raises(ValueError, match=r"make 300000 views, more than the 100000"):
+        vt.ring_poses((0, 0, 0), 1.0, 1.0, 100000)
+    with pytest.raises(ValueError, match=r"sphere.views \(200000\) is more than the 100000"):
+        vt.sphere_poses((0, 0, 0), 1.0, 200000)

@@ -307,6 +307,26 @@ TEST_F(CloudIo, MissingFilesAndOtherFormats) {
   EXPECT_THROW(write_point_cloud(dir_ / "cloud", {{0, 0, 0}}), std::invalid_argument);
 }
 
+// issue 39: the kind sniffed from the content where an extension can lie.
+TEST_F(CloudIo, AnExtensionThatLiesIsSaid) {
+  const PointCloud cloud = float_exact_cloud(3);
+  write_point_cloud(dir_ / "real.ply", cloud);
+  write_point_cloud(dir_ / "real.pcd", cloud);
+  fs::copy_file(dir_ / "real.ply", dir_ / "ply.pcd");
+  fs::copy_file(dir_ / "real.pcd", dir_ / "pcd.ply");
+  EXPECT_NE(read_error(dir_ / "ply.pcd")
+                .find("ply.pcd: holds a PLY file, not what its .pcd "
+                      "extension says"),
+            std::string::npos)
+      << read_error(dir_ / "ply.pcd");
+  EXPECT_NE(read_error(dir_ / "pcd.ply")
+                .find("pcd.ply: holds a PCD point cloud, not what its "
+                      ".ply extension says"),
+            std::string::npos)
+      << read_error(dir_ / "pcd.ply");
+  EXPECT_EQ(read_point_cloud(dir_ / "real.pcd").size(), 3u);
+}
+
 TEST_F(CloudIo, BadPointsAreRefusedAndTheOldFileKept) {
   const fs::path path = dir_ / "keep.ply";
   const PointCloud good = float_exact_cloud(10);

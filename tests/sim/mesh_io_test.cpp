@@ -104,6 +104,43 @@ TEST_F(MeshFiles, PathKindsAndEmptyMeshesAreSaidPlainly) {
   }
 }
 
+// issue 39: assimp reads what it sniffs, so OBJ text in `m.xyz` was read as a mesh; an extension
+// that is no mesh format's, or that the content contradicts, is refused.
+TEST_F(MeshFiles, AnExtensionThatLiesIsRefused) {
+  const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const auto message = [&](const std::string& name, const std::string& text) {
+    try {
+      load_mesh(write(name, text));
+    } catch (const std::runtime_error& e) {
+      return std::string(e.what());
+    }
+    return std::string("read");
+  };
+  EXPECT_NE(message("m.xyz", obj).find("'.xyz' is not a mesh format vantage reads"),
+            std::string::npos)
+      << message("m.xyz", obj);
+  EXPECT_NE(message("m.off", obj).find("m.off holds OBJ text, not what its .off extension says"),
+            std::string::npos)
+      << message("m.off", obj);
+  EXPECT_EQ(load_mesh(write("m.obj", obj)).triangles.size(), 1u);
+  EXPECT_EQ(load_mesh(write("M.OBJ", obj)).triangles.size(), 1u);
+}
+
+// issue 39: an OFF header declaring 2e9 vertices made assimp reserve for them ("std::bad_alloc");
+// counts its bytes cannot hold are refused from the header.
+TEST_F(MeshFiles, AnOffHeaderBeyondItsBytesIsRefused) {
+  try {
+    load_mesh(write("huge.off", "OFF\n2000000000 1 0\n0 0 0\n"));
+    FAIL() << "an OFF file of 2e9 vertices in 30 bytes was accepted";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the OFF header declares 2000000000 vertices and 1 faces, more than"),
+              std::string::npos)
+        << what;
+    EXPECT_EQ(what.find("bad_alloc"), std::string::npos) << what;
+  }
+}
+
 TEST_F(MeshFiles, ReadsBinaryPlyInEitherByteOrder) {
   for (const bool big : {false, true}) {
     std::string text = std::string("ply\nformat ") +

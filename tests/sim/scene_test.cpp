@@ -228,6 +228,27 @@ TEST_F(SceneFiles, OtherMistakesNameTheirKey) {
   EXPECT_NE(error_of("- {type: box", "- {type: box, {").find("bad.yaml:"), std::string::npos);
 }
 
+// issue 39: the ground truth's floor stops are counted before it sweeps from them; an office
+// without a floor has none to count.
+TEST(Scenes, FloorStopsAreCountedBeforeTheGroundTruth) {
+  const std::string office = builtin_scene_text("office-small-sparse");
+  const std::string floor = "floor: {size: [15, 10], center: [7.5, 5]}";
+  ASSERT_NE(office.find(floor), std::string::npos);
+  std::string wide = office;
+  wide.replace(wide.find(floor), floor.size(), "floor: {size: [1000, 1000], center: [7.5, 5]}");
+  try {
+    parse_scene(wide, "wide.yaml", ".");
+    ADD_FAILURE() << "4 M floor stops were accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("makes 4000000 stops, more than the 20000"),
+              std::string::npos)
+        << e.what();
+  }
+  std::string no_floor = office;
+  no_floor.replace(no_floor.find(floor), floor.size(), "");
+  EXPECT_NO_THROW(parse_scene(no_floor, "no_floor.yaml", "."));
+}
+
 // yaml-cpp alone would take the first of two values, or read the first document only.
 TEST_F(SceneFiles, DuplicateKeysAndSecondDocumentsAreRefused) {
   const std::string twice = error_of("kind: tabletop\n", "kind: tabletop\nkind: office\n");

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -379,17 +380,27 @@ TEST_F(ViewerTest, AnOversizedResultsFileIsRefusedUnread) {
   const std::filesystem::path file = tmp_ / "run" / "run.json";
   std::filesystem::resize_file(file, kMaxViewerFileBytes + 1);
   const std::string error = view_error(tmp_ / "run", config_);
-  EXPECT_NE(error.find("more than the 1 GiB vantage view reads"), std::string::npos) << error;
+  EXPECT_NE(error.find("more than the 1 GiB a results file may have"), std::string::npos) << error;
 }
 
-TEST_F(ViewerTest, AGridBeyondTheMemoryBudgetIsRefusedBeforeItIsAllocated) {
+// issue 39: a run.json whose grid says 1024^3 around a small map allocated the grid (4 GiB of
+// log-odds); the page needs only the map's box, so that is what is held, and what the budget
+// weighs. The layers are those of the true grid, and the count of unobserved cells the big one's.
+TEST_F(ViewerTest, ASmallMapInAHugeGridCostsTheMapNotTheGrid) {
+  const json small = page_data(build_view_page(tmp_ / "run", config_));
   json run = run_json();
   run["scene"]["grid"]["dims"] = {1024, 1024, 1024};
   write_file(tmp_ / "run" / "run.json", run.dump());
-  config_.max_memory = std::uint64_t{1} << 30;
-  const std::string error = view_error(tmp_ / "run", config_);
-  EXPECT_NE(error.find("1024 x 1024 x 1024 cells) needs about 8.06 GiB"), std::string::npos)
-      << error;
+  config_.max_memory = std::uint64_t{1} << 30;  // the grid would need 8 GiB
+  const json huge = page_data(build_view_page(tmp_ / "run", config_));
+  EXPECT_EQ(cells_of(huge["occupied"]["cells"]), cells_of(small["occupied"]["cells"]));
+  const std::size_t known = kSpec.num_cells() - small["unobserved"]["all"].get<std::size_t>();
+  EXPECT_EQ(huge["unobserved"]["all"].get<std::size_t>(), (std::size_t{1} << 30) - known);
+  // The true grid's surface, and the cells at its far faces that now border unknown cells.
+  const std::set<Cell> before = cells_of(small["unobserved"]["cells"]);
+  const std::set<Cell> after = cells_of(huge["unobserved"]["cells"]);
+  EXPECT_TRUE(std::includes(after.begin(), after.end(), before.begin(), before.end()));
+  EXPECT_GT(after.size(), before.size());
 }
 
 TEST_F(ViewerTest, DimsBeyondAnIntAreRefusedNotWrapped) {

@@ -86,5 +86,41 @@ TEST(Hemisphere, BadSettingsAreRefusedByName) {
   refuses([](HemisphereConfig& c) { c.base.x() = NAN; }, "hemisphere.base");
 }
 
+// issue 39: a spacing that makes more views than a decision scores is refused with its count,
+// not capped without a word at 100 000 a ring.
+TEST(Hemisphere, ASpacingThatMakesTooManyViewsIsRefusedWithItsCount) {
+  HemisphereConfig config = table_top();
+  config.spacing = 1e-9;
+  try {
+    hemisphere_poses(config);
+    ADD_FAILURE() << "a spacing of 1e-9 m was accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("hemisphere.spacing (--view-spacing) 1e-09 m makes about"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("more than the 100000 a decision scores"), std::string::npos) << message;
+  }
+  config.spacing = 0.1;
+  EXPECT_EQ(static_cast<double>(hemisphere_poses(config).size()), config.view_count());
+}
+
+// issue 39: an arm whose reach holds no view says so, naming the options that place it, instead
+// of an empty candidate set met later as "the scene has no candidate views".
+TEST(Hemisphere, AReachThatHoldsNoViewNamesTheArm) {
+  HemisphereConfig config = table_top();
+  config.base = {5.0, 0.0, 0.75};
+  config.reach = 0.5;
+  try {
+    hemisphere_poses(config);
+    ADD_FAILURE() << "an arm that reaches nothing was accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("the arm reaches none of the hemisphere's"), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("--arm-base and --reach"), std::string::npos) << message;
+  }
+}
+
 }  // namespace
 }  // namespace vantage

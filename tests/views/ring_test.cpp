@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
+#include "vantage/views/sphere.hpp"
+
 namespace vantage {
 namespace {
 
@@ -46,6 +50,26 @@ TEST(Ring, RejectsBadConfig) {
   SensorFov fov;
   fov.max_range = fov.min_range;
   EXPECT_THROW(fov.validate(), std::invalid_argument);
+}
+
+// issue 39: the candidate limit is the ring's own, so a scene's ring, `plan --views` and Python
+// meet the same refusal before a view is made.
+TEST(Ring, MoreViewsThanADecisionScoresAreRefusedByCount) {
+  RingConfig ring;
+  ring.positions = 33'334;  // x 3 yaw offsets: 100 002 views
+  try {
+    ring_poses(ring);
+    ADD_FAILURE() << "100002 views were made";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("make 100002 views, more than the 100000"),
+              std::string::npos)
+        << e.what();
+  }
+  ring.positions = 33'333;
+  EXPECT_EQ(ring_poses(ring).size(), 99'999u);
+  SphereConfig sphere;
+  sphere.views = 100'001;
+  EXPECT_THROW(sphere_poses(sphere), std::invalid_argument);
 }
 
 }  // namespace

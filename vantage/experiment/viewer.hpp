@@ -10,6 +10,8 @@
 #include <filesystem>
 #include <string>
 
+#include "vantage/util/limits.hpp"
+
 namespace vantage {
 
 /// Settings of the page.
@@ -30,8 +32,8 @@ struct ViewerConfig {
 };
 
 /// The largest run.json or plan.json `vantage view` reads [bytes]: a million candidates take
-/// about 400 MB.
-inline constexpr std::uintmax_t kMaxViewerFileBytes = std::uintmax_t{1} << 30;
+/// about 400 MB. The results file's limit of the one table (vantage/util/limits.hpp).
+inline constexpr std::uintmax_t kMaxViewerFileBytes = kMaxResultsFileBytes;
 /// Bytes a grid cell costs `vantage view` at its peak: the grid's log-odds (4 B) and the
 /// OctoMap tree read into it, rounded up (docs/robustness.md, "Memory").
 inline constexpr double kViewerBytesPerCell = 8.0;

@@ -18,6 +18,7 @@
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/detail/pcd.hpp"
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/io/ply.hpp"
 #include "vantage/util/text.hpp"
 
@@ -31,9 +32,7 @@ enum class Format { kPcd, kPly };
 constexpr std::size_t kHeaderBytes = std::size_t{1} << 16;
 
 Format format_of(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string extension = lower_extension(path);
   if (extension == ".pcd") return Format::kPcd;
   if (extension == ".ply") return Format::kPly;
   throw std::invalid_argument(cat(path.string(), ": unsupported point-cloud format '", extension,
@@ -79,7 +78,15 @@ PointCloud read_point_cloud(const fs::path& path, const CloudReadOptions& option
   const Format format = format_of(path);
   PointCloud cloud;
   try {
-    const std::string bytes = read_file_bytes(path);
+    const std::string bytes = read_input_file(path, InputKind::kPointCloud);
+    // NOTE: an extension that lies is said as such, not as the other format's first complaint
+    // (a PLY file named .pcd: "unknown PCD header key 'ply'").
+    const std::string_view expected = format == Format::kPcd ? "a PCD point cloud" : "a PLY file";
+    if (const std::string_view found = sniff_format(std::string_view(bytes).substr(0, 4096));
+        !found.empty() && found != expected) {
+      throw FormatError(
+          cat("holds ", found, ", not what its ", lower_extension(path), " extension says"));
+    }
     cloud = format == Format::kPcd ? detail::parse_pcd(bytes) : parse_ply_cloud(bytes);
     if (options.skip_non_finite) {
       const std::size_t skipped =
@@ -114,13 +121,15 @@ std::optional<Eigen::Isometry3d> read_cloud_viewpoint(const fs::path& path) {
   if (format_of(path) != Format::kPcd) return std::nullopt;
   try {
     const std::optional<Eigen::Isometry3d> pose =
-        detail::parse_pcd_viewpoint(read_file_bytes(path, kHeaderBytes));
+        detail::parse_pcd_viewpoint(read_input_file(path, InputKind::kPointCloud, kHeaderBytes));
     if (pose && is_unset_viewpoint(*pose)) return std::nullopt;
     return pose;
   } catch (const FormatError& e) {
     throw std::runtime_error(cat(path.string(), ": ", e.what()));
   }
 }
+
+void require_point_cloud_extension(const fs::path& path) { (void)format_of(path); }
 
 void write_point_cloud(const fs::path& path, const PointCloud& points,
                        const std::optional<Eigen::Isometry3d>& viewpoint) {

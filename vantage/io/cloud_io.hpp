@@ -62,6 +62,10 @@ std::optional<Eigen::Isometry3d> read_cloud_viewpoint(const std::filesystem::pat
 /// Throws std::invalid_argument naming the file for another extension, an empty cloud, or a
 /// point that is not finite in float (naming the point's index), before anything is written;
 /// std::runtime_error naming the file when writing fails.
+/// Throws std::invalid_argument naming the path unless its extension is .pcd or .ply (any case):
+/// what write_point_cloud checks, for a command line to decide before any work.
+void require_point_cloud_extension(const std::filesystem::path& path);
+
 void write_point_cloud(const std::filesystem::path& path, const PointCloud& points,
                        const std::optional<Eigen::Isometry3d>& viewpoint = std::nullopt);
 

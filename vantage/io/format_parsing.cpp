@@ -4,7 +4,6 @@
 #include <bit>
 #include <charconv>
 #include <cstring>
-#include <fstream>
 #include <system_error>
 #include <type_traits>
 
@@ -40,20 +39,6 @@ std::string not_a_readable_file(const fs::path& path) {
     default:
       return "is not a regular file";
   }
-}
-
-std::string read_file_bytes(const fs::path& path, std::size_t max_bytes) {
-  if (const std::string why = not_a_readable_file(path); !why.empty()) throw FormatError(why);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw FormatError("cannot open for reading");
-  std::string bytes;
-  char buffer[1 << 16];
-  while (bytes.size() < max_bytes && (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)) {
-    bytes.append(buffer, static_cast<std::size_t>(in.gcount()));
-  }
-  if (bytes.size() > max_bytes) bytes.resize(max_bytes);
-  if (in.bad()) throw FormatError("read failed");
-  return bytes;
 }
 
 std::optional<std::string_view> Lines::next() {

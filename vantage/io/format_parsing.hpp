@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// What the file-format readers (PCD, PLY, YAML) share: their error type, whole-file reads,
+/// What the file-format readers (PCD, PLY, YAML) share: their error type, what a path is,
 /// lines and tokens of text, strict numbers, and binary scalars.
 
 #include <cstddef>
@@ -25,10 +25,7 @@ struct FormatError : std::runtime_error {
 /// file", "is a symlink loop", "permission denied"...; empty when it is a regular file.
 std::string not_a_readable_file(const std::filesystem::path& path);
 
-/// The bytes of a regular file, or its first `max_bytes` (a header). Throws FormatError (what
-/// not_a_readable_file says, "cannot open for reading", "read failed").
-std::string read_file_bytes(const std::filesystem::path& path,
-                            std::size_t max_bytes = std::string::npos);
+/// (Reading a file whole: read_input_file, vantage/io/input_file.hpp, which also bounds its size.)
 
 /// Lines of a text, counted from 1, with their '\n' and a trailing '\r' removed.
 class Lines {

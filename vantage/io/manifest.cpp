@@ -16,6 +16,7 @@
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/cloud_io.hpp"
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/io/trajectory.hpp"
 #include "vantage/io/yaml_reader.hpp"
 #include "vantage/util/text.hpp"
@@ -168,7 +169,10 @@ Manifest read_manifest(const fs::path& path) {
         cat(manifest.file.string(), ": ", why == "no such file" ? "no such manifest" : why));
   }
   const fs::path folder = manifest.file.parent_path();
-  const YamlField root = read_yaml_file(manifest.file);
+  const YamlField root =
+      read_yaml_file(manifest.file,
+                     "a manifest: give the folder that holds it, or a manifest YAML that lists it "
+                     "(docs/manifest.md)");
   root.allow_keys({"version", "clouds", "trajectory", "sensor", "roi", "resolution", "options"});
   if (const auto version = root.get("version")) {
     if (version->number() != 1.0) version->fail("only version 1 exists");
@@ -274,7 +278,8 @@ Manifest read_manifest(const fs::path& path) {
       if (!is_cloud_file(cloud.file)) {
         file.fail(cat("'", cloud.file.string(), "' is not a .pcd or .ply file"));
       }
-      if (const std::string why = not_a_readable_file(cloud.file); !why.empty()) {
+      if (const std::string why = input_file_problem(cloud.file, InputKind::kPointCloud);
+          !why.empty()) {
         file.fail(cat(cloud.file.string(), ": ", why));
       }
       if (const auto stamp = entry.get("stamp")) cloud.stamp = stamp->number();
@@ -324,7 +329,8 @@ Manifest read_manifest(const fs::path& path) {
     if (const auto dt = trajectory->get("max_time_difference")) {
       manifest.max_time_difference = dt->positive();
     }
-    if (const std::string why = not_a_readable_file(*manifest.trajectory); !why.empty()) {
+    if (const std::string why = input_file_problem(*manifest.trajectory, InputKind::kPoses);
+        !why.empty()) {
       file.fail(cat(manifest.trajectory->string(), ": ", why));
     }
     const std::vector<StampedPose> poses = read_tum_trajectory(*manifest.trajectory);

@@ -21,6 +21,7 @@
 
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -69,13 +70,6 @@ void require_key_range(const GridSpec& spec, const Voxel& n, const std::string& 
   throw std::runtime_error(cat(path.string(), ": ", message));
 }
 
-std::string lower_extension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 // ---- reading -------------------------------------------------------------------------------
 
 struct TreeHeader {
@@ -110,6 +104,12 @@ TreeHeader parse_header(const std::string& bytes, const fs::path& path) {
     pos = eol == std::string::npos ? bytes.size() : eol + 1;
     std::string keyword;
     if (!(line >> keyword) || keyword.starts_with("#")) continue;
+    // NOTE: OctoMap's reader takes the last of a keyword given twice; a header that states its
+    // resolution twice is corrupt, not a choice to make for it.
+    if ((keyword == "id" && have_id) || (keyword == "size" && have_size) ||
+        (keyword == "res" && have_res)) {
+      fail(path, cat("header: '", keyword, "' is given twice"));
+    }
     if (keyword == "data") {
       have_data = true;
     } else if (keyword == "id") {
@@ -272,12 +272,11 @@ std::vector<Leaf> decode(const std::string& bytes, const TreeHeader& header) {
 }
 
 std::string read_bytes(const fs::path& path) {
-  if (const std::string why = not_a_readable_file(path); !why.empty()) fail(path, why);
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open for reading");
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) fail(path, "read error");
-  return bytes;
+  try {
+    return read_input_file(path, InputKind::kOctomap);
+  } catch (const FormatError& e) {
+    fail(path, e.what());
+  }
 }
 
 GridSpec derive_spec(const std::vector<Leaf>& leaves, double resolution, int padding,

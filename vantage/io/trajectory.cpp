@@ -1,15 +1,16 @@
 #include "vantage/io/trajectory.hpp"
 
 #include <array>
-#include <charconv>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
+#include <optional>
 #include <stdexcept>
 #include <string_view>
 
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
+#include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -38,35 +39,37 @@ std::string rigid_transform_problem(const Eigen::Matrix4d& m) {
 }
 
 std::vector<StampedPose> read_tum_trajectory(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error(cat(path.string(), ": cannot open the trajectory"));
+  std::string text;
+  try {
+    text = read_input_file(path, InputKind::kPoses);
+  } catch (const FormatError& e) {
+    throw std::runtime_error(cat(path.string(), ": ", e.what()));
+  }
   static constexpr std::array<std::string_view, 8> kFields = {"timestamp", "tx", "ty", "tz",
                                                               "qx",        "qy", "qz", "qw"};
   std::vector<StampedPose> poses;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
+  Lines lines(text);
+  while (const auto line = lines.next()) {
     const auto fail = [&](const std::string& what) {
-      throw std::runtime_error(cat(path.string(), ":", number, ": ", what));
+      throw std::runtime_error(cat(path.string(), ":", lines.number(), ": ", what));
     };
-    std::istringstream tokens(line);
-    std::string token;
     std::array<double, 8> v{};
     int n = 0;
-    while (tokens >> token) {
+    for (const std::string_view token : split(*line)) {
       if (n == 0 && token.starts_with("#")) break;
       if (n == 8) fail("more than 8 fields (timestamp tx ty tz qx qy qz qw)");
-      std::string_view text = token;
-      if (text.starts_with("+")) text.remove_prefix(1);
-      const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), v[n]);
-      if (ec != std::errc() || ptr != text.data() + text.size()) {
-        fail(cat(kFields[n], " '", token, "' is not a number"));
-      }
-      if (std::isnan(v[n])) fail(cat(kFields[n], " is NaN"));
-      if (!std::isfinite(v[n])) fail(cat(kFields[n], " is infinite"));
-      ++n;
+      const std::optional<double> value = parse_number(token);
+      if (!value) fail(cat(kFields[n], " '", printable(token, 40), "' is not a number"));
+      if (std::isnan(*value)) fail(cat(kFields[n], " is NaN"));
+      if (!std::isfinite(*value)) fail(cat(kFields[n], " is infinite"));
+      v[n++] = *value;
     }
     if (n == 0) continue;
     if (n != 8) fail(cat(n, " fields; a TUM pose has 8 (timestamp tx ty tz qx qy qz qw)"));
+    if (poses.size() >= kMaxCandidateViews) {
+      fail(cat("more than ", kMaxCandidateViews,
+               " poses, the most a pose file may hold (docs/robustness.md, \"Limits\")"));
+    }
     Eigen::Quaterniond q(v[7], v[4], v[5], v[6]);
     const double norm = q.norm();
     if (std::abs(norm - 1.0) > kQuaternionNormTolerance) {
@@ -81,7 +84,6 @@ std::vector<StampedPose> read_tum_trajectory(const fs::path& path) {
     pose.T_world_frame.translation() = Eigen::Vector3d(v[1], v[2], v[3]);
     poses.push_back(pose);
   }
-  if (in.bad()) throw std::runtime_error(cat(path.string(), ": read error"));
   return poses;
 }
 

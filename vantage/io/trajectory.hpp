@@ -29,7 +29,9 @@ std::string rigid_transform_problem(const Eigen::Matrix4d& m);
 /// Reads a trajectory in the TUM RGB-D format: one pose per line, `timestamp tx ty tz qx qy qz
 /// qw` (seconds, metres, unit quaternion, Hamilton convention, giving T_world_frame); blank
 /// lines and lines starting with '#' are skipped. A quaternion whose norm is within
-/// kQuaternionNormTolerance of 1 is normalised. Throws std::runtime_error as "file:line: what".
+/// kQuaternionNormTolerance of 1 is normalised. The file is opened by read_input_file as a pose
+/// file (a regular file of at most kMaxPoseFileBytes) and holds at most kMaxCandidateViews poses.
+/// Throws std::runtime_error as "file:line: what".
 std::vector<StampedPose> read_tum_trajectory(const std::filesystem::path& path);
 
 /// Writes a TUM trajectory (17 significant digits) atomically.

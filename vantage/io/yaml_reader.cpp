@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -337,12 +338,17 @@ YamlField parse_yaml(std::string_view text, const std::string& source) {
   return YamlField(converter.convert(root, "", 1), "", shared_source);
 }
 
-YamlField read_yaml_file(const std::filesystem::path& path) {
+YamlField read_yaml_file(const std::filesystem::path& path, std::string_view what) {
   std::string text;
   try {
-    text = read_file_bytes(path);
+    text = read_input_file(path, InputKind::kSettings);
   } catch (const FormatError& e) {
     throw YamlError(cat(path.string(), ": ", e.what()));
+  }
+  // NOTE: a cloud or a map given where settings belong is said as what it is, not as YAML's
+  // complaint about its bytes ("unknown escape character").
+  if (const std::string_view format = sniff_format(text); !format.empty() && format != "JSON") {
+    throw YamlError(cat(path.string(), ": is ", format, ", not ", what));
   }
   return parse_yaml(text, path.string());
 }

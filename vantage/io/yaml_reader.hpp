@@ -94,7 +94,9 @@ class YamlField {
 /// is not a plain scalar. Anchors and aliases are kept shared, never expanded.
 YamlField parse_yaml(std::string_view text, const std::string& source);
 
-/// parse_yaml of the file at `path`; a file that cannot be read fails naming it.
-YamlField read_yaml_file(const std::filesystem::path& path);
+/// parse_yaml of the file at `path`, opened by read_input_file as settings (a regular file of at
+/// most kMaxSettingsFileBytes); a file that cannot be read fails naming it, and one whose first
+/// bytes name another format (a PCD cloud, an OctoMap...) says so, as "is X, not `what`".
+YamlField read_yaml_file(const std::filesystem::path& path, std::string_view what = "YAML");
 
 }  // namespace vantage

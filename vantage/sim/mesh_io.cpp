@@ -18,6 +18,7 @@
 #include <type_traits>
 
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/io/ply.hpp"
 #include "vantage/util/text.hpp"
 
@@ -119,18 +120,72 @@ class JsArrayReader {
   std::size_t pos_ = 0;
 };
 
-std::string read_text(const std::filesystem::path& path) {
+std::string read_text(const std::filesystem::path& path,
+                      std::size_t max_bytes = std::string::npos) {
   try {
-    return read_file_bytes(path);
+    return read_input_file(path, InputKind::kMesh, max_bytes);
   } catch (const FormatError& e) {
     throw std::runtime_error(cat("mesh file ", path.string(), ": ", e.what()));
   }
 }
 
 bool has_extension(const std::filesystem::path& path, std::string_view ext) {
-  std::string e = path.extension().string();
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e == ext;
+  return lower_extension(path) == ext;
+}
+
+/// The mesh formats load_mesh reads, by extension, and what sniff_format calls their content.
+struct MeshFormat {
+  std::string_view extension;
+  std::string_view content;
+};
+constexpr MeshFormat kMeshFormats[] = {
+    {".ply", "a PLY file"}, {".obj", "OBJ text"}, {".off", "an OFF mesh"}, {".stl", "ASCII STL"}};
+
+/// Throws unless the extension is a mesh format's and the first bytes, where they name a format,
+/// name that one: assimp would read OBJ text in `m.xyz` (it sniffs what it does not know), and an
+/// extension that lies is a mistake to say, not to guess past.
+void require_mesh_format(const std::filesystem::path& path) {
+  const std::string extension = lower_extension(path);
+  const MeshFormat* format = nullptr;
+  for (const MeshFormat& f : kMeshFormats) {
+    if (f.extension == extension) format = &f;
+  }
+  if (format == nullptr) {
+    throw std::runtime_error(cat("mesh file ", path.string(), ": '", printable(extension, 20),
+                                 "' is not a mesh format vantage reads (.ply, .obj, .off, .stl)"));
+  }
+  const std::string head = read_text(path, 4096);
+  const std::string_view content = sniff_format(head);
+  if (!content.empty() && content != format->content) {
+    throw std::runtime_error(cat("mesh file ", path.string(), " holds ", content, ", not what its ",
+                                 format->extension, " extension says"));
+  }
+  // NOTE: an OFF header states its counts; assimp reserves for them before it reads a vertex, so
+  // counts that the file's bytes cannot hold (each vertex takes 6 bytes or more, each face 8) are
+  // refused here, not met as an allocation of gigabytes.
+  if (format->extension == ".off") {
+    Lines lines(head);
+    std::vector<std::string_view> tokens;
+    while (tokens.size() < 3) {
+      const auto line = lines.next_nonblank();
+      if (!line) break;
+      for (const std::string_view t : split(*line)) {
+        if (t.starts_with('#')) break;
+        if (!t.ends_with("OFF")) tokens.push_back(t);
+      }
+    }
+    if (tokens.size() >= 2) {
+      const auto vertices = parse_count(tokens[0]), faces = parse_count(tokens[1]);
+      std::error_code error;
+      const double size = static_cast<double>(std::filesystem::file_size(path, error));
+      if (vertices && faces &&
+          6.0 * static_cast<double>(*vertices) + 8.0 * static_cast<double>(*faces) > size) {
+        throw std::runtime_error(cat("mesh file ", path.string(), ": the OFF header declares ",
+                                     *vertices, " vertices and ", *faces, " faces, more than its ",
+                                     size, " bytes can hold"));
+      }
+    }
+  }
 }
 
 /// The mesh, after checking that it holds a triangle and that its indices and vertices are valid.
@@ -207,7 +262,7 @@ constexpr BuiltinModel kBuiltinModels[] = {
 /// Throws std::runtime_error saying why `path` is no mesh file to read: missing, a folder, a
 /// FIFO... (not "not found" for all of them).
 void require_readable(const std::filesystem::path& path) {
-  if (const std::string why = not_a_readable_file(path); !why.empty()) {
+  if (const std::string why = input_file_problem(path, InputKind::kMesh); !why.empty()) {
     throw std::runtime_error(cat("mesh file ", path.string(), ": ", why));
   }
 }
@@ -216,6 +271,9 @@ void require_readable(const std::filesystem::path& path) {
 /// ("aiScene::mNumMeshes is 0").
 std::string assimp_reason(std::string_view message) {
   if (message.find("mNumMeshes is 0") != std::string_view::npos) return "it holds no mesh";
+  if (message.find("bad_alloc") != std::string_view::npos) {
+    return "it claims more data than memory holds (a malformed or truncated file)";
+  }
   if (message.find("aiScene::") != std::string_view::npos ||
       message.find("aiMesh::") != std::string_view::npos ||
       message.find("Validation") != std::string_view::npos) {
@@ -228,6 +286,7 @@ std::string assimp_reason(std::string_view message) {
 
 TriangleMesh load_mesh(const std::filesystem::path& path) {
   require_readable(path);
+  require_mesh_format(path);
   if (has_extension(path, ".ply")) return checked(read_ply(path), path);
   Assimp::Importer importer;
   // NOTE: no post-processing but validation: Debian's assimp 5.2 aborts in its triangulation

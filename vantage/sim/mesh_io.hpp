@@ -15,6 +15,10 @@ namespace vantage::sim {
 /// Reads every triangle of a PLY, OBJ, STL or OFF file (node transforms applied, polygons
 /// triangulated) in the file's own units and frame.
 ///
+/// The file is opened as read_input_file opens a mesh (a regular file of at most
+/// kMaxMeshFileBytes); its extension must be one of these four, and its first bytes, where they
+/// name a format, that one (OBJ text in `m.xyz` or `m.off` is refused, not sniffed past).
+///
 /// Throws std::runtime_error with one line naming the file when it is missing, cannot be parsed,
 /// or holds no triangle.
 TriangleMesh load_mesh(const std::filesystem::path& path);

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/sim/builtin_scenes.hpp"
 #include "vantage/util/text.hpp"
 
@@ -12,11 +13,17 @@ namespace vantage::sim {
 namespace {
 
 std::string read_file(const std::filesystem::path& path) {
+  std::string text;
   try {
-    return read_file_bytes(path);
+    text = read_input_file(path, InputKind::kSettings);
   } catch (const FormatError& e) {
     throw std::runtime_error(cat("scene file ", path.string(), ": ", e.what()));
   }
+  if (const std::string_view format = sniff_format(text); !format.empty() && format != "JSON") {
+    throw std::runtime_error(
+        cat(path.string(), ": is ", format, ", not a scene file (YAML, docs/scenes.md)"));
+  }
+  return text;
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include "vantage/sim/furniture.hpp"
 #include "vantage/sim/mesh_io.hpp"
 #include "vantage/sim/scene.hpp"
+#include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage::sim {
@@ -50,6 +51,18 @@ double length(const YamlField& f) {
     f.fail(cat("must be at most ", kMaxWorldCoordinate, " m, got ", value));
   }
   return value;
+}
+
+/// [x, y, z], each a length.
+Eigen::Vector3d lengths(const YamlField& f) {
+  const Eigen::Vector3d v = f.positive_vec3();
+  for (int i = 0; i < 3; ++i) {
+    if (v[i] > kMaxWorldCoordinate) {
+      f[static_cast<std::size_t>(i)].fail(
+          cat("must be at most ", kMaxWorldCoordinate, " m, got ", v[i]));
+    }
+  }
+  return v;
 }
 
 Eigen::Isometry3d parse_pose(const YamlField& f) {
@@ -98,11 +111,16 @@ struct Parser {
     parse_walls(root);
     if (auto f = root.get("objects")) {
       const auto items = f->items();
+      if (items.size() > kMaxSceneObjects) {
+        f->fail(cat("holds ", items.size(), " objects, more than the ", kMaxSceneObjects,
+                    " a scene may place"));
+      }
       for (std::size_t i = 0; i < items.size(); ++i) parse_object(items[i], i);
     }
     parse_sensor(root.at("sensor"));
     parse_mount(root.at("mount"));
     if (auto f = root.get("robot")) parse_robot(*f);
+    check_floor_stops(root);
     parse_candidates(root.at("candidates"));
     parse_starts(root.at("start_poses"));
     if (auto f = root.get("pose_noise")) parse_pose_noise(*f);
@@ -160,7 +178,7 @@ struct Parser {
   void parse_table(const YamlField& f) {
     f.allow_keys({"size", "height", "center", "top_thickness", "leg_width"});
     const Eigen::Vector2d size = f.at("size").positive_vec2();
-    const double height = f.at("height").positive();
+    const double height = length(f.at("height"));
     const Eigen::Vector2d center =
         f.has("center") ? f.at("center").vec2() : Eigen::Vector2d::Zero();
     const double top = positive_or(f, "top_thickness", 0.03);
@@ -184,8 +202,8 @@ struct Parser {
     }
     if (!walls) root.fail("rooms need a 'walls' map with height and thickness");
     walls->allow_keys({"height", "thickness", "segments"});
-    height = walls->at("height").positive();
-    thickness = walls->at("thickness").positive();
+    height = length(walls->at("height"));
+    thickness = length(walls->at("thickness"));
     if (auto segs = walls->get("segments")) {
       const auto items = segs->items();
       for (std::size_t i = 0; i < items.size(); ++i) {
@@ -220,7 +238,7 @@ struct Parser {
       for (const YamlField& d : doors_field->items()) {
         d.allow_keys({"at", "width"});
         door_fields.push_back(d);
-        doors.push_back({d.at("at").vec2(), d.at("width").positive()});
+        doors.push_back({d.at("at").vec2(), length(d.at("width"))});
       }
     }
     const std::vector<bool> used = build_walls(segments, height, thickness, doors, scene.shapes);
@@ -237,29 +255,28 @@ struct Parser {
     std::vector<Shape> made;
     if (type == "box" || type == "cabinet") {
       f.allow_keys({"type", "size", "pose", "repeat"});
-      made.push_back(mesh_shape(label, type, make_box(f.at("size").positive_vec3())));
+      made.push_back(mesh_shape(label, type, make_box(lengths(f.at("size")))));
     } else if (type == "desk" || type == "table") {
       f.allow_keys({"type", "size", "pose", "repeat"});
-      made.push_back(mesh_shape(label, type, make_desk(f.at("size").positive_vec3())));
+      made.push_back(mesh_shape(label, type, make_desk(lengths(f.at("size")))));
     } else if (type == "chair") {
       f.allow_keys({"type", "size", "pose", "repeat"});
-      made.push_back(mesh_shape(label, type, make_chair(f.at("size").positive_vec3())));
+      made.push_back(mesh_shape(label, type, make_chair(lengths(f.at("size")))));
     } else if (type == "shelf") {
       f.allow_keys({"type", "size", "pose", "repeat"});
-      made.push_back(mesh_shape(label, type, make_shelf(f.at("size").positive_vec3())));
+      made.push_back(mesh_shape(label, type, make_shelf(lengths(f.at("size")))));
     } else if (type == "cylinder") {
       f.allow_keys({"type", "radius", "height", "segments", "pose", "repeat"});
       const int segments =
           f.has("segments") ? f.at("segments").integer(3, 4096) : kCylinderSegments;
       made.push_back(mesh_shape(
-          label, type,
-          make_cylinder(f.at("radius").positive(), f.at("height").positive(), segments)));
+          label, type, make_cylinder(length(f.at("radius")), length(f.at("height")), segments)));
     } else if (type == "sphere") {
       f.allow_keys({"type", "radius", "pose", "repeat"});
       Shape s;
       s.name = label;
       s.kind = type;
-      s.sphere = Sphere{Eigen::Vector3d::Zero(), f.at("radius").positive()};
+      s.sphere = Sphere{Eigen::Vector3d::Zero(), length(f.at("radius"))};
       made.push_back(s);
     } else if (type == "mesh") {
       f.allow_keys({"type", "model", "file", "scale", "pose", "repeat"});
@@ -278,6 +295,11 @@ struct Parser {
       const int nx = count[0].integer(1, 1000), ny = count[1].integer(1, 1000);
       const Eigen::Vector2d step = r->at("step").vec2();
       offsets.clear();
+      const std::size_t placed = scene.shapes.size() + static_cast<std::size_t>(nx) * ny;
+      if (placed > kMaxSceneObjects) {
+        count.fail(cat("places ", nx * ny, " copies, which makes more than the ", kMaxSceneObjects,
+                       " objects a scene may place"));
+      }
       for (int j = 0; j < ny; ++j) {
         for (int i = 0; i < nx; ++i) offsets.emplace_back(step.x() * i, step.y() * j);
       }
@@ -413,6 +435,33 @@ struct Parser {
     scene.robot.stop_spacing = positive_or(f, "stop_spacing", scene.robot.stop_spacing);
     if (scene.robot.stop_spacing > scene.robot.footprint) {
       f.at("stop_spacing").fail("must not exceed the footprint (stops could straddle a wall)");
+    }
+    // NOTE: the ground truth sweeps from every reachable stop: a spacing finer than a cell sees
+    // nothing more, and the stops' count is bounded before a sweep (issue 39: 1e-6 m passed here
+    // and failed later as "out of memory").
+    if (const auto spacing = f.get("stop_spacing")) {
+      if (scene.robot.stop_spacing < scene.grid.resolution) {
+        spacing->fail(cat("must be at least the grid's resolution (", scene.grid.resolution,
+                          " m), got ", scene.robot.stop_spacing));
+      }
+    }
+  }
+
+  /// An office's floor stops, counted before any is made (kMaxFloorStops).
+  void check_floor_stops(const YamlField& root) const {
+    if (scene.kind != SceneKind::kOffice || scene.floor_area.isEmpty()) return;
+    const Eigen::Vector2d sizes = scene.floor_area.sizes();
+    // As the ground truth lays them out: at least one stop along each side.
+    const double stops = std::max(1.0, std::floor(sizes.x() / scene.robot.stop_spacing)) *
+                         std::max(1.0, std::floor(sizes.y() / scene.robot.stop_spacing));
+    if (stops > static_cast<double>(kMaxFloorStops)) {
+      const auto robot = root.get("robot");
+      const std::string what =
+          cat("the floor (", sizes.x(), " x ", sizes.y(), " m) at a spacing of ",
+              scene.robot.stop_spacing, " m makes ", stops, " stops, more than the ",
+              kMaxFloorStops, " the ground truth sweeps from: use a wider spacing");
+      if (robot && robot->has("stop_spacing")) robot->at("stop_spacing").fail(what);
+      root.fail_as("robot", what);
     }
   }
 

@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 
+#include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -99,12 +100,17 @@ inline double mapping_bytes_per_cell(int threads) {
   return kMappingBytesPerCell + kMappingThreadBytesPerCell * std::max(1, threads);
 }
 
-/// "1.50 GiB", "340 MiB".
+/// "1.5 GiB", "340 MiB", "1 KiB", "512 bytes": never "0 MiB" for a size that is not 0, which
+/// would read as no limit (issue 39: `--max-memory 1K`).
 inline std::string describe_bytes(double bytes) {
-  constexpr double kMiB = 1024.0 * 1024.0, kGiB = 1024.0 * kMiB;
-  return bytes >= kGiB
-             ? cat(static_cast<double>(static_cast<long long>(bytes / kGiB * 100)) / 100, " GiB")
-             : cat(static_cast<long long>(bytes / kMiB + 0.5), " MiB");
+  const auto kib = static_cast<double>(kKiB), mib = static_cast<double>(kMiB),
+             gib = static_cast<double>(kGiB);
+  if (bytes >= gib) {
+    return cat(static_cast<double>(static_cast<long long>(bytes / gib * 100)) / 100, " GiB");
+  }
+  if (bytes >= mib) return cat(static_cast<long long>(bytes / mib + 0.5), " MiB");
+  if (bytes >= kib) return cat(static_cast<long long>(bytes / kib + 0.5), " KiB");
+  return cat(static_cast<long long>(bytes), " bytes");
 }
 
 /// The memory budget refused a run: a std::runtime_error (the CLI's exit 1; Python's

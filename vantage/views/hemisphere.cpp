@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
+#include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/detail/placement.hpp"
 #include "vantage/views/ring.hpp"
@@ -27,6 +29,13 @@ void HemisphereConfig::validate() const {
   if (!(spacing > 0.0 && std::isfinite(spacing))) {
     throw std::invalid_argument(cat("hemisphere.spacing must be > 0 m, got ", spacing));
   }
+  // NOTE: the views a spacing makes are counted before one is made (issue 39: 1e-9 m was capped
+  // without a word at 100 000 a ring).
+  if (const double views = view_count(); views > static_cast<double>(kMaxCandidateViews)) {
+    throw std::invalid_argument(cat("hemisphere.spacing (--view-spacing) ", spacing,
+                                    " m makes about ", views, " views, more than the ",
+                                    kMaxCandidateViews, " a decision scores: use a wider spacing"));
+  }
   if (!(base.array().abs() <= kMaxWorldCoordinate).all()) {
     throw std::invalid_argument(
         cat("hemisphere.base must be finite, within ", kMaxWorldCoordinate, " m of the origin"));
@@ -35,30 +44,52 @@ void HemisphereConfig::validate() const {
     throw std::invalid_argument(cat("hemisphere.reach must be > 0 m, got ", reach));
 }
 
+double HemisphereConfig::elevation(int k) const {
+  return elevations == 1 ? 0.5 * (min_elevation + max_elevation)
+                         : min_elevation + (max_elevation - min_elevation) * k / (elevations - 1);
+}
+
+double HemisphereConfig::ring_views(double radius, int k) const {
+  return std::max(3.0,
+                  std::ceil(2.0 * std::numbers::pi * radius * std::cos(elevation(k)) / spacing));
+}
+
+double HemisphereConfig::view_count() const {
+  double views = 0.0;
+  for (const double radius : radii) {
+    for (int k = 0; k < elevations; ++k) views += ring_views(radius, k);
+  }
+  return views;
+}
+
 std::vector<Eigen::Isometry3d> hemisphere_poses(const HemisphereConfig& config) {
   config.validate();
   std::vector<Eigen::Isometry3d> poses;
+  double nearest = std::numeric_limits<double>::infinity();
   for (const double radius : config.radii) {
     for (int k = 0; k < config.elevations; ++k) {
-      const double elevation =
-          config.elevations == 1
-              ? 0.5 * (config.min_elevation + config.max_elevation)
-              : config.min_elevation +
-                    (config.max_elevation - config.min_elevation) * k / (config.elevations - 1);
-      const double ring = radius * std::cos(elevation);
-      // NOTE: a bound on the count keeps a tiny spacing from asking for millions of views.
-      const int views = static_cast<int>(
-          std::clamp(std::ceil(2.0 * std::numbers::pi * ring / config.spacing), 3.0, 100000.0));
+      const double elevation = config.elevation(k);
+      // validate() bounded the count by kMaxCandidateViews.
+      const int views = static_cast<int>(config.ring_views(radius, k));
       for (int j = 0; j < views; ++j) {
         const double azimuth = 2.0 * std::numbers::pi * j / views;
         const Eigen::Vector3d eye =
             config.center + radius * Eigen::Vector3d(std::cos(elevation) * std::cos(azimuth),
                                                      std::cos(elevation) * std::sin(azimuth),
                                                      std::sin(elevation));
-        if ((eye - config.base).norm() > config.reach) continue;
+        const double distance = (eye - config.base).norm();
+        nearest = std::min(nearest, distance);
+        if (distance > config.reach) continue;
         poses.push_back(look_at(eye, config.center));
       }
     }
+  }
+  if (poses.empty()) {
+    throw std::invalid_argument(
+        cat("the arm reaches none of the hemisphere's ", config.view_count(), " views: its reach ",
+            config.reach, " m from its base (", config.base.x(), ", ", config.base.y(), ", ",
+            config.base.z(), ") falls short of the nearest, ", nearest,
+            " m away (set --arm-base and --reach, or the scene's arm)"));
   }
   return poses;
 }

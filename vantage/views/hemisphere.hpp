@@ -30,12 +30,22 @@ struct HemisphereConfig {
   /// Views farther than this from `base` are dropped (infinity: every view is reachable) [m].
   double reach = std::numeric_limits<double>::infinity();
 
-  /// Throws std::invalid_argument naming the field.
+  /// Throws std::invalid_argument naming the field; also when the spacing makes more than
+  /// kMaxCandidateViews views (vantage/util/limits.hpp).
   void validate() const;
+
+  /// Elevation of ring `k` of a radius [rad].
+  double elevation(int k) const;
+  /// Views on ring `k` of `radius`: ceil(2 pi radius cos(e) / spacing), at least 3.
+  double ring_views(double radius, int k) const;
+  /// Views of every ring before the reach drops any.
+  double view_count() const;
 };
 
 /// The reachable views, ordered by radius, then elevation (low to high), then azimuth (from +x,
-/// counter-clockwise), each looking at the centre with its y axis level.
+/// counter-clockwise), each looking at the centre with its y axis level. Throws
+/// std::invalid_argument when the reach holds none of them, naming the reach, the base and the
+/// nearest view's distance.
 std::vector<Eigen::Isometry3d> hemisphere_poses(const HemisphereConfig& config);
 
 }  // namespace vantage

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "vantage/map/grid_spec.hpp"
+#include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/detail/placement.hpp"
 
@@ -22,6 +23,14 @@ void RingConfig::validate() const {
   if (yaw_offsets.empty()) throw std::invalid_argument("ring.yaw_offsets must not be empty");
   for (const double yaw : yaw_offsets) {
     if (!std::isfinite(yaw)) throw std::invalid_argument("ring.yaw_offsets must be finite");
+  }
+  // NOTE: the one limit of candidate views (vantage/util/limits.hpp), for a scene's ring, plan's
+  // --views and Python's ring_candidates alike.
+  const double views = static_cast<double>(positions) * static_cast<double>(yaw_offsets.size());
+  if (views > static_cast<double>(kMaxCandidateViews)) {
+    throw std::invalid_argument(cat("ring.positions (", positions, ") x ring.yaw_offsets (",
+                                    yaw_offsets.size(), ") make ", views, " views, more than the ",
+                                    kMaxCandidateViews, " a decision scores"));
   }
 }
 

@@ -1,10 +1,12 @@
 #include "vantage/views/sphere.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <stdexcept>
 
 #include "vantage/map/grid_spec.hpp"
+#include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/detail/placement.hpp"
 #include "vantage/views/ring.hpp"
@@ -14,6 +16,10 @@ namespace vantage {
 void SphereConfig::validate() const {
   detail::validate_placement("sphere", center, radius);
   if (views < 1) throw std::invalid_argument(cat("sphere.views must be >= 1, got ", views));
+  if (static_cast<std::uint64_t>(views) > kMaxCandidateViews) {
+    throw std::invalid_argument(cat("sphere.views (", views, ") is more than the ",
+                                    kMaxCandidateViews, " views a decision scores"));
+  }
   const double half_pi = std::numbers::pi / 2.0;
   if (!(min_elevation >= -half_pi && min_elevation < max_elevation && max_elevation <= half_pi)) {
     throw std::invalid_argument(cat("sphere elevations must satisfy -90 <= min (",

@@ -276,6 +276,15 @@ void add_bench_command(CLI::App& app) {
   merge->add_option("--out,-o", *out, "folder to write (default: the first folder)");
   merge->callback([dirs, out] {
     std::vector<fs::path> paths(dirs->begin(), dirs->end());
+    // NOTE: a folder that is not there is said as such, not as a folder without sweep.json.
+    for (const fs::path& dir : paths) {
+      std::error_code error;
+      if (!fs::is_directory(dir, error)) {
+        throw std::runtime_error(
+            fmt::format("bench merge: {}: {}", dir.string(),
+                        fs::exists(dir, error) ? "is not a folder" : "no such folder"));
+      }
+    }
     const fs::path target = out->empty() ? paths.front() : fs::path(*out);
     merge_bench(paths, target);
     fmt::print("merged {} folder(s) into {}\n", paths.size(), (target / "scans.csv").string());

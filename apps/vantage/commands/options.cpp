@@ -148,6 +148,11 @@ void CandidateOptions::apply(ExplorationConfig& config) const {
     arm.reach = reach;
     config.arm = arm;
   }
+  // NOTE: the views --view-spacing and --hemisphere-radii make are counted here, before the
+  // scene is built: too many is a command line to change (exit 2), not a run that fails.
+  if (config.candidates == CandidateSet::kHemisphere) {
+    from_options([&] { config.hemisphere.validate(); });
+  }
 }
 
 AlphaSetting PlanningOptions::alpha_setting(double literal) const {

@@ -22,10 +22,12 @@
 #include "vantage/experiment/recorded.hpp"
 #include "vantage/experiment/results.hpp"
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/io/map_files.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/io/ply_export.hpp"
 #include "vantage/planner/search.hpp"
+#include "vantage/util/limits.hpp"
 #include "vantage/util/memory.hpp"
 #include "vantage/views/frontier.hpp"
 #include "vantage/views/hemisphere.hpp"
@@ -256,6 +258,13 @@ void run(const PlanOptions& o) {
   if (fs::exists(dir) && !fs::is_empty(dir)) {
     throw std::invalid_argument(fmt::format("--out {} exists and is not empty", dir.string()));
   }
+  if (!o.map.empty()) {
+    try {
+      (void)octomap_format_of(o.map);  // the flag's format, decided before any file is read
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(fmt::format("--map: {}", e.what()));
+    }
+  }
   std::optional<Eigen::Isometry3d> robot;
   std::string robot_source;
   if (!o.pose.empty()) {
@@ -287,6 +296,25 @@ void run(const PlanOptions& o) {
     }
   }
 
+  // NOTE: the views --views makes are counted before the map is built (issue 39: a million ring
+  // positions, 3 M views, ran out of memory after minutes of mapping).
+  if (o.views > 0 && (o.candidates == "ring" || o.candidates == "sphere")) {
+    const std::uint64_t views = static_cast<std::uint64_t>(o.views) *
+                                (o.candidates == "ring" ? RingConfig{}.yaw_offsets.size() : 1);
+    if (views > kMaxCandidateViews) {
+      throw UsageError(
+          fmt::format("--views {} makes {} candidate views, more than the {} a "
+                      "decision scores (docs/robustness.md, \"Limits\")",
+                      o.views, views, kMaxCandidateViews));
+    }
+  }
+  // NOTE: a pose file is opened as every input is, before the map is built: a FIFO, a device or
+  // a file past its kind's size is refused here, not after the mapping.
+  if (!named_candidates) {
+    if (const std::string why = input_file_problem(o.candidates, InputKind::kPoses); !why.empty()) {
+      throw std::runtime_error(fmt::format("--candidates {}: {}", o.candidates, why));
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   std::optional<Manifest> manifest;
   if (!o.input.empty()) manifest = read_manifest(o.input);

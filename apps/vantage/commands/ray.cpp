@@ -68,6 +68,7 @@ struct RayOptions {
 };
 
 void run(const RayOptions& options) {
+  if (!options.plot_path.empty()) check_picture_format(options.plot_path, "--plot");
   const RayModel model = from_options([&] { return RayModel(options.alpha); });
   const std::vector<double> cells = options.use_scenario ? scenario_cells(options.scenario)
                                                          : parse_numbers(options.cells, "--cells");

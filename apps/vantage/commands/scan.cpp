@@ -65,6 +65,16 @@ void run(const ScanOptions& o) {
       throw UsageError(fmt::format("--sensor: {}", e.what()));
     }
   }
+  // NOTE: the written format is the flag's, decided before the scan (a usage error, exit 2); the
+  // file's folder is checked as every output's is.
+  if (!o.out.empty()) {
+    try {
+      require_point_cloud_extension(o.out);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(fmt::format("--out: {}", e.what()));
+    }
+    check_output_file(o.out, "--out");
+  }
   sim::Scene scene = sim::load_scene(o.scene);
   if (replacement) scene.sensor = *replacement;
   const Eigen::Isometry3d pose = chosen_pose(o, scene);

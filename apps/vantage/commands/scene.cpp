@@ -82,8 +82,9 @@ nlohmann::json scene_json(const sim::Scene& scene) {
 
 void run(const SceneOptions& o) {
   // NOTE: outputs that cannot be made are refused before the ground truth's work.
-  if (!o.out.empty()) check_output_file(o.out, "--out");
-  if (!o.json.empty()) check_output_file(o.json, "--json");
+  if (!o.out.empty()) check_picture_format(o.out, "--out");
+  if (!o.out.empty()) check_output_file(o.out, "--out", {o.scene});
+  if (!o.json.empty()) check_output_file(o.json, "--json", {o.scene});
   const sim::Scene scene = sim::load_scene(o.scene);
   const GridSpec& g = scene.grid;
   fmt::print("{} ({}, {})\n", scene.name, sim::to_string(scene.kind), scene.source);

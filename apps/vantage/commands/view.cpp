@@ -23,8 +23,13 @@ struct ViewOptions {
 };
 
 void run(const ViewOptions& o) {
+  const std::filesystem::path dir(o.dir);
   const std::filesystem::path out =
-      o.out.empty() ? std::filesystem::path(o.dir) / "view.html" : std::filesystem::path(o.out);
+      o.out.empty() ? dir / "view.html" : std::filesystem::path(o.out);
+  // NOTE: before the page is built: the page never replaces what it is built from, and its
+  // folder must exist, as for every output (scene --out, ray --plot).
+  check_output_file(out, "--out",
+                    {dir / "plan.json", dir / "run.json", dir / "map.bt", dir / "map.ot"});
   const std::string page = build_view_page(o.dir, o.viewer);
   write_atomically(out, page);
   fmt::print("view: {} ({:.1f} MB); open it in a browser, no network needed\n", out.string(),
