@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "vantage/io/atomic_file.hpp"
+#include "vantage/io/detail/octomap_keys.hpp"
 #include "vantage/io/format_parsing.hpp"
 #include "vantage/io/input_file.hpp"
 #include "vantage/util/text.hpp"
@@ -28,43 +29,18 @@ namespace vantage {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr std::string_view kBinaryHeader = "# Octomap OcTree binary file";
-constexpr std::string_view kFullHeader = "# Octomap OcTree file";
-constexpr int kTreeDepth = 16;                 // OctoMap's fixed depth
-constexpr std::int64_t kKeyCenter = 32768;     // key of the voxel whose min corner is 0
-constexpr std::int64_t kKeyCount = 65536;      // keys per axis
-constexpr double kAlignmentTolerance = 1e-6;   // [cells]
-constexpr double kResolutionTolerance = 1e-5;  // relative; OctoMap prints 6 digits
-// A map's resolution [m]: finer than a micrometre or coarser than 10 m is a corrupt header.
-constexpr double kMinResolution = 1e-6;
-constexpr double kMaxResolution = 10.0;
-
-using Voxel = std::array<std::int64_t, 3>;
-
-// Per axis, the OctoMap voxel index (key - 32768) of cell 0: the voxel holding the cell's
-// centre, ties going to the upper voxel.
-Voxel voxel_offset(const GridSpec& spec) {
-  Voxel n{};
-  for (int a = 0; a < 3; ++a) {
-    const double o = spec.origin[a] / spec.resolution;
-    n[static_cast<std::size_t>(a)] =
-        static_cast<std::int64_t>(std::floor(o + 0.5 + kAlignmentTolerance));
-  }
-  return n;
-}
-
-void require_key_range(const GridSpec& spec, const Voxel& n, const std::string& where) {
-  static_assert(kKeyCount == 2 * kKeyCenter);
-  for (int a = 0; a < 3; ++a) {
-    const std::int64_t lo = n[static_cast<std::size_t>(a)] + kKeyCenter;
-    const std::int64_t hi = lo + spec.dims[a] - 1;
-    if (lo < 0 || hi >= kKeyCount) {
-      throw std::invalid_argument(cat(where, ": the grid's cells ", "xyz"[a], " = [",
-                                      lo - kKeyCenter, ", ", hi - kKeyCenter,
-                                      "] voxels lie outside OctoMap's key range [-32768, 32767]"));
-    }
-  }
-}
+using detail::kAlignmentTolerance;
+using detail::kBinaryHeader;
+using detail::kFullHeader;
+using detail::kKeyCenter;
+using detail::kKeyCount;
+using detail::kMaxResolution;
+using detail::kMinResolution;
+using detail::kResolutionTolerance;
+using detail::kTreeDepth;
+using detail::require_key_range;
+using detail::Voxel;
+using detail::voxel_offset;
 
 [[noreturn]] void fail(const fs::path& path, const std::string& message) {
   throw std::runtime_error(cat(path.string(), ": ", message));
@@ -346,81 +322,6 @@ void OctomapImportConfig::validate() const {
     throw std::invalid_argument("octomap.crop applies to a given grid only; grid is not given");
   }
   occupancy.validate();
-}
-
-OctomapExport write_octomap(const fs::path& path, const OccupancyGrid& grid) {
-  const OctomapFormat format = octomap_format_of(path);
-  const GridSpec& spec = grid.spec();
-  const Voxel n = voxel_offset(spec);
-  require_key_range(spec, n, path.string());
-
-  OctomapExport result;
-  result.format = format;
-  octomap::OcTree tree(spec.resolution);
-  tree.setClampingThresMin(grid.params().p_min);
-  tree.setClampingThresMax(grid.params().p_max);
-  const float free_value = tree.getClampingThresMinLog();
-  const float occupied_value = tree.getClampingThresMaxLog();
-
-  std::size_t i = 0;
-  for (int z = 0; z < spec.dims.z(); ++z) {
-    for (int y = 0; y < spec.dims.y(); ++y) {
-      for (int x = 0; x < spec.dims.x(); ++x, ++i) {
-        const float l = grid.log_odds(i);
-        const CellState state = grid.state_of(l);
-        float value = l;
-        if (format == OctomapFormat::kBinary) {
-          // NOTE: .bt knows only free and occupied leaves; writing each class at one value lets
-          // OctoMap's pruning merge whole regions of a class.
-          if (state == CellState::kUnobserved) continue;
-          value = state == CellState::kOccupied ? occupied_value : free_value;
-        } else if (l == 0.0f) {
-          continue;  // p = 0.5 exactly: unknown, no node
-        }
-        switch (state) {
-          case CellState::kFree:
-            ++result.free_cells;
-            break;
-          case CellState::kOccupied:
-            ++result.occupied_cells;
-            break;
-          case CellState::kUnobserved:
-            ++result.unobserved_cells;
-            break;
-        }
-        const octomap::OcTreeKey key(static_cast<octomap::key_type>(x + n[0] + kKeyCenter),
-                                     static_cast<octomap::key_type>(y + n[1] + kKeyCenter),
-                                     static_cast<octomap::key_type>(z + n[2] + kKeyCenter));
-        // NOTE: setNodeValue clamps to the tree's thresholds, which are float(logit) of the same
-        // probabilities as the grid's; setting the value on the node keeps it bit for bit anyway.
-        octomap::OcTreeNode* node = tree.setNodeValue(key, value, /*lazy_eval=*/true);
-        node->setLogOdds(value);
-      }
-    }
-  }
-  tree.updateInnerOccupancy();
-  tree.prune();  // lossless: merges only 8 leaf siblings of equal value
-  result.tree_nodes = tree.size();
-
-  write_atomically(path, [&](std::ostream& out) {
-    // NOTE: the header is OctoMap's (AbstractOcTree::write, writeBinaryConst); writing it here
-    // keeps Debian's liboctomap, built with debug output, from printing to stderr, and gives
-    // "res" all 17 digits.
-    out.precision(std::numeric_limits<double>::max_digits10);
-    out << (format == OctomapFormat::kBinary ? kBinaryHeader : kFullHeader) << "\n"
-        << "# written by Vantage from a " << spec.dims.x() << " x " << spec.dims.y() << " x "
-        << spec.dims.z() << " occupancy grid\n"
-        << "id " << tree.getTreeType() << "\n"
-        << "size " << tree.size() << "\n"
-        << "res " << tree.getResolution() << "\n"
-        << "data\n";
-    if (format == OctomapFormat::kBinary) {
-      tree.writeBinaryData(out);
-    } else {
-      tree.writeData(out);
-    }
-  });
-  return result;
 }
 
 OctomapImport read_octomap(const fs::path& path, const OctomapImportConfig& config) {

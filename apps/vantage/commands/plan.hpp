@@ -1,0 +1,79 @@
+#pragma once
+/// @file
+/// `vantage plan`'s parts (plan.cpp: mapping and the decision; plan_candidates.cpp: the sensor
+/// and the candidate views; plan_report.cpp: plan.json and the table).
+
+#include <Eigen/Geometry>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "commands/options.hpp"
+#include "vantage/experiment/results.hpp"
+#include "vantage/io/manifest.hpp"
+#include "vantage/map/occupancy_grid.hpp"
+#include "vantage/planner/types.hpp"
+#include "vantage/views/frustum.hpp"
+
+namespace vantage::cli {
+
+struct PlanOptions {
+  std::string input;  // manifest or folder
+  std::string map;    // .bt / .ot to start from
+  std::string candidates = "ring";
+  double radius = 0.0;  // 0: from the ROI
+  double height = std::numeric_limits<double>::quiet_NaN();
+  std::string sensor_height;  // frontier candidates: H or MIN,MAX [m]; empty: any height
+  int views = 0;              // 0: 10 ring positions / 50 sphere views
+  std::string fov_deg = "57,43";
+  std::string range = "0.5,3.5";
+  bool sensor_given = false;  // --fov-deg or --range on the command line
+  PlanningOptions planning;
+  std::string pose;  // x,y,z,roll,pitch,yaw of the robot's sensor now
+  std::string out;
+  bool json_only = false;
+  bool plots = true;
+  int top = 10;
+  std::uint64_t max_memory = 0;  // 0: what the machine has available
+};
+
+/// --fov-deg and --range as the sensor without a manifest; throws UsageError.
+SensorFov fov_from_options(const PlanOptions& o);
+/// --sensor-height: one height, or a range min,max [m]; throws UsageError.
+std::optional<std::pair<double, double>> sensor_band(const PlanOptions& o);
+/// The candidate views --candidates names, in the map's frame (ring, sphere, hemisphere,
+/// frontier, or a file of poses in `frame`).
+std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen::AlignedBox3d& roi,
+                                               CloudFrame frame, const OccupancyGrid& grid);
+
+/// The pose as `--pose` takes it: x,y,z,roll,pitch,yaw (m, deg).
+std::string pose_argument(const Eigen::Isometry3d& T);
+
+/// What plan.json and the table report of a decision.
+struct PlanReport {
+  const PlanOptions& o;
+  const Plan& plan;
+  const PlannerConfig& planner;
+  const GainUnits& units;
+  const std::vector<Candidate>& candidates;
+  const std::vector<Eigen::Isometry3d>& poses;
+  const std::optional<Eigen::Isometry3d>& robot;
+  const std::string& robot_source;
+  const OccupancyGrid& grid;
+  CloudFrame frame;
+  SensorFov fov;
+  std::size_t clouds;  ///< the manifest's clouds mapped
+  double map_seconds;  ///< [s]
+  const std::filesystem::path& dir;
+};
+
+/// Writes the results folder whole (plan.json, the maps, the picture) and prints plan.json
+/// (--json) or the ranked table and the next best view.
+void report_plan(const PlanReport& report);
+
+}  // namespace vantage::cli
