@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <stdexcept>
 
@@ -130,6 +131,7 @@ class Explorer {
                                         "' is for another grid or candidate set"));
       }
       surface_ = surface_truth;
+      truly_hit_ = surface_->start_hits.at(static_cast<std::size_t>(config.start));
       result_.surface_cells = surface_->surface.size();
       result_.visible_surface_cells = surface_->visible.size();
     }
@@ -192,10 +194,9 @@ class Explorer {
       if (surface_ != nullptr) {
         // NOTE: recounted from all registered points each scan: a re-registration moves earlier
         // scans' points too.
-        SurfaceCoverage s = surface_coverage(*surface_, mapper_.object_cloud());
+        const SurfaceCoverage s = surface_coverage(*surface_, mapper_.object_cloud());
         record.surface_coverage = s.visible;
         record.raw_surface_coverage = s.raw;
-        covered_ = std::move(s.covered);
       }
 
       bool stop = k == config_.scans;
@@ -397,7 +398,8 @@ class Explorer {
   }
 
   /// Table top, greedy oracle (ExplorationConfig::greedy_oracle): the open candidate whose true
-  /// hit set adds the most visible surface cells not yet covered; its gain is that count [cells].
+  /// hit set adds the most visible surface cells to the true hit sets of the start and the views
+  /// taken; its gain is that count [cells].
   Decision oracle_view(const ScanRecord& current, const std::vector<Candidate>& open,
                        const std::vector<std::size_t>& index, Decision d) {
     const auto start = Clock::now();
@@ -405,7 +407,7 @@ class Explorer {
     std::size_t best = 0;
     for (std::size_t j = 0; j < open.size(); ++j) {
       const std::vector<std::uint32_t>& hits = surface_->candidate_hits[index[j]];
-      gains[j] = static_cast<double>(hits.size() - count_common(hits, covered_));
+      gains[j] = static_cast<double>(hits.size() - count_common(hits, truly_hit_));
       // NOTE: ties go to the shorter travel, then to the lower index (open is in index order).
       if (gains[j] > gains[best] || (gains[j] == gains[best] && open[j].travel < open[best].travel))
         best = j;
@@ -417,6 +419,10 @@ class Explorer {
     }
     const std::size_t view = index[best];
     taken_[view] = true;
+    std::vector<std::uint32_t> hit;
+    std::set_union(truly_hit_.begin(), truly_hit_.end(), surface_->candidate_hits[view].begin(),
+                   surface_->candidate_hits[view].end(), std::back_inserter(hit));
+    truly_hit_ = std::move(hit);
     d.view = static_cast<int>(view);
     d.pose = result_.candidates[view];
     d.predicted = gains[best];
@@ -537,7 +543,8 @@ class Explorer {
   sim::GroundTruth truth_;
   std::optional<SurfaceTruth> own_surface_;  ///< table top, when the caller gave none
   const SurfaceTruth* surface_ = nullptr;    ///< table top: the yardstick's truth
-  std::vector<std::uint32_t> covered_;       ///< visible surface cells covered so far
+  /// Greedy oracle: the visible cells the true hit sets of the start and the views taken hold.
+  std::vector<std::uint32_t> truly_hit_;
   PlannerConfig planner_;
   ExplorationResult result_;
   std::vector<Candidate> ring_;  ///< table top: the ring's views

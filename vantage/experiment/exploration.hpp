@@ -95,8 +95,9 @@ struct ExplorationConfig {
   std::optional<ArmReach> arm;  ///< kHemisphere: overrides the scene's arm
   /// Table top: decide by the greedy oracle instead of `planner` (issue 36, docs/yardstick.md):
   /// among the same open candidates, with the same travel, the view whose true hit set (its
-  /// noise-free scan, SurfaceTruth::candidate_hits) holds the most visible surface cells not yet
-  /// covered by the run's registered points; ties to the shorter travel, then the lower index.
+  /// noise-free scan, SurfaceTruth::candidate_hits) adds the most visible surface cells to the
+  /// true hit sets of the start and the views taken; ties to the shorter travel, then the lower
+  /// index. Its choices depend on the world only, not on the run's noise or registration.
   bool greedy_oracle = false;
 
   /// Throws std::invalid_argument naming the field.
