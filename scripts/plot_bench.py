@@ -584,8 +584,8 @@ def surface_summary(trials, budget, set_cover_rows):
              "Both after the last scan, mean over trials. AAC = area above the surface-coverage",
              "curve, sum over scans 1..N of (1 - coverage) [scans], mean over trials (lower is",
              "better). gap closed = (AAC greedy - AAC method) / (AAC greedy - AAC greedy-oracle),",
-             "median over the pairs (scene, start) where the oracle is ahead of greedy, and pooled",
-             "(sums over pairs) in brackets: 0 = greedy, 1 = the greedy oracle. scans to X% = the",
+             "median over the pairs (scene, start) where the oracle is ahead of greedy (pooled over",
+             "pairs in the next table): 0 = greedy, 1 = the greedy oracle. scans to X% = the",
              f"median over trials of the first scan reaching X%, a trial that never does within its",
              f"{budget} scans counted as {budget + 1} ('>{budget}' when the median is censored;",
              "cens. = censored trials); travel to X% = median distance up to and including that",
@@ -649,7 +649,8 @@ def surface_summary(trials, budget, set_cover_rows):
                   "hit by the same views merged; the greedy oracle's count as the upper bound), the",
                   "solver's lower bound and relative gap, its time [s], and the shortest tour from",
                   "the start through the chosen views [m] (exact up to 12 views, else nearest",
-                  "neighbour + 2-opt); '-' = no set of views reaches the level from that start.", "",
+                  "neighbour + 2-opt); '-' = no set of views reaches the level from that start.",
+                  "Views do not count the start: the scans to a level are views + 1.", "",
                   "| scene | start | level | greedy oracle views | set cover views | lower bound |"
                   " gap | status | time [s] | tour [m] | greedy oracle's tour [m] |",
                   "|---|---|---|---|---|---|---|---|---|---|---|"]
