@@ -333,6 +333,12 @@ TEST(Yardstick, ASweepRunsTheGreedyOracleAndWritesTheTruthForTheSetCover) {
   EXPECT_EQ(seen.size(), file["visible_cells"].get<std::size_t>());  // V is their union
   EXPECT_EQ(*seen.rbegin() + 1, seen.size());                        // indices 0 .. |V| - 1
 
+  // A merge carries the yardstick's truth along.
+  const auto merged = testing::fresh_dir("bench-oracle-merged");
+  merge_bench({dir}, merged);
+  EXPECT_EQ(testing::read_text(merged / kYardstickFolder / "small-tabletop.json"),
+            testing::read_text(dir / kYardstickFolder / "small-tabletop.json"));
+
   // A trial file from before the surface columns joins the sweep's CSV with them empty.
   const std::string old_row =
       "small-tabletop,random,,0,1,0,,,10,100,0.5,0,0,0,,,,0,0,0,0,0,0,0,0,0,0\n";

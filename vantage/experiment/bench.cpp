@@ -91,13 +91,16 @@ nlohmann::json sweep_settings(const BenchConfig& config) {
 /// A sweep folder's copy of each generated pile's scene file.
 constexpr const char* kScenesFolder = "scenes";
 
-/// The scene files in a folder's scenes/, by file name.
-std::map<std::string, fs::path> scene_files(const fs::path& dir) {
+/// The files ending in `extension` in a folder's `folder`/ (scenes/ or yardstick/), by file name.
+std::map<std::string, fs::path> scene_files(const fs::path& dir, const char* folder = kScenesFolder,
+                                            std::string_view extension = ".yaml") {
   std::map<std::string, fs::path> files;
-  const fs::path scenes = dir / kScenesFolder;
+  const fs::path scenes = dir / folder;
   if (!fs::is_directory(scenes)) return files;
   for (const auto& entry : fs::directory_iterator(scenes)) {
-    if (entry.path().extension() == ".yaml") files[entry.path().filename().string()] = entry.path();
+    if (entry.path().extension() == extension) {
+      files[entry.path().filename().string()] = entry.path();
+    }
   }
   return files;
 }
@@ -464,7 +467,6 @@ void write_yardstick_file(const fs::path& path, const sim::Scene& scene,
        "views[i] and starts[j]: the visible surface cells (indices into V) that a noise-free scan "
        "from candidate i or start j hits; travel_m: between candidates (views x views) and from "
        "each start to each candidate, under the run's travel rule [m]"},
-      {"seconds", truth.seconds},
       {"views", indices(truth.candidate_hits)},
       {"starts", indices(truth.start_hits)},
       {"travel_m",
@@ -510,6 +512,7 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
   if (!target_is_source && fs::exists(out)) all.push_back(out);
   std::map<std::string, std::string> trials;
   std::map<std::string, std::string> scenes;  // generated scene files, by file name
+  std::map<std::string, std::string> truths;  // yardstick files, by file name
   nlohmann::json settings = nullptr;          // of the first folder; all must agree
   for (std::size_t k = 0; k < all.size(); ++k) {
     const fs::path& dir = all[k];
@@ -536,6 +539,14 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
             "{}: differs from the scene file of the same name in another folder", path.string()));
       }
     }
+    for (const auto& [name, path] : scene_files(dir, kYardstickFolder, ".json")) {
+      const auto [it, inserted] = truths.emplace(name, read_file(path));
+      if (!inserted && it->second != read_file(path)) {
+        throw std::runtime_error(
+            fmt::format("{}: differs from the yardstick file of the same name in another folder",
+                        path.string()));
+      }
+    }
     const auto files = trial_files(dir);
     if (files.empty() && !target) {
       throw std::runtime_error(fmt::format("{}: no trials/ with trial files", dir.string()));
@@ -558,6 +569,8 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
   for (const auto& [key, rows] : trials) write_atomically(out / "trials" / (key + ".csv"), rows);
   if (!scenes.empty()) fs::create_directories(out / kScenesFolder);
   for (const auto& [name, text] : scenes) write_atomically(out / kScenesFolder / name, text);
+  if (!truths.empty()) fs::create_directories(out / kYardstickFolder);
+  for (const auto& [name, text] : truths) write_atomically(out / kYardstickFolder / name, text);
   write_bench_csv(out);
 }
 

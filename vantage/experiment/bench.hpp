@@ -107,10 +107,10 @@ void write_yardstick_file(const std::filesystem::path& path, const sim::Scene& s
 std::size_t run_bench(const std::filesystem::path& dir, const BenchConfig& config,
                       const std::function<void(const TrialEvent&)>& on_trial = {});
 
-/// Joins the trial files of several sweep folders (e.g. shards) into `out/trials/`, and their
-/// generated scene files into `out/scenes/`, and writes `out/scans.csv`. Throws std::runtime_error
-/// when two folders hold the same trial with different contents, and std::invalid_argument when
-/// their sweep.json settings differ.
+/// Joins the trial files of several sweep folders (e.g. shards) into `out/trials/`, their
+/// generated scene files into `out/scenes/` and their yardstick files into `out/yardstick/`, and
+/// writes `out/scans.csv`. Throws std::runtime_error when two folders hold the same trial with
+/// different contents, and std::invalid_argument when their sweep.json settings differ.
 void merge_bench(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out);
 
 /// Writes `dir/scans.csv`: the header and every trial file's rows, in key order.
