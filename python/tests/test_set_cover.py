@@ -56,8 +56,16 @@ def test_the_cover_beats_the_greedy_oracle_where_greedy_overlaps(tmp_path, set_c
     assert got["100"]["tour_method"] == "exact"
     # greedy's three views at 1, 2 and 5 m: 5 m too.
     assert float(got["100"]["greedy_tour_m"]) == pytest.approx(5.0)
-    # 50 %: 4 cells, the start's 1 and view 0's or view 2's: one view.
+    # 50 %: 4 cells, the start's 1 and view 0's or view 2's: one view, which no fewer can beat
+    # (the counting bound proves it without the solver).
     assert got["50"]["set_cover_views"] == "1"
+    assert got["50"]["status"] == "optimal (counting bound)"
+    # For all 8, two views hit at most 4 + 4 new cells: at least 2; the solver proves 2.
+    assert got["100"]["status"] == "optimal"
+    truth = set_cover.load_truth(tmp_path / "yardstick" / "toy.json")
+    assert set_cover.size_bound(truth, 0, 7) == 2
+    assert set_cover.size_bound(truth, 0, 9) == 3
+    assert set_cover.size_bound(truth, 0, 12) == 4  # more than all views hit
 
 
 def test_a_level_no_view_set_reaches_is_said_so(tmp_path, set_cover):
