@@ -688,7 +688,7 @@ def plot_coverage_travel(out, trials, candidate_set):
     for travel, auc, method, setting in points:
         ax.plot(travel, auc, "o", color=COLOURS.get(method, "0.4"), label=label(method, setting))
     front = pareto(points)
-    ax.plot([p[0] for p in front], [p[1] for p in front], "--", color="0.5", lw=1,
+    ax.plot([p[0] for p in front], [p[1] for p in front], "--s", color="0.5", lw=1, ms=11, mfc="none",
             label="Pareto front")
     ax.set_title(f"candidate set: {candidate_set}")
     ax.set_xlabel("mean travel per trial [m]")
