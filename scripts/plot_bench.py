@@ -584,11 +584,11 @@ def surface_summary(trials, budget, set_cover_rows):
              "Both after the last scan, mean over trials. AAC = area above the surface-coverage",
              "curve, sum over scans 1..N of (1 - coverage) [scans], mean over trials (lower is",
              "better). gap closed = (AAC greedy - AAC method) / (AAC greedy - AAC greedy-oracle),",
-             "median over the pairs (scene, start) where the oracle is ahead of greedy (pooled over",
-             "pairs in the next table): 0 = greedy, 1 = the greedy oracle. scans to X% = the",
-             f"median over trials of the first scan reaching X%, a trial that never does within its",
-             f"{budget} scans counted as {budget + 1} ('>{budget}' when the median is censored;",
-             "cens. = censored trials); travel to X% = median distance up to and including that",
+             "median over the pairs (scene, start) where the oracle is ahead of greedy (pooled",
+             "over pairs in the next table): 0 = greedy, 1 = the greedy oracle. scans to X% =",
+             "the median over trials of the first scan reaching X%, a trial that never does within",
+             f"its {budget} scans counted as {budget + 1} ('>{budget}' when the median is",
+             "censored; cens. = censored trials); travel to X% = median distance up to and including that",
              "scan over the trials that reach it [m].", ""]
     shares, pooled = gap_shares(trials)
     scenes = sorted({m["scene"] for m in trials})
@@ -646,8 +646,9 @@ def surface_summary(trials, budget, set_cover_rows):
                   "Per scene, start and level of the visible surface (scripts/set_cover.py, on the",
                   "noise-free hit sets of DIR/yardstick/): the views the greedy oracle takes on",
                   "those hit sets, the fewest views that reach the level (SciPy milp, HiGHS; cells",
-                  "hit by the same views merged; the greedy oracle's count as the upper bound), the",
-                  "solver's lower bound and relative gap, its time [s], and the shortest tour from",
+                  "hit by the same views merged; the greedy oracle's count as the upper bound),",
+                  "the lower bound (the solver's or a counting one) and relative gap, its time [s],",
+                  "and the shortest tour from",
                   "the start through the chosen views [m] (exact up to 12 views, else nearest",
                   "neighbour + 2-opt); '-' = no set of views reaches the level from that start.",
                   "Views do not count the start: the scans to a level are views + 1.", "",
@@ -688,8 +689,8 @@ def plot_coverage_travel(out, trials, candidate_set):
     for travel, auc, method, setting in points:
         ax.plot(travel, auc, "o", color=COLOURS.get(method, "0.4"), label=label(method, setting))
     front = pareto(points)
-    ax.plot([p[0] for p in front], [p[1] for p in front], "--s", color="0.5", lw=1, ms=11, mfc="none",
-            label="Pareto front")
+    ax.plot([p[0] for p in front], [p[1] for p in front], "--s", color="0.5", lw=1, ms=11,
+            mfc="none", label="Pareto front")
     ax.set_title(f"candidate set: {candidate_set}")
     ax.set_xlabel("mean travel per trial [m]")
     ax.set_ylabel("area under the surface-coverage curve [scans]")
