@@ -588,8 +588,8 @@ def surface_summary(trials, budget, set_cover_rows):
              "over pairs in the next table): 0 = greedy, 1 = the greedy oracle. scans to X% =",
              "the median over trials of the first scan reaching X%, a trial that never does within",
              f"its {budget} scans counted as {budget + 1} ('>{budget}' when the median is",
-             "censored; cens. = censored trials); travel to X% = median distance up to and including that",
-             "scan over the trials that reach it [m].", ""]
+             "censored; cens. = censored trials); travel to X% = median distance up to and",
+             "including that scan over the trials that reach it [m].", ""]
     shares, pooled = gap_shares(trials)
     scenes = sorted({m["scene"] for m in trials})
     for scene in scenes:
@@ -647,8 +647,8 @@ def surface_summary(trials, budget, set_cover_rows):
                   "noise-free hit sets of DIR/yardstick/): the views the greedy oracle takes on",
                   "those hit sets, the fewest views that reach the level (SciPy milp, HiGHS; cells",
                   "hit by the same views merged; the greedy oracle's count as the upper bound),",
-                  "the lower bound (the solver's or a counting one) and relative gap, its time [s],",
-                  "and the shortest tour from",
+                  "the lower bound (the solver's or a counting one) and relative gap, its time",
+                  "[s], and the shortest tour from",
                   "the start through the chosen views [m] (exact up to 12 views, else nearest",
                   "neighbour + 2-opt); '-' = no set of views reaches the level from that start.",
                   "Views do not count the start: the scans to a level are views + 1.", "",
