@@ -333,6 +333,13 @@ TEST(Yardstick, ASweepRunsTheGreedyOracleAndWritesTheTruthForTheSetCover) {
   EXPECT_EQ(seen.size(), file["visible_cells"].get<std::size_t>());  // V is their union
   EXPECT_EQ(*seen.rbegin() + 1, seen.size());                        // indices 0 .. |V| - 1
 
+  // An office has no fixed candidates: a sweep with the oracle is refused before any trial.
+  BenchConfig office = config;
+  office.scenes = {(testing::source_dir() / "tests/experiment/small_office.yaml").string()};
+  const auto office_dir = testing::fresh_dir("bench-oracle-office");
+  EXPECT_THROW(run_bench(office_dir, office), std::invalid_argument);
+  EXPECT_TRUE(std::filesystem::is_empty(office_dir / "trials"));
+
   // A merge carries the yardstick's truth along.
   const auto merged = testing::fresh_dir("bench-oracle-merged");
   merge_bench({dir}, merged);

@@ -357,7 +357,13 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
   for (const TrialSpec& spec : all) {
     if (truths.count(spec.scene) > 0) continue;
     const sim::Scene scene = trial_scene(spec, config);
-    if (scene.kind != sim::SceneKind::kTableTop) continue;
+    if (scene.kind != sim::SceneKind::kTableTop) {
+      if (spec.greedy_oracle) {
+        throw std::invalid_argument(fmt::format(
+            "bench: scene '{}' is an office: the greedy oracle is for table tops", spec.scene));
+      }
+      continue;
+    }
     const sim::World world(scene, sim::WorldConfig{config.exploration.planner.gain.num_threads});
     const SurfaceTruth& truth =
         truths
