@@ -64,8 +64,37 @@ PY
       --out "$work/$frame-$r" >/dev/null
     report "plan, $frame frame" "$work/$frame-$r/plan.json"
   done
-  "$vantage" plan --map "$data/geb079.bt" --candidates frontier --sensor-height 0.5 \
-    --method latombe --pose 0,0,0.5,0,0,0 --threads "$threads" --no-plots --json \
-    --out "$work/fr079-$r" >/dev/null
-  report "plan, FR-079 frontier, latombe" "$work/fr079-$r/plan.json"
+  for band in any 0.5; do
+    height=()
+    [[ $band == any ]] || height=(--sensor-height "$band")
+    "$vantage" plan --map "$data/geb079.bt" --candidates frontier "${height[@]}" \
+      --method latombe --pose 0,0,0.5,0,0,0 --threads "$threads" --no-plots --json \
+      --out "$work/fr079-$band-$r" >/dev/null
+    report "plan, FR-079 frontier ($band m), latombe" "$work/fr079-$band-$r/plan.json"
+  done
+  # Python's plan_next_view with its defaults, on the Kinect frame's map and plan's candidates.
+  PYTHONPATH="$build/python" /usr/bin/python3 - "$work/milk-$r" <<'PY'
+import json, sys
+import numpy as np
+import vantage as vt
+folder = sys.argv[1]
+cli = json.load(open(f"{folder}/plan.json"))
+grid = vt.OccupancyGrid.load(f"{folder}/map.ot")
+poses = []
+for c in cli["candidates"]:
+    x, y, z, w = c["sensor"]["quaternion_xyzw"]
+    pose = np.eye(4)
+    pose[:3, :3] = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                    [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
+    pose[:3, 3] = c["sensor"]["position"]
+    poses.append((c["index"], pose))
+s = cli["sensor"]
+fov = vt.SensorFov.from_degrees(s["horizontal_fov_deg"], s["vertical_fov_deg"], s["min_range_m"],
+                                s["max_range_m"])
+poses = [p for _, p in sorted(poses, key=lambda ip: ip[0])]
+plan = vt.plan_next_view(grid, np.stack(poses), fov)
+print(f"{'python, milk frame':<34} {1e3 * plan.seconds:8.1f} ms  {plan.search:<10} "
+      f"{len(poses)} views, the CLI's choice: {plan.best == cli['next_best_view']['index']}")
+PY
 done

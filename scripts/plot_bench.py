@@ -18,8 +18,18 @@ objective (what it ranks by: bits or cells).
 
 A trial that stopped early (no frontier left) keeps its last map: its last figures stand for the
 later scans, so that every mean is over all trials.
+
+When scans.csv holds surface_coverage (table tops, docs/yardstick.md: a visible object-surface
+cell covered once a registered scan point lies within one cell of it), summary.md also holds the
+scans and travel to 80, 90 and 95 % of it per method (censored where not reached), the area above
+each coverage curve and each method's share of the gap between greedy and the greedy oracle
+(greedy-oracle) it closes, with a paired Wilcoxon test; DIR/coverage_travel.png plots the area
+under the surface-coverage curve against travel, a point per method, with the Pareto front; and
+DIR/set_cover.csv (scripts/set_cover.py), when present, adds the set-cover bound per scene, start
+and level.
 """
 import csv
+import json
 import math
 import os
 import sys
@@ -37,7 +47,8 @@ COLOURS = {"probabilistic": "#d32f2f", "survival": "#ad1457", "greedy": "#1976d2
            # The field's metrics (docs/model.md "The field's metrics").
            "occlusion-aware": "#00838f", "unobserved-voxel": "#6d4c41",
            "rear-side-voxel": "#c2185b", "rear-side-entropy": "#9e9d24",
-           "proximity-count": "#5e35b1", "average-entropy": "#546e7a", "area-factor": "#ef6c00"}
+           "proximity-count": "#5e35b1", "average-entropy": "#546e7a", "area-factor": "#ef6c00",
+           "greedy-oracle": "#000000"}
 # Methods whose prediction in cells is their own (the paper's model's expected cells seen, each
 # metric's unobserved-voxel count on its poses), plotted against the actual cells seen.
 PREDICTING = {"probabilistic", "survival", "occlusion-aware", "unobserved-voxel", "rear-side-voxel",
@@ -487,6 +498,227 @@ def paired_summary(trials, budget):
     return lines
 
 
+# Surface coverage levels (shares of the visible object surface, docs/yardstick.md).
+SURFACE_LEVELS = (0.80, 0.90, 0.95)
+ORACLE = "greedy-oracle"
+
+
+def has_surface(rows):
+    return any(r.get("surface_coverage") for r in rows)
+
+
+def surface_metrics(g):
+    """One dict per trial with surface coverage: the area above its surface-coverage curve
+    (sum over scans 1..N of 1 - coverage after the scan [scans]; a trial that stopped early
+    carried forward) and the area under it (sum of the coverage [scans]), its travel [m], final
+    surface and raw coverage, and per level the first scan reaching it and the travel up to and
+    including that scan (None: censored)."""
+    trials = []
+    for (scene, method, setting), by_scan in g.items():
+        by_trial = defaultdict(list)
+        for k in sorted(by_scan):
+            for r in by_scan[k]:
+                by_trial[r["trial"]].append(r)
+        for trial, rows in by_trial.items():
+            if not all(r.get("surface_coverage") for r in rows):
+                continue
+            cov = [float(r["surface_coverage"]) for r in rows]
+            m = {"scene": scene, "method": method, "setting": setting, "trial": trial,
+                 "aac": sum(1 - c for c in cov), "auc": sum(cov),
+                 "travel": sum(float(r.get("travel_m") or 0.0) for r in rows),
+                 "final": cov[-1], "raw": float(rows[-1].get("raw_surface_coverage") or "nan")}
+            for level in SURFACE_LEVELS:
+                m[("scans_to", level)] = m[("travel_to", level)] = None
+                travel = 0.0
+                for r, c in zip(rows, cov):
+                    travel += float(r.get("travel_m") or 0.0)
+                    if c >= level - 1e-12:
+                        m[("scans_to", level)] = int(r["scan"])
+                        m[("travel_to", level)] = travel
+                        break
+            trials.append(m)
+    trials.sort(key=lambda m: (m["scene"], m["method"], setting_order(m["setting"]),
+                               int(m["trial"])))
+    return trials
+
+
+def censored_median(values, budget):
+    """Median of scans to a level, a censored trial (None) counted as budget + 1; '>N' when the
+    median is censored, and how many of the trials were."""
+    if not values:
+        return "-"
+    v = median([budget + 1 if x is None else x for x in values])
+    censored = sum(x is None for x in values)
+    text = f">{budget}" if v > budget else f"{v:g}"
+    return f"{text} ({censored}/{len(values)} cens.)" if censored else text
+
+
+def gap_shares(trials):
+    """(method, setting) -> list over pairs (scene, start) of the share of the gap between
+    greedy's and the greedy oracle's area above the curve that the method closes:
+    (A_greedy - A_method) / (A_greedy - A_oracle); pairs where the oracle is not ahead of greedy
+    (A_greedy - A_oracle <= 0) are left out. Also the pooled share over all pairs."""
+    by = {(m["scene"], m["trial"], m["method"], m["setting"]): m for m in trials}
+    greedy = {(m["scene"], m["trial"]): m for m in trials if m["method"] == "greedy"}
+    oracle = {(m["scene"], m["trial"]): m for m in trials if m["method"] == ORACLE}
+    shares, pooled = defaultdict(list), defaultdict(lambda: [0.0, 0.0])
+    for (scene, trial, method, setting), m in by.items():
+        pair = (scene, trial)
+        if pair not in greedy or pair not in oracle:
+            continue
+        room = greedy[pair]["aac"] - oracle[pair]["aac"]
+        closed = greedy[pair]["aac"] - m["aac"]
+        pooled[(method, setting)][0] += closed
+        pooled[(method, setting)][1] += room
+        if room > 1e-12:
+            shares[(method, setting)].append(closed / room)
+    return shares, {k: (a / b if b > 1e-12 else None) for k, (a, b) in pooled.items()}
+
+
+def surface_summary(trials, budget, set_cover_rows):
+    lines = ["## Surface coverage by scan points", "",
+             "surface = the share of the visible object surface (the object surface cells that the",
+             "candidate views and starts hit with noise-free scans; table excluded) covered by the",
+             "registered scan points, a cell covered once a point lies in it or in one of its 26",
+             "neighbours (docs/yardstick.md); raw = the same share of all object surface cells.",
+             "Both after the last scan, mean over trials. AAC = area above the surface-coverage",
+             "curve, sum over scans 1..N of (1 - coverage) [scans], mean over trials (lower is",
+             "better). gap closed = (AAC greedy - AAC method) / (AAC greedy - AAC greedy-oracle),",
+             "median over the pairs (scene, start) where the oracle is ahead of greedy (pooled",
+             "over pairs in the next table): 0 = greedy, 1 = the greedy oracle. scans to X% =",
+             "the median over trials of the first scan reaching X%, a trial that never does within",
+             f"its {budget} scans counted as {budget + 1} ('>{budget}' when the median is",
+             "censored; cens. = censored trials); travel to X% = median distance up to and",
+             "including that scan over the trials that reach it [m].", ""]
+    shares, pooled = gap_shares(trials)
+    scenes = sorted({m["scene"] for m in trials})
+    for scene in scenes:
+        lines += [f"### {scene}", "",
+                  "| method | trials | surface | raw | AAC [scans] | gap closed | " +
+                  " | ".join(f"scans to {round(100 * lv)}%" for lv in SURFACE_LEVELS) + " | " +
+                  " | ".join(f"travel to {round(100 * lv)}% [m]" for lv in SURFACE_LEVELS) + " |",
+                  "|---|---|---|---|---|---|" + "---|" * (2 * len(SURFACE_LEVELS))]
+        mine = [m for m in trials if m["scene"] == scene]
+        keys = sorted({(m["method"], m["setting"]) for m in mine},
+                      key=lambda ms: (ms[0], setting_order(ms[1])))
+        scene_shares, _ = gap_shares(mine)
+        for method, setting in keys:
+            ms = [m for m in mine if (m["method"], m["setting"]) == (method, setting)]
+            n = len(ms)
+            share = scene_shares.get((method, setting))
+            share_text = f"{median(share):.2f}" if share else "-"
+            cells = [censored_median([m[("scans_to", lv)] for m in ms], budget)
+                     for lv in SURFACE_LEVELS]
+            travel = []
+            for lv in SURFACE_LEVELS:
+                reached = [m[("travel_to", lv)] for m in ms if m[("travel_to", lv)] is not None]
+                travel.append(f"{median(reached):.2f}" if reached else "-")
+            lines.append(f"| {label(method, setting)} | {n} |"
+                         f" {100 * sum(m['final'] for m in ms) / n:.1f}% |"
+                         f" {100 * sum(m['raw'] for m in ms) / n:.1f}% |"
+                         f" {sum(m['aac'] for m in ms) / n:.2f} | {share_text} | " +
+                         " | ".join(cells) + " | " + " | ".join(travel) + " |")
+        lines.append("")
+    lines += ["### Gap closed between greedy and the greedy oracle (scenes pooled)", "",
+              "Per method: pairs (scene, start) with greedy and the oracle, the median and pooled",
+              "share of the gap closed, the median difference of AAC from greedy's [scans] and the",
+              "p-value of a two-sided Wilcoxon signed-rank test of those differences (as below).",
+              "", "| method | pairs | gap closed (median) | gap closed (pooled) |"
+              " AAC - greedy's (median) [scans] | p (Wilcoxon) |", "|---|---|---|---|---|---|"]
+    greedy = {(m["scene"], m["trial"]): m for m in trials if m["method"] == "greedy"}
+    for method, setting in sorted({(m["method"], m["setting"]) for m in trials
+                                   if m["method"] != "greedy"},
+                                  key=lambda ms: (ms[0], setting_order(ms[1]))):
+        diffs = [m["aac"] - greedy[(m["scene"], m["trial"])]["aac"] for m in trials
+                 if (m["method"], m["setting"]) == (method, setting)
+                 and (m["scene"], m["trial"]) in greedy]
+        share = shares.get((method, setting))
+        whole = pooled.get((method, setting))
+        p = wilcoxon_p(diffs)
+        lines.append(f"| {label(method, setting)} | {len(diffs)} |"
+                     f" {f'{median(share):.2f}' if share else '-'} |"
+                     f" {f'{whole:.2f}' if whole is not None else '-'} |"
+                     f" {f'{median(diffs):.2f}' if diffs else '-'} |"
+                     f" {'-' if p is None else f'{p:.2g}'} |")
+    lines.append("")
+    if set_cover_rows:
+        lines += ["## The set-cover bound", "",
+                  "Per scene, start and level of the visible surface (scripts/set_cover.py, on the",
+                  "noise-free hit sets of DIR/yardstick/): the views the greedy oracle takes on",
+                  "those hit sets, the fewest views that reach the level (SciPy milp, HiGHS; cells",
+                  "hit by the same views merged; the greedy oracle's count as the upper bound),",
+                  "the lower bound (the solver's or a counting one) and relative gap, its time",
+                  "[s], and the shortest tour from",
+                  "the start through the chosen views [m] (exact up to 12 views, else nearest",
+                  "neighbour + 2-opt); '-' = no set of views reaches the level from that start.",
+                  "Views do not count the start: the scans to a level are views + 1.", "",
+                  "| scene | start | level | greedy oracle views | set cover views | lower bound |"
+                  " gap | status | time [s] | tour [m] | greedy oracle's tour [m] |",
+                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+        for r in set_cover_rows:
+            lines.append(f"| {r['scene']} | {r['start']} | {r['level']}% |"
+                         f" {r['greedy_views'] or '-'} | {r['set_cover_views'] or '-'} |"
+                         f" {r['lower_bound'] or '-'} | {r['gap'] or '-'} | {r['status']} |"
+                         f" {r['seconds'] or '-'} | {r['tour_m'] or '-'} |"
+                         f" {r['greedy_tour_m'] or '-'} |")
+        lines.append("")
+    return lines
+
+
+def pareto(points):
+    """The points (travel, auc, ...) no other point beats in both (less travel, more area),
+    by travel."""
+    front = []
+    for p in sorted(points, key=lambda p: (p[0], -p[1])):
+        if not front or p[1] > front[-1][1]:
+            front.append(p)
+    return front
+
+
+def plot_coverage_travel(out, trials, candidate_set):
+    """DIR/coverage_travel.png: per method, the mean area under the surface-coverage curve
+    [scans] against the mean travel per trial [m], over every scene and start of the sweep's
+    candidate set, with the Pareto front (less travel, more area)."""
+    points = []
+    for method, setting in sorted({(m["method"], m["setting"]) for m in trials},
+                                  key=lambda ms: (ms[0], setting_order(ms[1]))):
+        ms = [m for m in trials if (m["method"], m["setting"]) == (method, setting)]
+        points.append((sum(m["travel"] for m in ms) / len(ms), sum(m["auc"] for m in ms) / len(ms),
+                       method, setting))
+    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    for travel, auc, method, setting in points:
+        ax.plot(travel, auc, "o", color=COLOURS.get(method, "0.4"), label=label(method, setting))
+    front = pareto(points)
+    ax.plot([p[0] for p in front], [p[1] for p in front], "--s", color="0.5", lw=1, ms=11,
+            mfc="none", label="Pareto front")
+    ax.set_title(f"candidate set: {candidate_set}")
+    ax.set_xlabel("mean travel per trial [m]")
+    ax.set_ylabel("area under the surface-coverage curve [scans]")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "coverage_travel.png"), dpi=110)
+    plt.close(fig)
+    return front
+
+
+def read_set_cover(out):
+    path = os.path.join(out, "set_cover.csv")
+    if not os.path.exists(path):
+        return []
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def candidate_set(out):
+    """The sweep's candidate set (sweep.json), or 'unknown'."""
+    try:
+        with open(os.path.join(out, "sweep.json")) as f:
+            return json.load(f).get("candidates", "unknown")
+    except (OSError, ValueError):
+        return "unknown"
+
+
 def main(argv):
     global LEVELS
     args = argv[1:]
@@ -511,7 +743,12 @@ def main(argv):
     trials = trial_metrics(g)
     write_trials_csv(out, trials)
     budget = max(k for by_scan in g.values() for k in by_scan)
-    summary(out, scenes, g, paired_summary(trials, budget))
+    extra = []
+    if has_surface(rows):
+        surface = surface_metrics(g)
+        extra = surface_summary(surface, budget, read_set_cover(out))
+        plot_coverage_travel(out, surface, candidate_set(out))
+    summary(out, scenes, g, extra + paired_summary(trials, budget))
 
 
 if __name__ == "__main__":

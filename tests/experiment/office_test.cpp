@@ -100,7 +100,11 @@ TEST(Office, TwoStopsMeetTheTableTopInvariants) {
   EXPECT_EQ(csv.substr(0, kScansCsvHeader.size()), kScansCsvHeader);
   const auto rows = parse_csv(csv);
   ASSERT_EQ(rows.size(), 3u);
-  ASSERT_EQ(rows[0].size(), 27u);
+  ASSERT_EQ(rows[0].size(), 29u);
+  // An office has no fixed candidate set, so no surface coverage (docs/yardstick.md).
+  EXPECT_EQ(rows[0][27], "surface_coverage");
+  EXPECT_EQ(rows[2][27], "");
+  EXPECT_EQ(rows[2][28], "");
   EXPECT_EQ(rows[0][12], "travel_m");
   EXPECT_EQ(rows[0][13], "fallback");
   EXPECT_EQ(rows[0][14], "predicted_cells");

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <mutex>
@@ -15,6 +16,7 @@
 #include <thread>
 
 #include "vantage/experiment/results.hpp"
+#include "vantage/experiment/yardstick.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/sim/scene.hpp"
 
@@ -89,13 +91,16 @@ nlohmann::json sweep_settings(const BenchConfig& config) {
 /// A sweep folder's copy of each generated pile's scene file.
 constexpr const char* kScenesFolder = "scenes";
 
-/// The scene files in a folder's scenes/, by file name.
-std::map<std::string, fs::path> scene_files(const fs::path& dir) {
+/// The files ending in `extension` in a folder's `folder`/ (scenes/ or yardstick/), by file name.
+std::map<std::string, fs::path> scene_files(const fs::path& dir, const char* folder = kScenesFolder,
+                                            std::string_view extension = ".yaml") {
   std::map<std::string, fs::path> files;
-  const fs::path scenes = dir / kScenesFolder;
+  const fs::path scenes = dir / folder;
   if (!fs::is_directory(scenes)) return files;
   for (const auto& entry : fs::directory_iterator(scenes)) {
-    if (entry.path().extension() == ".yaml") files[entry.path().filename().string()] = entry.path();
+    if (entry.path().extension() == extension) {
+      files[entry.path().filename().string()] = entry.path();
+    }
   }
   return files;
 }
@@ -151,10 +156,15 @@ std::map<std::string, fs::path> trial_files(const fs::path& dir) {
   return files;
 }
 
-std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
+/// The yardstick's truth of each table-top scene of a sweep, computed once (run_bench).
+using SurfaceTruths = std::map<std::string, SurfaceTruth>;
+
+std::string run_trial(const TrialSpec& spec, const BenchConfig& config,
+                      const SurfaceTruths& truths) {
   const sim::Scene scene = trial_scene(spec, config);
   ExplorationConfig exploration = config.exploration;
   exploration.planner.method = spec.method;
+  exploration.greedy_oracle = spec.greedy_oracle;
   exploration.planner.gain.alpha = spec.alpha.value;
   exploration.auto_alpha = spec.alpha.automatic;
   exploration.observability.prior = spec.alpha.value;
@@ -176,9 +186,12 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config) {
     exploration.mapper.segment_table = exploration.mapper.segment_table && given.segment_table;
   }
   Mapper mapper(scene.grid, exploration.mapper);
-  const ExplorationResult result = explore(scene, exploration, mapper);
-  return scans_csv_rows({spec.scene, spec.method, spec.alpha, spec.objective, spec.trial},
-                        result.scans);
+  const auto truth = truths.find(spec.scene);
+  const ExplorationResult result =
+      explore(scene, exploration, mapper, {}, truth == truths.end() ? nullptr : &truth->second);
+  return scans_csv_rows(
+      {spec.scene, spec.method, spec.alpha, spec.objective, spec.trial, spec.greedy_oracle},
+      result.scans);
 }
 
 }  // namespace
@@ -189,6 +202,7 @@ std::string TrialSpec::key() const {
       has_observability(method) ? fmt::format("__a{}{}", alpha.label(),
                                               objective == GainObjective::kCells ? "__cells" : "")
                                 : std::string();
+  if (greedy_oracle) return fmt::format("{}__{}__t{}", scene, kGreedyOracleName, trial);
   return fmt::format("{}__{}{}__t{}", scene, to_string(method), alpha_part, trial);
 }
 
@@ -200,7 +214,9 @@ void BenchConfig::validate() const {
     throw std::invalid_argument(fmt::format("bench.generated must be >= 0, got {}", generated));
   }
   if (generated > 0) pile.validate();
-  if (methods.empty()) throw std::invalid_argument("bench.methods must not be empty");
+  if (methods.empty() && !greedy_oracle) {
+    throw std::invalid_argument("bench.methods must not be empty");
+  }
   for (const AlphaSetting& a : alphas) {
     if (!(a.value > 0.0 && a.value <= 1.0)) {
       throw std::invalid_argument(fmt::format("bench.alphas: {} is not in (0, 1]", a.value));
@@ -289,6 +305,13 @@ std::vector<TrialSpec> bench_trials(const BenchConfig& config) {
         }
       }
     }
+    if (config.greedy_oracle) {
+      for (int t = 0; t < config.trials; ++t) {
+        specs.push_back({scene, source, PlannerMethod::kGreedy,
+                         default_alpha_setting(PlannerMethod::kGreedy, config.paper_alpha),
+                         natural_objective(PlannerMethod::kGreedy), t, true});
+      }
+    }
   }
   return specs;
 }
@@ -327,6 +350,34 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
   }
   const std::map<std::string, fs::path> done = trial_files(dir);
 
+  // NOTE: the yardstick's truth (noise-free scans from every candidate and start) is the scene's
+  // and the candidate set's, not a trial's: computed once per table-top scene with a trial to
+  // run, and written for scripts/set_cover.py.
+  SurfaceTruths truths;
+  for (const TrialSpec& spec : all) {
+    if (truths.count(spec.scene) > 0) continue;
+    const sim::Scene scene = trial_scene(spec, config);
+    if (scene.kind != sim::SceneKind::kTableTop) {
+      if (spec.greedy_oracle) {
+        throw std::invalid_argument(fmt::format(
+            "bench: scene '{}' is an office: the greedy oracle is for table tops", spec.scene));
+      }
+      continue;
+    }
+    const sim::World world(scene, sim::WorldConfig{config.exploration.planner.gain.num_threads});
+    const SurfaceTruth& truth =
+        truths
+            .emplace(spec.scene,
+                     compute_surface_truth(world, run_candidates(scene, config.exploration),
+                                           config.exploration.planner.gain.num_threads))
+            .first->second;
+    const fs::path file = dir / kYardstickFolder / (spec.scene + ".json");
+    if (!fs::exists(file)) {
+      fs::create_directories(file.parent_path());
+      write_yardstick_file(file, scene, config.exploration, truth);
+    }
+  }
+
   std::vector<TrialSpec> mine;
   for (std::size_t k = 0; k < all.size(); ++k) {
     if (static_cast<int>(k % static_cast<std::size_t>(config.shard_count)) == config.shard_index) {
@@ -346,7 +397,7 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
       try {
         if (!event.skipped) {
           const auto start = std::chrono::steady_clock::now();
-          const std::string rows = run_trial(spec, config);
+          const std::string rows = run_trial(spec, config, truths);
           write_atomically(dir / "trials" / (spec.key() + ".csv"), rows);
           event.seconds =
               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -373,9 +424,65 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
   return ran;
 }
 
+/// `rows` with every line padded with empty fields to the header's count: a trial file of a
+/// sweep from before the last columns were appended.
+std::string padded_rows(const std::string& rows) {
+  const auto fields =
+      static_cast<std::size_t>(std::count(kScansCsvHeader.begin(), kScansCsvHeader.end(), ',')) + 1;
+  std::string out;
+  std::istringstream lines(rows);
+  for (std::string line; std::getline(lines, line);) {
+    const auto found = static_cast<std::size_t>(std::count(line.begin(), line.end(), ',')) + 1;
+    out += line + std::string(found < fields ? fields - found : 0, ',') + "\n";
+  }
+  return out;
+}
+
+void write_yardstick_file(const fs::path& path, const sim::Scene& scene,
+                          const ExplorationConfig& config, const SurfaceTruth& truth) {
+  std::map<std::uint32_t, std::size_t> rank;  // cell -> its index in V
+  for (std::size_t k = 0; k < truth.visible.size(); ++k) rank[truth.visible[k]] = k;
+  auto indices = [&](const std::vector<std::vector<std::uint32_t>>& sets) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const std::vector<std::uint32_t>& set : sets) {
+      std::vector<std::size_t> ids;
+      for (const std::uint32_t c : set) ids.push_back(rank.at(c));
+      out.push_back(ids);
+    }
+    return out;
+  };
+  const std::vector<Eigen::Isometry3d> views = run_candidates(scene, config);
+  const TravelRule travel = run_travel_rule(scene, config);
+  auto travel_from = [&](const std::vector<Eigen::Isometry3d>& from) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (const Eigen::Isometry3d& a : from) {
+      std::vector<double> row;
+      for (const Eigen::Isometry3d& b : views) {
+        row.push_back(std::round(travel(a.translation(), b.translation()) * 1e6) / 1e6);
+      }
+      rows.push_back(row);
+    }
+    return rows;
+  };
+  const nlohmann::json file = {
+      {"scene", scene.name},
+      {"candidates", to_string(config.candidates)},
+      {"surface_cells", truth.surface.size()},
+      {"visible_cells", truth.visible.size()},
+      {"rule",
+       "views[i] and starts[j]: the visible surface cells (indices into V) that a noise-free scan "
+       "from candidate i or start j hits; travel_m: between candidates (views x views) and from "
+       "each start to each candidate, under the run's travel rule [m]"},
+      {"views", indices(truth.candidate_hits)},
+      {"starts", indices(truth.start_hits)},
+      {"travel_m",
+       {{"views", travel_from(views)}, {"from_starts", travel_from(scene.start_poses)}}}};
+  write_atomically(path, file.dump() + "\n");
+}
+
 void write_bench_csv(const fs::path& dir) {
   std::string csv = std::string(kScansCsvHeader) + "\n";
-  for (const auto& [key, path] : trial_files(dir)) csv += read_file(path);
+  for (const auto& [key, path] : trial_files(dir)) csv += padded_rows(read_file(path));
   write_atomically(dir / "scans.csv", csv);
 }
 
@@ -389,7 +496,8 @@ void require_trial_rows(const std::string& rows, const fs::path& path) {
   while (std::getline(lines, line)) {
     ++n;
     const auto found = std::count(line.begin(), line.end(), ',') + 1;
-    if (found != fields) {
+    // NOTE: a trial file from before the surface columns were appended holds fewer fields.
+    if (found != fields && found != static_cast<long>(kScansCsvFieldsBeforeSurface)) {
       throw std::runtime_error(fmt::format(
           "{}: line {} holds {} fields, not the {} of a scans.csv row: not a trial file",
           path.string(), n, found, fields));
@@ -410,6 +518,7 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
   if (!target_is_source && fs::exists(out)) all.push_back(out);
   std::map<std::string, std::string> trials;
   std::map<std::string, std::string> scenes;  // generated scene files, by file name
+  std::map<std::string, std::string> truths;  // yardstick files, by file name
   nlohmann::json settings = nullptr;          // of the first folder; all must agree
   for (std::size_t k = 0; k < all.size(); ++k) {
     const fs::path& dir = all[k];
@@ -436,6 +545,14 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
             "{}: differs from the scene file of the same name in another folder", path.string()));
       }
     }
+    for (const auto& [name, path] : scene_files(dir, kYardstickFolder, ".json")) {
+      const auto [it, inserted] = truths.emplace(name, read_file(path));
+      if (!inserted && it->second != read_file(path)) {
+        throw std::runtime_error(
+            fmt::format("{}: differs from the yardstick file of the same name in another folder",
+                        path.string()));
+      }
+    }
     const auto files = trial_files(dir);
     if (files.empty() && !target) {
       throw std::runtime_error(fmt::format("{}: no trials/ with trial files", dir.string()));
@@ -458,6 +575,8 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
   for (const auto& [key, rows] : trials) write_atomically(out / "trials" / (key + ".csv"), rows);
   if (!scenes.empty()) fs::create_directories(out / kScenesFolder);
   for (const auto& [name, text] : scenes) write_atomically(out / kScenesFolder / name, text);
+  if (!truths.empty()) fs::create_directories(out / kYardstickFolder);
+  for (const auto& [name, text] : truths) write_atomically(out / kYardstickFolder / name, text);
   write_bench_csv(out);
 }
 

@@ -26,6 +26,9 @@ struct TrialSpec {
   AlphaSetting alpha;                              ///< the probabilistic method's a
   GainObjective objective = GainObjective::kBits;  ///< what the probabilistic method ranks by
   int trial = 0;  ///< starts from the scene's start pose `trial` (mod the number of starts)
+  /// The greedy oracle (ExplorationConfig::greedy_oracle) rather than `method` (greedy's
+  /// settings stand in for it).
+  bool greedy_oracle = false;
 
   /// File-name key, e.g. "tabletop-1__probabilistic__a0.997__t3", "..._aauto__cells__t3".
   std::string key() const;
@@ -47,6 +50,9 @@ struct BenchConfig {
   /// What they rank by; one trial set per alpha and objective. Empty: each method's own
   /// (natural_objective: cells for survival, bits for probabilistic).
   std::vector<GainObjective> objectives = {GainObjective::kBits};
+  /// Also run the greedy oracle (table tops; ExplorationConfig::greedy_oracle), one trial set per
+  /// scene after the methods'. `methods` may then be empty.
+  bool greedy_oracle = false;
   double paper_alpha = kTableTopAlpha;  ///< the paper's a for the sweep's kind (§5.1, §5.2)
   int trials = 10;
   ExplorationConfig exploration;  ///< method, alpha, start and seed are set per trial
@@ -81,6 +87,16 @@ struct TrialEvent {
   std::size_t total = 0;  ///< trials of this shard
 };
 
+/// The folder of a sweep that holds, per table-top scene, `SCENE.json`: the yardstick's truth
+/// for the sweep's candidate set (write_yardstick_file), which scripts/set_cover.py reads.
+inline constexpr const char* kYardstickFolder = "yardstick";
+
+/// Writes the yardstick's truth of a table-top scene for scripts/set_cover.py, atomically: the
+/// sizes of S and V, each candidate's and start's hit set as indices into V (ascending), and the
+/// travel between views and from each start to each view under the run's travel rule [m].
+void write_yardstick_file(const std::filesystem::path& path, const sim::Scene& scene,
+                          const ExplorationConfig& config, const SurfaceTruth& truth);
+
 /// Runs this shard's trials that `dir/trials/` does not hold yet, then writes `dir/scans.csv`
 /// from all trial files present. The generated piles' scene files go to `dir/scenes/` first; one
 /// that is there already and differs (another version's generator) throws std::invalid_argument.
@@ -91,10 +107,10 @@ struct TrialEvent {
 std::size_t run_bench(const std::filesystem::path& dir, const BenchConfig& config,
                       const std::function<void(const TrialEvent&)>& on_trial = {});
 
-/// Joins the trial files of several sweep folders (e.g. shards) into `out/trials/`, and their
-/// generated scene files into `out/scenes/`, and writes `out/scans.csv`. Throws std::runtime_error
-/// when two folders hold the same trial with different contents, and std::invalid_argument when
-/// their sweep.json settings differ.
+/// Joins the trial files of several sweep folders (e.g. shards) into `out/trials/`, their
+/// generated scene files into `out/scenes/` and their yardstick files into `out/yardstick/`, and
+/// writes `out/scans.csv`. Throws std::runtime_error when two folders hold the same trial with
+/// different contents, and std::invalid_argument when their sweep.json settings differ.
 void merge_bench(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out);
 
 /// Writes `dir/scans.csv`: the header and every trial file's rows, in key order.

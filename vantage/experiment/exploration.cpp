@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iterator>
 #include <numbers>
 #include <stdexcept>
 
+#include "vantage/experiment/yardstick.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/perception/registration.hpp"
 #include "vantage/perception/voxel_filter.hpp"
@@ -70,7 +72,8 @@ struct Decision {
 /// observed (one scan, or a sweep) and where the candidates come from (the ring, or frontiers).
 class Explorer {
  public:
-  Explorer(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper)
+  Explorer(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
+           const SurfaceTruth* surface_truth)
       : scene_(scene),
         config_(config),
         mapper_(mapper),
@@ -97,8 +100,7 @@ class Explorer {
       frontier_.validate();
     } else {
       const bool arm = config.candidates == CandidateSet::kHemisphere;
-      for (const Eigen::Isometry3d& pose :
-           arm ? hemisphere_poses(run_hemisphere(scene, config)) : scene.candidate_poses()) {
+      for (const Eigen::Isometry3d& pose : run_candidates(scene, config)) {
         ring_.push_back({Frustum(pose, scene.fov())});
         result_.candidates.push_back(pose);
       }
@@ -119,6 +121,22 @@ class Explorer {
                                            ? std::span<const Eigen::Isometry3d>(result_.candidates)
                                            : std::span<const Eigen::Isometry3d>());
     result_.observable_cells = truth_.observable.size();
+    if (!office_) {
+      if (surface_truth == nullptr) {
+        own_surface_ =
+            compute_surface_truth(world_, result_.candidates, config.planner.gain.num_threads);
+        surface_truth = &*own_surface_;
+      }
+      if (!(surface_truth->grid == scene.grid) ||
+          surface_truth->candidate_hits.size() != result_.candidates.size()) {
+        throw std::invalid_argument(cat("the surface truth given for scene '", scene.name,
+                                        "' is for another grid or candidate set"));
+      }
+      surface_ = surface_truth;
+      truly_hit_ = surface_->start_hits.at(static_cast<std::size_t>(config.start));
+      result_.surface_cells = surface_->surface.size();
+      result_.visible_surface_cells = surface_->visible.size();
+    }
     if (office_) {
       true_navigation_ = NavigationGrid::from_occupancy(scene.grid, truth_.occupied, navigation_);
     }
@@ -176,6 +194,13 @@ class Explorer {
       }
       record.unobserved = mapper_.grid().counts().unobserved;
       record.coverage = coverage(mapper_.grid(), truth_.observable);
+      if (surface_ != nullptr) {
+        // NOTE: recounted from all registered points each scan: a re-registration moves earlier
+        // scans' points too.
+        const SurfaceCoverage s = surface_coverage(*surface_, mapper_.object_cloud());
+        record.surface_coverage = s.visible;
+        record.raw_surface_coverage = s.raw;
+      }
 
       bool stop = k == config_.scans;
       if (stop) result_.stop_reason = "took every scan asked for";
@@ -353,6 +378,7 @@ class Explorer {
       d.stop_reason = cat("every candidate view has been taken after scan ", current.scan);
       return d;
     }
+    if (config_.greedy_oracle) return oracle_view(current, open, index, std::move(d));
     const Plan plan = plan_next_view(mapper_.grid(), open, planner_, seed);
     double best_gain = 0.0;  // of any candidate, whichever the method chose
     for (const ViewGain& g : plan.gains) best_gain = std::max(best_gain, g.gain);
@@ -372,6 +398,45 @@ class Explorer {
       d.considered.push_back(
           considered(plan, j, static_cast<int>(index[j]), result_.candidates[index[j]], d));
     }
+    return d;
+  }
+
+  /// Table top, greedy oracle (ExplorationConfig::greedy_oracle): the open candidate whose true
+  /// hit set adds the most visible surface cells to the true hit sets of the start and the views
+  /// taken; its gain is that count [cells].
+  Decision oracle_view(const ScanRecord& current, const std::vector<Candidate>& open,
+                       const std::vector<std::size_t>& index, Decision d) {
+    const auto start = Clock::now();
+    std::vector<double> gains(open.size());
+    std::size_t best = 0;
+    for (std::size_t j = 0; j < open.size(); ++j) {
+      const std::vector<std::uint32_t>& hits = surface_->candidate_hits[index[j]];
+      gains[j] = static_cast<double>(hits.size() - count_common(hits, truly_hit_));
+      // NOTE: ties go to the shorter travel, then to the lower index (open is in index order).
+      if (gains[j] > gains[best] || (gains[j] == gains[best] && open[j].travel < open[best].travel))
+        best = j;
+    }
+    if (gains[best] < config_.min_gain) {
+      d.stop = true;
+      d.stop_reason = cat("best true gain ", gains[best], " fell below ", config_.min_gain,
+                          " after scan ", current.scan);
+    }
+    const std::size_t view = index[best];
+    taken_[view] = true;
+    std::vector<std::uint32_t> hit;
+    std::set_union(truly_hit_.begin(), truly_hit_.end(), surface_->candidate_hits[view].begin(),
+                   surface_->candidate_hits[view].end(), std::back_inserter(hit));
+    truly_hit_ = std::move(hit);
+    d.view = static_cast<int>(view);
+    d.pose = result_.candidates[view];
+    d.predicted = gains[best];
+    d.predicted_cells = gains[best];
+    d.travel = open[best].travel;
+    for (std::size_t j = 0; j < open.size(); ++j) {
+      d.considered.push_back({static_cast<int>(index[j]), result_.candidates[index[j]], gains[j],
+                              std::nullopt, gains[j]});
+    }
+    d.seconds = seconds_since(start);
     return d;
   }
 
@@ -480,6 +545,10 @@ class Explorer {
   std::optional<ObservabilityFit> fit_;  ///< --alpha auto
   sim::World world_;
   sim::GroundTruth truth_;
+  std::optional<SurfaceTruth> own_surface_;  ///< table top, when the caller gave none
+  const SurfaceTruth* surface_ = nullptr;    ///< table top: the yardstick's truth
+  /// Greedy oracle: the visible cells the true hit sets of the start and the views taken hold.
+  std::vector<std::uint32_t> truly_hit_;
   PlannerConfig planner_;
   ExplorationResult result_;
   std::vector<Candidate> ring_;  ///< table top: the ring's views
@@ -619,8 +688,24 @@ std::vector<Frustum> sweep_frusta(const sim::Scene& scene,
   return frusta;
 }
 
+std::vector<Eigen::Isometry3d> run_candidates(const sim::Scene& scene,
+                                              const ExplorationConfig& config) {
+  return config.candidates == CandidateSet::kHemisphere
+             ? hemisphere_poses(run_hemisphere(scene, config))
+             : scene.candidate_poses();
+}
+
+TravelRule run_travel_rule(const sim::Scene& scene, const ExplorationConfig& config) {
+  return config.candidates == CandidateSet::kHemisphere ? TravelRule{} : ring_walk_rule(scene.ring);
+}
+
 ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
                           const ScanCallback& on_scan) {
+  return explore(scene, config, mapper, on_scan, nullptr);
+}
+
+ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
+                          const ScanCallback& on_scan, const SurfaceTruth* surface_truth) {
   config.validate();
   if (scene.start_poses.empty()) {
     throw std::invalid_argument(cat("scene '", scene.name, "' has no start poses"));
@@ -637,13 +722,21 @@ ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& conf
                                       "' is an office: its candidates are "
                                       "frontier stops, not a hemisphere"));
     }
+    if (config.greedy_oracle) {
+      throw std::invalid_argument(
+          cat("scene '", scene.name, "' is an office: the greedy oracle is for table tops"));
+    }
     if (config.planner.sequence.active()) {
       throw std::invalid_argument(cat("scene '", scene.name,
                                       "' is an office: the sequence "
                                       "planner (horizon, travel weight) is for table tops"));
     }
   }
-  Explorer explorer(scene, config, mapper);
+  if (config.greedy_oracle && !mapper.config().keep_object_cloud) {
+    throw std::invalid_argument(
+        "explore.greedy_oracle needs the mapper's object cloud (mapper.keep_object_cloud)");
+  }
+  Explorer explorer(scene, config, mapper, surface_truth);
   return explorer.run(on_scan);
 }
 

@@ -94,6 +94,12 @@ struct ExplorationConfig {
   /// the base and reach `arm`'s, else the scene's arm's, else unlimited.
   HemisphereConfig hemisphere;
   std::optional<ArmReach> arm;  ///< kHemisphere: overrides the scene's arm
+  /// Table top: decide by the greedy oracle instead of `planner` (issue 36, docs/yardstick.md):
+  /// among the same open candidates, with the same travel, the view whose true hit set (its
+  /// noise-free scan, SurfaceTruth::candidate_hits) adds the most visible surface cells to the
+  /// true hit sets of the start and the views taken; ties to the shorter travel, then the lower
+  /// index. Its choices depend on the world only, not on the run's noise or registration.
+  bool greedy_oracle = false;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
@@ -145,10 +151,15 @@ struct ScanRecord {
   /// --alpha auto: the view's expected cells seen under each candidate a of the fit, before the
   /// scan (ExplorationConfig::observability.alphas) [cells]
   std::vector<double> calibration;
-  std::size_t actual_gain = 0;     ///< cells that left the unobserved set
-  std::size_t reentered = 0;       ///< cells that came back into it
-  std::size_t unobserved = 0;      ///< unobserved cells after the scan
-  double coverage = 0.0;           ///< observed share of the observable surface, in [0, 1]
+  std::size_t actual_gain = 0;  ///< cells that left the unobserved set
+  std::size_t reentered = 0;    ///< cells that came back into it
+  std::size_t unobserved = 0;   ///< unobserved cells after the scan
+  double coverage = 0.0;        ///< observed share of the observable surface, in [0, 1]
+  /// Table top: share of the visible object surface covered by the registered points so far
+  /// (yardstick.hpp: a point within one cell), in [0, 1]; none in an office.
+  std::optional<double> surface_coverage;
+  /// ... of the whole object surface (raw), in [0, 1].
+  std::optional<double> raw_surface_coverage;
   double pose_error_before = 0.0;  ///< translation error of the believed pose [m]
   double pose_error_after = 0.0;   ///< ... after registration [m]
   double yaw_error_before = 0.0;   ///< rotation error of the believed pose [rad]
@@ -199,7 +210,13 @@ struct ExplorationResult {
   std::vector<Eigen::Isometry3d> candidates;
   std::string stop_reason;
   std::size_t observable_cells = 0;  ///< the coverage denominator
+  /// Table top: the object surface cells and the visible ones, surface_coverage's denominator
+  /// (yardstick.hpp) [cells]; 0 in an office.
+  std::size_t surface_cells = 0;
+  std::size_t visible_surface_cells = 0;
 };
+
+struct SurfaceTruth;  // yardstick.hpp
 
 /// Called after each scan, for live progress.
 using ScanCallback = std::function<void(const ScanRecord&, int total)>;
@@ -207,6 +224,20 @@ using ScanCallback = std::function<void(const ScanRecord&, int total)>;
 /// Runs one exploration of a simulated scene and returns its records and the final mapper.
 ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
                           const ScanCallback& on_scan = {});
+/// The same with the scene's surface truth for this candidate set computed beforehand
+/// (compute_surface_truth over the run's candidates), e.g. shared by a sweep's trials of one
+/// scene; null computes it. Throws std::invalid_argument when its grid is not the scene's.
+ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
+                          const ScanCallback& on_scan, const SurfaceTruth* surface_truth);
+
+/// The candidate views of a table-top run: the scene's ring, or its hemisphere
+/// (run_hemisphere) for CandidateSet::kHemisphere.
+std::vector<Eigen::Isometry3d> run_candidates(const sim::Scene& scene,
+                                              const ExplorationConfig& config);
+
+/// How a table-top run measures travel between views: the walk around the table (ring), or the
+/// sensor's straight-line path (hemisphere) [m].
+TravelRule run_travel_rule(const sim::Scene& scene, const ExplorationConfig& config);
 
 /// The mapper settings a scene calls for: registration weighed against the explorer's default
 /// pose noise; table segmentation for table tops; for offices, each stop's sweep thinned to one

@@ -36,7 +36,7 @@ json config_json(const ExplorationConfig& config) {
   // NOTE: what the decision plans: --method sequence's defaults where it was not told.
   const SequenceConfig sequence = sequence_of(config.planner);
   return {
-      {"method", to_string(config.planner.method)},
+      {"method", config.greedy_oracle ? kGreedyOracleName : to_string(config.planner.method)},
       {"alpha", config.auto_alpha ? json("auto") : json(gain.alpha)},
       {"objective", to_string(config.planner.objective)},
       {"observability",
@@ -123,6 +123,9 @@ json scan_json(const ScanRecord& r) {
             {"reentered", r.reentered},
             {"unobserved", r.unobserved},
             {"coverage", r.coverage},
+            {"surface_coverage", r.surface_coverage ? json(*r.surface_coverage) : json(nullptr)},
+            {"raw_surface_coverage",
+             r.raw_surface_coverage ? json(*r.raw_surface_coverage) : json(nullptr)},
             {"points", r.points},
             {"object_points", r.object_points},
             {"pose_error",
@@ -244,9 +247,12 @@ json units_json(const GainUnits& units) {
 }
 
 RunLabel run_label(std::string scene, const ExplorationConfig& config) {
-  return {std::move(scene), config.planner.method,
-          AlphaSetting{config.auto_alpha, config.planner.gain.alpha}, config.planner.objective,
-          config.start};
+  return {std::move(scene),
+          config.planner.method,
+          AlphaSetting{config.auto_alpha, config.planner.gain.alpha},
+          config.planner.objective,
+          config.start,
+          config.greedy_oracle};
 }
 
 std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>& scans) {
@@ -257,14 +263,15 @@ std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>&
   for (const ScanRecord& r : scans) {
     rows += fmt::format(
         "{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g},{:.15g},{:d},{},{},{},{:.6g},{:.6g},{:.6g},"
-        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g}\n",
-        label.scene, to_string(label.method), alpha, label.trial, r.scan, r.view,
-        optional_number(r.predicted_gain), optional_number(r.greedy_predicted_gain), r.actual_gain,
-        r.unobserved, r.coverage, r.seconds.plan, r.travel, r.fallback ? 1 : 0,
-        optional_number(r.predicted_cells), optional_number(r.alpha), objective,
-        r.pose_error_before, r.pose_error_after, r.pose_error_final, r.seconds.register_scan,
-        r.seconds.segment, r.seconds.integrate, r.seconds.reference, r.displacement_before,
-        r.displacement_after, r.displacement_final);
+        "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{}\n",
+        label.scene, label.greedy_oracle ? kGreedyOracleName : to_string(label.method), alpha,
+        label.trial, r.scan, r.view, optional_number(r.predicted_gain),
+        optional_number(r.greedy_predicted_gain), r.actual_gain, r.unobserved, r.coverage,
+        r.seconds.plan, r.travel, r.fallback ? 1 : 0, optional_number(r.predicted_cells),
+        optional_number(r.alpha), objective, r.pose_error_before, r.pose_error_after,
+        r.pose_error_final, r.seconds.register_scan, r.seconds.segment, r.seconds.integrate,
+        r.seconds.reference, r.displacement_before, r.displacement_after, r.displacement_final,
+        optional_number(r.surface_coverage), optional_number(r.raw_surface_coverage));
   }
   return rows;
 }
@@ -289,6 +296,13 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
               {"config", config_json(config)},
               {"stop_reason", result.stop_reason},
               {"observable_cells", result.observable_cells},
+              {"surface_cells", result.surface_cells},
+              {"visible_surface_cells", result.visible_surface_cells},
+              {"surface_coverage_rule",
+               "a surface cell of the objects (table and floor excluded) is covered once a "
+               "registered point lies in it or in one of its 26 neighbours; surface_coverage "
+               "divides by the cells the candidate views and starts hit with noise-free scans, "
+               "raw_surface_coverage by all object surface cells"},
               {"scans", json::array()},
               {"candidates", json::array()}};
   if (config.candidates == CandidateSet::kHemisphere && scene.kind == sim::SceneKind::kTableTop) {

@@ -23,12 +23,23 @@ namespace vantage {
 /// decision for this scan took; predicted_gain is in bits for the probabilistic method and in
 /// cells for the others, predicted_cells always in cells (E, or greedy's count), the unit of
 /// actual_gain; `objective` is what the probabilistic method ranked by (bits or cells).
+/// surface_coverage is the share of the visible object surface covered by the registered points
+/// (a point within one cell; docs/yardstick.md), raw_surface_coverage the share of all object
+/// surface, both in [0, 1] and empty in an office. method is `greedy-oracle` for the greedy
+/// oracle (ExplorationConfig::greedy_oracle).
 inline constexpr std::string_view kScansCsvHeader =
     "scene,method,alpha,trial,scan,view,predicted_gain,greedy_predicted_gain,actual_gain,"
     "unobserved,coverage,plan_seconds,travel_m,fallback,predicted_cells,alpha_used,objective,"
     "pose_error_before_m,pose_error_after_m,pose_error_final_m,register_seconds,segment_seconds,"
     "integrate_seconds,reference_seconds,displacement_before_m,displacement_after_m,"
-    "displacement_final_m";
+    "displacement_final_m,surface_coverage,raw_surface_coverage";
+
+/// The fields of a scans.csv row before surface_coverage was appended: a trial file of an older
+/// sweep holds this many, and the sweep's scans.csv leaves the newer ones empty.
+inline constexpr std::size_t kScansCsvFieldsBeforeSurface = 27;
+
+/// The method name of the greedy oracle in scans.csv and on the command line.
+inline constexpr std::string_view kGreedyOracleName = "greedy-oracle";
 
 /// The units a method's numbers are in, the one source of plan.json's and run.json's `units`
 /// and of the terminal's (docs/model.md, "Bits are not cells").
@@ -58,6 +69,7 @@ struct RunLabel {
   AlphaSetting alpha;                              ///< written only for the probabilistic method
   GainObjective objective = GainObjective::kBits;  ///< written only for the probabilistic method
   int trial = 0;
+  bool greedy_oracle = false;  ///< written as kGreedyOracleName instead of `method`
 };
 
 /// The label of an exploration run with `config` on scene `scene`, trial = its start.

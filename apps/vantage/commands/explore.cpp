@@ -56,9 +56,11 @@ void print_scan(const ScanRecord& r, int total, bool ranks_by_bits) {
   const std::string bits =
       ranks_by_bits ? fmt::format("{:7.0f} bits ", r.predicted_gain.value_or(0.0)) : "";
   const std::string predicted =
-      r.predicted_cells ? fmt::format("{}{:7.0f} cells (greedy {:7.0f})", bits, *r.predicted_cells,
-                                      r.greedy_predicted_gain.value_or(0.0))
-                        : fmt::format("{:>7} {:>{}}", "-", "", 21 + bits.size());
+      r.predicted_cells
+          ? fmt::format("{}{:7.0f} cells (greedy {:>7})", bits, *r.predicted_cells,
+                        r.greedy_predicted_gain ? fmt::format("{:.0f}", *r.greedy_predicted_gain)
+                                                : std::string("-"))
+          : fmt::format("{:>7} {:>{}}", "-", "", 21 + bits.size());
   const double seconds = r.seconds.scan + r.seconds.register_scan + r.seconds.segment +
                          r.seconds.integrate + r.seconds.plan;
   const std::string travel =
@@ -67,8 +69,9 @@ void print_scan(const ScanRecord& r, int total, bool ranks_by_bits) {
           : std::string();
   fmt::print(
       "scan {:2}/{}  view {:2}  predicted {}  actual {:7}  unobserved {:8}  "
-      "coverage {:5.1f}%  icp {:4.1f}->{:4.1f} mm{}  {:5.2f} s{}\n",
+      "coverage {:5.1f}%{}  icp {:4.1f}->{:4.1f} mm{}  {:5.2f} s{}\n",
       r.scan, total, r.view, predicted, r.actual_gain, r.unobserved, 100.0 * r.coverage,
+      r.surface_coverage ? fmt::format("  surface {:5.1f}%", 100.0 * *r.surface_coverage) : "",
       1e3 * r.pose_error_before, 1e3 * r.pose_error_after, travel, seconds,
       r.reregistered.empty()
           ? std::string()
@@ -83,7 +86,12 @@ void run(const ExploreOptions& o) {
   // --alpha is not given, and the prior of --alpha auto.
   const double paper = office ? kOfficeAlpha : kTableTopAlpha;
   ExplorationConfig config;
-  config.planner = o.planning.planner_config(paper);
+  // NOTE: the greedy oracle is the experiment layer's (it knows the world), not a planner method:
+  // greedy's settings stand in for it (docs/yardstick.md).
+  PlanningOptions planning = o.planning;
+  config.greedy_oracle = planning.method == kGreedyOracleName;
+  if (config.greedy_oracle) planning.method = std::string(to_string(PlannerMethod::kGreedy));
+  config.planner = planning.planner_config(paper);
   const double literal = default_alpha(config.planner.method, paper);
   const bool survival = uses_survival_reading(config.planner.method);
   // NOTE: the survival reading is fitted online unless told an a: the configuration the sweeps

@@ -1,0 +1,157 @@
+#include "vantage/experiment/yardstick.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <iterator>
+
+#include "vantage/sim/ground_truth.hpp"
+
+namespace vantage {
+namespace {
+
+bool is_support(const sim::Shape& shape) {
+  return std::find(std::begin(kSupportKinds), std::end(kSupportKinds), shape.kind) !=
+         std::end(kSupportKinds);
+}
+
+/// Whether `p` lies in (or within 1 um of) a support's bounding box [m].
+bool on_support(const std::vector<Eigen::AlignedBox3d>& supports, const Eigen::Vector3d& p) {
+  constexpr double kSlack = 1e-6;  // [m]
+  return std::any_of(supports.begin(), supports.end(), [&](const Eigen::AlignedBox3d& box) {
+    return (p.array() >= box.min().array() - kSlack).all() &&
+           (p.array() <= box.max().array() + kSlack).all();
+  });
+}
+
+/// A grid one cell larger on every side, for marks of points just outside the grid.
+struct PaddedMarks {
+  explicit PaddedMarks(const GridSpec& grid)
+      : dims(grid.dims + Index3::Constant(2)),
+        marks(static_cast<std::size_t>(dims.x()) * static_cast<std::size_t>(dims.y()) *
+                  static_cast<std::size_t>(dims.z()),
+              0) {}
+
+  /// Linear index of padded cell `p` (grid cell p - 1).
+  std::size_t at(const Index3& p) const {
+    return static_cast<std::size_t>(p.x()) +
+           static_cast<std::size_t>(dims.x()) *
+               (static_cast<std::size_t>(p.y()) +
+                static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(p.z()));
+  }
+
+  Index3 dims;
+  std::vector<std::uint8_t> marks;
+};
+
+}  // namespace
+
+std::vector<std::uint32_t> object_surface_cells(const sim::Scene& scene, int num_threads) {
+  std::vector<sim::Shape> objects;
+  for (const sim::Shape& shape : scene.shapes) {
+    if (!is_support(shape)) objects.push_back(shape);
+  }
+  return sim::surface_cells(scene.grid, sim::voxelize(objects, scene.grid, num_threads));
+}
+
+std::vector<std::uint32_t> covered_cells(const GridSpec& grid, std::span<const std::uint32_t> cells,
+                                         const PointCloud& points_world) {
+  PaddedMarks padded(grid);
+  for (const Eigen::Vector3d& p : points_world) {
+    if (!p.allFinite()) continue;
+    const Index3 q = grid.lattice_index(p) + Index3::Ones();
+    if ((q.array() < 0).any() || (q.array() >= padded.dims.array()).any()) continue;
+    padded.marks[padded.at(q)] = 1;
+  }
+  std::vector<std::uint32_t> out;
+  for (const std::uint32_t c : cells) {
+    const Index3 q = grid.unravel(c) + Index3::Ones();
+    bool near = false;
+    for (int dz = -1; dz <= 1 && !near; ++dz) {
+      for (int dy = -1; dy <= 1 && !near; ++dy) {
+        for (int dx = -1; dx <= 1 && !near; ++dx) {
+          near = padded.marks[padded.at(q + Index3(dx, dy, dz))] != 0;
+        }
+      }
+    }
+    if (near) out.push_back(c);
+  }
+  return out;
+}
+
+std::size_t count_common(std::span<const std::uint32_t> a, std::span<const std::uint32_t> b) {
+  std::size_t n = 0;
+  auto i = a.begin();
+  auto j = b.begin();
+  while (i != a.end() && j != b.end()) {
+    if (*i < *j) {
+      ++i;
+    } else if (*j < *i) {
+      ++j;
+    } else {
+      ++n;
+      ++i;
+      ++j;
+    }
+  }
+  return n;
+}
+
+SurfaceTruth compute_surface_truth(const sim::World& world,
+                                   std::span<const Eigen::Isometry3d> candidates, int num_threads) {
+  const auto start = std::chrono::steady_clock::now();
+  const sim::Scene& scene = world.scene();
+  SurfaceTruth truth;
+  truth.grid = scene.grid;
+  truth.surface = object_surface_cells(scene, num_threads);
+  // NOTE: noise-free means the range noise only: the scan is taken from the true pose, and its
+  // points are placed through it, so pose noise never enters.
+  sim::SensorConfig sensor = scene.sensor;
+  sensor.noise = sim::RangeNoise{};
+  // NOTE: a run's measured points are the objects' (the mapper segments the table away), so the
+  // points on a support are dropped here too: else the table around an object's foot would
+  // cover its lowest cells, which no run can.
+  std::vector<Eigen::AlignedBox3d> supports;
+  for (const sim::Shape& shape : scene.shapes) {
+    if (is_support(shape)) supports.push_back(shape.bounds());
+  }
+  auto hits_from = [&](const Eigen::Isometry3d& pose) {
+    const sim::SimulatedScan scan = world.scan(pose, sensor, 0);
+    PointCloud objects;
+    for (const Eigen::Vector3d& p : scan.points_sensor) {
+      const Eigen::Vector3d q = pose * p;
+      if (!on_support(supports, q)) objects.push_back(q);
+    }
+    return covered_cells(truth.grid, truth.surface, objects);
+  };
+  std::vector<std::uint8_t> seen(truth.grid.num_cells(), 0);
+  for (const Eigen::Isometry3d& pose : candidates) {
+    truth.candidate_hits.push_back(hits_from(pose));
+    for (const std::uint32_t c : truth.candidate_hits.back()) seen[c] = 1;
+  }
+  for (const Eigen::Isometry3d& pose : scene.start_poses) {
+    truth.start_hits.push_back(hits_from(pose));
+    for (const std::uint32_t c : truth.start_hits.back()) seen[c] = 1;
+  }
+  for (const std::uint32_t c : truth.surface) {
+    if (seen[c] != 0) truth.visible.push_back(c);
+  }
+  truth.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return truth;
+}
+
+SurfaceCoverage surface_coverage(const SurfaceTruth& truth, const PointCloud& points_world) {
+  SurfaceCoverage result;
+  const std::vector<std::uint32_t> covered = covered_cells(truth.grid, truth.surface, points_world);
+  std::set_intersection(covered.begin(), covered.end(), truth.visible.begin(), truth.visible.end(),
+                        std::back_inserter(result.covered));
+  if (!truth.visible.empty()) {
+    result.visible =
+        static_cast<double>(result.covered.size()) / static_cast<double>(truth.visible.size());
+  }
+  if (!truth.surface.empty()) {
+    result.raw = static_cast<double>(covered.size()) / static_cast<double>(truth.surface.size());
+  }
+  return result;
+}
+
+}  // namespace vantage
