@@ -2,8 +2,8 @@
 /// @file
 /// The target models' rays (methods.hpp, MethodKind::kTargetModel): what one target cell's ray
 /// predicts under each model, and `with_predictor`, which hands the one `GainConfig::method` names
-/// to a traversal strategy (exact.cpp sums them per view; the screened search samples them). A
-/// predictor is a small value with
+/// to a traversal strategy (exact.cpp sums them per view; the swept search's race lists them per
+/// cell). A predictor is a small value with
 ///   template <typename Cells>
 ///   TargetPrediction operator()(const Cells&, const Eigen::Vector3d& origin, const Index3& target)
 ///   const;
