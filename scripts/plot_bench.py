@@ -369,15 +369,7 @@ def trial_metrics(g):
                  "auc": sum((a + b) / 2 for a, b in zip(unobserved, unobserved[1:])),
                  "travel": sum(float(r.get("travel_m") or 0.0) for r in rows),
                  "coverage": float(rows[-1]["coverage"])}
-            for level in LEVELS:
-                m[("scans_to", level)] = m[("travel_to", level)] = None
-                travel = 0.0
-                for r in rows:
-                    travel += float(r.get("travel_m") or 0.0)
-                    if float(r["coverage"]) >= level - 1e-12:
-                        m[("scans_to", level)] = int(r["scan"])
-                        m[("travel_to", level)] = travel
-                        break
+            add_scans_to(m, rows, [float(r["coverage"]) for r in rows], LEVELS)
             trials.append(m)
     trials.sort(key=lambda m: (m["scene"], m["method"], setting_order(m["setting"]),
                                int(m["trial"])))
@@ -527,19 +519,25 @@ def surface_metrics(g):
                  "aac": sum(1 - c for c in cov), "auc": sum(cov),
                  "travel": sum(float(r.get("travel_m") or 0.0) for r in rows),
                  "final": cov[-1], "raw": float(rows[-1].get("raw_surface_coverage") or "nan")}
-            for level in SURFACE_LEVELS:
-                m[("scans_to", level)] = m[("travel_to", level)] = None
-                travel = 0.0
-                for r, c in zip(rows, cov):
-                    travel += float(r.get("travel_m") or 0.0)
-                    if c >= level - 1e-12:
-                        m[("scans_to", level)] = int(r["scan"])
-                        m[("travel_to", level)] = travel
-                        break
+            add_scans_to(m, rows, cov, SURFACE_LEVELS)
             trials.append(m)
     trials.sort(key=lambda m: (m["scene"], m["method"], setting_order(m["setting"]),
                                int(m["trial"])))
     return trials
+
+
+def add_scans_to(m, rows, coverage, levels):
+    """m[("scans_to", level)] and m[("travel_to", level)]: the first scan whose coverage reaches
+    each level and the travel up to and including it [m]; None where the trial never does."""
+    for level in levels:
+        m[("scans_to", level)] = m[("travel_to", level)] = None
+        travel = 0.0
+        for r, c in zip(rows, coverage):
+            travel += float(r.get("travel_m") or 0.0)
+            if c >= level - 1e-12:
+                m[("scans_to", level)] = int(r["scan"])
+                m[("travel_to", level)] = travel
+                break
 
 
 def censored_median(values, budget):

@@ -4,6 +4,7 @@ import json
 import os
 import pathlib
 import subprocess
+import sys
 
 import pytest
 
@@ -50,3 +51,12 @@ def own_scans(tmp_path_factory, vantage_bin, source_dir):
     run = subprocess.run([str(vantage_bin), "plan", str(folder), "--json", "--out", str(out)],
                          check=True, capture_output=True, text=True)
     return folder, json.loads(run.stdout), out
+
+
+@pytest.fixture(scope="module")
+def plot_bench(source_dir):
+    """scripts/plot_bench.py as a module (the summaries' tests)."""
+    sys.path.insert(0, str(source_dir / "scripts"))
+    import plot_bench
+    yield plot_bench
+    sys.path.remove(str(source_dir / "scripts"))

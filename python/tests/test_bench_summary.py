@@ -3,7 +3,6 @@ on a small synthetic scans.csv whose answers are worked out by hand: AUC, scans 
 90 % and 95 % coverage, a censored trial, the Wilcoxon signed-rank p-values."""
 
 import csv
-import sys
 
 import pytest
 
@@ -35,14 +34,6 @@ def rows(scene, method, trial, curve):
                       coverage=str(coverage[k]), travel_m=str(travel[k]))
         out.append(",".join(fields[name] for name in HEADER.split(",")))
     return out
-
-
-@pytest.fixture(scope="module")
-def plot_bench(source_dir):
-    sys.path.insert(0, str(source_dir / "scripts"))
-    import plot_bench
-    yield plot_bench
-    sys.path.remove(str(source_dir / "scripts"))
 
 
 @pytest.fixture

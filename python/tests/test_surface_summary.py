@@ -4,7 +4,6 @@ visible surface (censored where not reached), the area above the coverage curve,
 gap between greedy and the greedy oracle closed, the paired test, the Pareto front, and the
 set-cover table."""
 
-import sys
 
 import pytest
 
@@ -33,14 +32,6 @@ def rows(scene, method, trial):
                       raw_surface_coverage=str(coverage[k] / 2))
         out.append(",".join(fields[name] for name in HEADER.split(",")))
     return out
-
-
-@pytest.fixture(scope="module")
-def plot_bench(source_dir):
-    sys.path.insert(0, str(source_dir / "scripts"))
-    import plot_bench
-    yield plot_bench
-    sys.path.remove(str(source_dir / "scripts"))
 
 
 @pytest.fixture
