@@ -41,7 +41,9 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                  "(survival's views planned past the next scan and toured: --horizon, "
                  "--travel-weight; default 3 views, 0.1/m), or one of the field's metrics: "
                  "occlusion-aware, unobserved-voxel, rear-side-voxel, rear-side-entropy, "
-                 "proximity-count, average-entropy, area-factor (docs/model.md)")
+                 "proximity-count, average-entropy, area-factor (docs/model.md); explore and bench "
+                 "on a table top also take greedy-oracle (the view whose true hits add the most "
+                 "surface, docs/yardstick.md)")
       ->capture_default_str();
   cmd.add_option("--alpha,-a", alpha,
                  "observability parameter a of the probabilistic and survival methods, in (0, 1], "
