@@ -44,8 +44,9 @@ enum class GainEvaluation {
   /// Rays cast outward through the frustum, each carrying the model's state along itself and
   /// crediting the cells it owns (vantage/gain/fast.hpp, docs/fast-gain.md).
   kFast,
-  /// Whichever of the two costs less on this map state and these views, by counts taken before
-  /// any ray is cast (docs/fast-gain.md, "Choosing per map state"). Deterministic.
+  /// The cheaper of the two: the exact one for the target models, which since issue 25's faster
+  /// rays costs as little as the fast one or less in every state measured (BENCHMARK.md, "One
+  /// planner"); for the field's metrics, every third ray (metrics.hpp).
   kAuto,
 };
 

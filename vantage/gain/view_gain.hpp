@@ -2,8 +2,8 @@
 /// @file
 /// Expected information gain of candidate views (eqs. 1, 3, 4; docs/model.md "One view"): the
 /// gain layer's façade `evaluate_views` (its types: types.hpp), which takes the evaluation
-/// `GainConfig::evaluation` names: the exact one (exact.hpp), the fast one (fast.hpp), or for
-/// `kAuto` the cheaper of the two. The ray model both run is `PaperModel` (model.hpp).
+/// `GainConfig::evaluation` names: the exact one (exact.hpp, also for `kAuto`) or the fast one
+/// (fast.hpp). The ray model both run is `PaperModel` (model.hpp).
 
 #include <span>
 #include <vector>
@@ -14,10 +14,8 @@
 
 namespace vantage {
 
-/// Gains of all views, by the evaluation `config.evaluation` names; for kAuto the cheaper of the
-/// fast and the exact one on this map state (docs/fast-gain.md "Choosing per map state"), bit for
-/// bit the one chosen. The choice comes from counts taken before any ray is cast, so it does not
-/// depend on time or threads. The grid is only read.
+/// Gains of all views, by the evaluation `config.evaluation` names (kAuto: the exact one for the
+/// target models, GainEvaluation). The grid is only read.
 std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const Frustum> views,
                                      const GainConfig& config);
 
