@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The decision with no search option, through the CLI, as a user runs it (issue 35's targets;
-# BENCHMARK.md, "One planner"): explore on tabletop-4 (the decisions after scans 2-8), plan over
+# BENCHMARK.md, "One planner"): explore on tabletop-4 (the decisions for scans 2-8, by the default
+# method and by the paper's literal one), plan over
 # 200 and 1 000 sphere views of tabletop-4's map after one scan, plan on the shared Kinect and
 # stereo frames, and FR-079 with frontier candidates and Latombe; then Python's plan with its
 # defaults on the same Kinect frame. Prints each decision's seconds.plan [ms] (less greedy's
@@ -9,6 +10,9 @@
 # --benchmark_filter=BM_Gain30_OctoMap/2`), which this script does not run.
 #
 #   scripts/bench-defaults.sh [BUILD_DIR] [RUNS]      # default build/release, 3 runs each
+#
+# Any build of the CLI will do, an older one too (its JSON may not say which search decided: -),
+# so that the defaults before and after a change are measured by one command.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build/release}
@@ -37,23 +41,28 @@ report() {  # NAME FILE: a plan.json's decision
 import json, sys
 p = json.load(open(sys.argv[2]))
 s = p["seconds"]
-print(f"{sys.argv[1]:<34} {1e3 * (s['plan'] - s['reference']):8.1f} ms  {p['search']:<10} "
+print(f"{sys.argv[1]:<34} {1e3 * (s['plan'] - s['reference']):8.1f} ms  "
+      f"{p.get('search', '-'):<10} "
       f"{len(p['candidates'])} views")
 PY
 }
 for r in $(seq "$runs"); do
-  "$vantage" explore --scene tabletop-4 --scans 8 --threads "$threads" --no-plots --quiet \
-    --out "$work/explore$r" >/dev/null
-  /usr/bin/python3 - "$work/explore$r/run.json" <<'PY'
+  # The default method (survival), and the paper's literal one, which ranks by bits.
+  for method in survival probabilistic; do
+    "$vantage" explore --scene tabletop-4 --method "$method" --scans 8 --threads "$threads" \
+      --no-plots --quiet --out "$work/explore-$method-$r" >/dev/null
+    /usr/bin/python3 - "$work/explore-$method-$r/run.json" "$method" <<'PY'
 import json, statistics, sys
 run = json.load(open(sys.argv[1]))
 # NOTE: scan k's record holds the decision that chose it; the first scan's had none.
-decided = [s for s in run["scans"] if s.get("search")]
+decided = [s for s in run["scans"] if s["scan"] > 1]
 ms = [1e3 * (s["seconds"]["plan"] - s["seconds"]["reference"]) for s in decided]
-searches = sorted({s["search"] for s in decided})
-print(f"{'explore tabletop-4, scans 2-8':<34} {statistics.median(ms):8.1f} ms  "
-      f"{','.join(searches):<10} median of {len(ms)} (max {max(ms):.1f})")
+searches = sorted({s.get("search") or "-" for s in decided})
+print(f"{'explore tabletop-4, ' + sys.argv[2]:<34} {statistics.median(ms):8.1f} ms  "
+      f"{','.join(searches):<10} median of scans 2-8 (max {max(ms):.1f}), views "
+      f"{[s['view'] for s in run['scans']]}")
 PY
+  done
   for n in 200 1000; do
     "$vantage" plan --map "$work/one/map.ot" --candidates sphere --views "$n" \
       --threads "$threads" --no-plots --json --out "$work/sphere$n-$r" >/dev/null
@@ -73,6 +82,7 @@ PY
     report "plan, FR-079 frontier ($band m), latombe" "$work/fr079-$band-$r/plan.json"
   done
   # Python's plan_next_view with its defaults, on the Kinect frame's map and plan's candidates.
+  [[ -d "$build/python/vantage" ]] || continue  # a build without the bindings
   PYTHONPATH="$build/python" /usr/bin/python3 - "$work/milk-$r" <<'PY'
 import json, sys
 import numpy as np
@@ -94,7 +104,8 @@ fov = vt.SensorFov.from_degrees(s["horizontal_fov_deg"], s["vertical_fov_deg"], 
                                 s["max_range_m"])
 poses = [p for _, p in sorted(poses, key=lambda ip: ip[0])]
 plan = vt.plan_next_view(grid, np.stack(poses), fov)
-print(f"{'python, milk frame':<34} {1e3 * plan.seconds:8.1f} ms  {plan.search:<10} "
+print(f"{'python, milk frame':<34} {1e3 * plan.seconds:8.1f} ms  "
+      f"{getattr(plan, 'search', '-'):<10} "
       f"{len(poses)} views, the CLI's choice: {plan.best == cli['next_best_view']['index']}")
 PY
 done

@@ -351,26 +351,33 @@ def summary(out, scenes, g, paired=()):
 LEVELS = (0.90, 0.95)
 
 
+def trial_rows(g):
+    """Each trial's rows in scan order: ((scene, method, setting), trial, rows) for every group of
+    grouped()."""
+    for key, by_scan in g.items():
+        by_trial = defaultdict(list)
+        for k in sorted(by_scan):
+            for r in by_scan[k]:
+                by_trial[r["trial"]].append(r)
+        for trial, rows in by_trial.items():
+            yield key, trial, rows
+
+
 def trial_metrics(g):
     """One dict per trial (scene, method, setting, trial): its AUC [cells x scans] (trapezoid over
     scans 1..last, a trial that stopped early carried forward), travel [m], final coverage, and
     for each level the first scan whose coverage reaches it and the travel up to and including
     that scan, None when no scan of the trial reaches it (censored)."""
     trials = []
-    for (scene, method, setting), by_scan in g.items():
-        by_trial = defaultdict(list)
-        for k in sorted(by_scan):
-            for r in by_scan[k]:
-                by_trial[r["trial"]].append(r)
-        for trial, rows in by_trial.items():
-            unobserved = [float(r["unobserved"]) for r in rows]
-            m = {"scene": scene, "method": method, "setting": setting, "trial": trial,
-                 "scans": len(rows),
-                 "auc": sum((a + b) / 2 for a, b in zip(unobserved, unobserved[1:])),
-                 "travel": sum(float(r.get("travel_m") or 0.0) for r in rows),
-                 "coverage": float(rows[-1]["coverage"])}
-            add_scans_to(m, rows, [float(r["coverage"]) for r in rows], LEVELS)
-            trials.append(m)
+    for (scene, method, setting), trial, rows in trial_rows(g):
+        unobserved = [float(r["unobserved"]) for r in rows]
+        m = {"scene": scene, "method": method, "setting": setting, "trial": trial,
+             "scans": len(rows),
+             "auc": sum((a + b) / 2 for a, b in zip(unobserved, unobserved[1:])),
+             "travel": sum(float(r.get("travel_m") or 0.0) for r in rows),
+             "coverage": float(rows[-1]["coverage"])}
+        add_scans_to(m, rows, [float(r["coverage"]) for r in rows], LEVELS)
+        trials.append(m)
     trials.sort(key=lambda m: (m["scene"], m["method"], setting_order(m["setting"]),
                                int(m["trial"])))
     return trials
@@ -506,21 +513,16 @@ def surface_metrics(g):
     surface and raw coverage, and per level the first scan reaching it and the travel up to and
     including that scan (None: censored)."""
     trials = []
-    for (scene, method, setting), by_scan in g.items():
-        by_trial = defaultdict(list)
-        for k in sorted(by_scan):
-            for r in by_scan[k]:
-                by_trial[r["trial"]].append(r)
-        for trial, rows in by_trial.items():
-            if not all(r.get("surface_coverage") for r in rows):
-                continue
-            cov = [float(r["surface_coverage"]) for r in rows]
-            m = {"scene": scene, "method": method, "setting": setting, "trial": trial,
-                 "aac": sum(1 - c for c in cov), "auc": sum(cov),
-                 "travel": sum(float(r.get("travel_m") or 0.0) for r in rows),
-                 "final": cov[-1], "raw": float(rows[-1].get("raw_surface_coverage") or "nan")}
-            add_scans_to(m, rows, cov, SURFACE_LEVELS)
-            trials.append(m)
+    for (scene, method, setting), trial, rows in trial_rows(g):
+        if not all(r.get("surface_coverage") for r in rows):
+            continue
+        cov = [float(r["surface_coverage"]) for r in rows]
+        m = {"scene": scene, "method": method, "setting": setting, "trial": trial,
+             "aac": sum(1 - c for c in cov), "auc": sum(cov),
+             "travel": sum(float(r.get("travel_m") or 0.0) for r in rows),
+             "final": cov[-1], "raw": float(rows[-1].get("raw_surface_coverage") or "nan")}
+        add_scans_to(m, rows, cov, SURFACE_LEVELS)
+        trials.append(m)
     trials.sort(key=lambda m: (m["scene"], m["method"], setting_order(m["setting"]),
                                int(m["trial"])))
     return trials

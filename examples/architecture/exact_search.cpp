@@ -19,8 +19,7 @@ namespace {
 /// Every candidate evaluated by the exact evaluation, whatever GainConfig::evaluation says: the
 /// paper's definition of every view's gain, for the target models that rank by a gain.
 bool serves(const PlannerConfig& config) {
-  return config.method != PlannerMethod::kRandom && config.method != PlannerMethod::kYamauchi &&
-         !has_observability(config.method) && gain_method_of(config.method) == GainMethod::kGreedy;
+  return ranks_by_gain(config.method) && gain_method_of(config.method) == GainMethod::kGreedy;
 }
 
 Plan run(const SearchInput& in) {

@@ -142,10 +142,7 @@ py::tuple plan_recorded(const std::vector<DoubleArray>& clouds, const DoubleArra
     throw std::invalid_argument(cat("got ", clouds.size(), " clouds but ", T_world_cloud.size(),
                                     " poses; give one pose per cloud"));
   }
-  // NOTE: as `vantage plan`: greedy's prediction on every candidate, but after a swept search
-  // (it costs more than the decision itself).
-  config.greedy_reference =
-      !sequence_of(config).active() && resolve_search(config) != DecisionSearch::kSwept;
+  request_plan_reference(config);  // as `vantage plan`
   check_grid_memory(spec, mapping_cost(config.gain.num_threads), "the plan's grid");
   Mapper mapper(
       spec, recorded_mapper_config(integration, table_segmentation, icp, config.gain.num_threads));

@@ -19,6 +19,7 @@
 #include "vantage/experiment/yardstick.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/sim/scene.hpp"
+#include "vantage/util/clock.hpp"
 
 namespace vantage {
 namespace fs = std::filesystem;
@@ -279,8 +280,7 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
           const auto start = std::chrono::steady_clock::now();
           const std::string rows = run_trial(spec, config, truths);
           write_atomically(dir / "trials" / (spec.key() + ".csv"), rows);
-          event.seconds =
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          event.seconds = seconds_since(start);
           ++ran;
         }
         event.done = ++finished;

@@ -58,4 +58,9 @@ PlannerConfig PlanningSettings::planner_config(double literal_alpha) const {
   return config;
 }
 
+void request_plan_reference(PlannerConfig& config) {
+  config.greedy_reference =
+      !sequence_of(config).active() && resolve_search(config) != DecisionSearch::kSwept;
+}
+
 }  // namespace vantage

@@ -51,4 +51,9 @@ struct PlanningSettings {
   PlannerConfig planner_config(double literal_alpha = kTableTopAlpha) const;
 };
 
+/// What `vantage plan` and Python's plan ask for beside the decision: greedy's count on every
+/// candidate (the reference of the paper's Fig. 11), except after a swept search or a sequence,
+/// where it would cost more than the decision itself.
+void request_plan_reference(PlannerConfig& config);
+
 }  // namespace vantage

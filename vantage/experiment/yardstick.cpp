@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "vantage/sim/ground_truth.hpp"
+#include "vantage/util/clock.hpp"
 
 namespace vantage {
 namespace {
@@ -135,7 +136,7 @@ SurfaceTruth compute_surface_truth(const sim::World& world,
   for (const std::uint32_t c : truth.surface) {
     if (seen[c] != 0) truth.visible.push_back(c);
   }
-  truth.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  truth.seconds = seconds_since(start);
   return truth;
 }
 

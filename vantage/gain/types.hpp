@@ -86,6 +86,14 @@ struct ViewGain {
   /// cells with epsilon = 0, without those behind a ray's early stop and those deep in uniform
   /// unobserved space with a pinned posterior otherwise.
   std::size_t targets = 0;
+
+  /// Adds `other`'s three sums: the gain of several views (a candidate's, a view's rows).
+  ViewGain& operator+=(const ViewGain& other) {
+    gain += other.gain;
+    cells += other.cells;
+    targets += other.targets;
+    return *this;
+  }
 };
 
 }  // namespace vantage

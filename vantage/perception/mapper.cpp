@@ -10,14 +10,11 @@
 #include <vector>
 
 #include "vantage/perception/voxel_filter.hpp"
+#include "vantage/util/clock.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 /// One point per map cell (the centroid of the cell's points), in the frame of `points`, which
 /// `T_world_points` places in the world.

@@ -9,6 +9,7 @@
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/view_gain.hpp"
+#include "vantage/util/clock.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -106,11 +107,7 @@ std::vector<double> CandidateViews::sums(const std::vector<double>& per_view) co
 std::vector<ViewGain> CandidateViews::sums(const std::vector<ViewGain>& per_view) const {
   std::vector<ViewGain> out(size());
   for (std::size_t c = 0; c < size(); ++c) {
-    for (std::size_t v = first[c]; v < first[c + 1]; ++v) {
-      out[c].gain += per_view[v].gain;
-      out[c].cells += per_view[v].cells;
-      out[c].targets += per_view[v].targets;
-    }
+    for (std::size_t v = first[c]; v < first[c + 1]; ++v) out[c] += per_view[v];
   }
   return out;
 }
@@ -126,20 +123,14 @@ std::vector<double> SearchInput::travel_factors() const {
   return out;
 }
 
-double SearchInput::seconds() const {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+double SearchInput::seconds() const { return seconds_since(start); }
 
 ViewGain full_prediction(const OccupancyGrid& grid, const CandidateViews& views, std::size_t c,
                          const GainConfig& gain) {
   const std::span<const Frustum> chosen(views.frusta.data() + views.first[c],
                                         views.first[c + 1] - views.first[c]);
   ViewGain full;
-  for (const ViewGain& g : exact_view_gains(grid, chosen, gain)) {
-    full.gain += g.gain;
-    full.cells += g.cells;
-    full.targets += g.targets;
-  }
+  for (const ViewGain& g : exact_view_gains(grid, chosen, gain)) full += g;
   return full;
 }
 
@@ -152,8 +143,7 @@ void add_greedy_reference(const SearchInput& input, Plan& plan) {
     counts.push_back(g.gain);
   }
   plan.greedy_gains = input.views.sums(counts);
-  plan.reference_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  plan.reference_seconds = seconds_since(start);
 }
 
 void report_choice(const SearchInput& input, Plan& plan) {
@@ -163,8 +153,7 @@ void report_choice(const SearchInput& input, Plan& plan) {
     const auto predict_start = std::chrono::steady_clock::now();
     plan.gains[plan.best] = full_prediction(input.grid, input.views, plan.best, input.gain);
     if (!plan.estimated.empty()) plan.estimated[plan.best] = false;
-    plan.prediction_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - predict_start).count();
+    plan.prediction_seconds = seconds_since(predict_start);
   }
   if (method_traits(input.gain.method).counts) {
     // A counting method's gains are greedy's: the reference costs nothing.

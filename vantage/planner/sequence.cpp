@@ -15,6 +15,7 @@
 #include "vantage/gain/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/snapshot.hpp"
+#include "vantage/util/clock.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"
 
@@ -283,9 +284,6 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
 Plan decide_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> candidates,
                         const PlannerConfig& config) {
   const auto start = std::chrono::steady_clock::now();
-  const auto since = [](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-  };
   std::vector<Frustum> views;
   std::vector<double> travel;
   for (std::size_t c = 0; c < candidates.size(); ++c) {
@@ -315,12 +313,12 @@ Plan decide_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> ca
   if (counts) {
     for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
   }
-  plan.seconds = since(start);
+  plan.seconds = seconds_since(start);
   if (!counts || sampled) {
     // NOTE: the cells decided; the bits of eq. (4) are the chosen view's report (as pruned).
     const auto predict_start = std::chrono::steady_clock::now();
     plan.gains[plan.best] = exact_view_gain(grid, views[plan.best], gain);
-    plan.prediction_seconds = since(predict_start);
+    plan.prediction_seconds = seconds_since(predict_start);
     if (sampled) plan.estimated[plan.best] = false;
     if (counts) plan.greedy_gains[plan.best] = plan.gains[plan.best].gain;
   }

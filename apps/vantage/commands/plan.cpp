@@ -28,7 +28,7 @@
 #include "vantage/io/map_files.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/io/ply_export.hpp"
-#include "vantage/planner/search.hpp"
+#include "vantage/util/clock.hpp"
 #include "vantage/util/limits.hpp"
 #include "vantage/util/memory.hpp"
 #include "vantage/views/frontier.hpp"
@@ -50,10 +50,6 @@ fs::path out_dir(const PlanOptions& o) {
   if (!o.out.empty()) return o.out;
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   return fs::path("results") / fmt::format("plan-{:%Y%m%d-%H%M%S}", fmt::localtime(now));
-}
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 /// The ICP column of a cloud's line.
@@ -85,9 +81,7 @@ void run(const PlanOptions& o) {
         "--alpha auto fits a over an exploration's scans (explore, bench); plan takes a number");
   }
   PlannerConfig planner = o.planning.planner_config();
-  // NOTE: greedy's prediction on every candidate costs more than a swept decision itself.
-  planner.greedy_reference =
-      !sequence_of(planner).active() && resolve_search(planner) != DecisionSearch::kSwept;
+  request_plan_reference(planner);
   const GainUnits units = gain_units(planner);
   if (!o.sensor_height.empty() && o.candidates != "frontier") {
     throw UsageError("--sensor-height places frontier candidates: give --candidates frontier");

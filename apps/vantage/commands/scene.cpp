@@ -17,6 +17,7 @@
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/sim/generate.hpp"
 #include "vantage/sim/ground_truth.hpp"
+#include "vantage/util/clock.hpp"
 #include "vantage/util/memory.hpp"
 
 namespace vantage::cli {
@@ -100,8 +101,7 @@ void run(const SceneOptions& o) {
     const auto begin = std::chrono::steady_clock::now();
     const sim::World world(scene, sim::WorldConfig{o.threads});
     const sim::GroundTruth gt = sim::compute_ground_truth(world, o.threads);
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+    const double seconds = seconds_since(begin);
     fmt::print(
         "ground truth: {} occupied cells, {} surface cells, {} observable from {} viewpoints "
         "({:.1f} s)\n",

@@ -20,16 +20,13 @@
 #include "vantage/planner/observability.hpp"
 #include "vantage/sim/ground_truth.hpp"
 #include "vantage/sim/world.hpp"
+#include "vantage/util/clock.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/frontier.hpp"
 
 namespace vantage::detail {
 
 using Clock = std::chrono::steady_clock;
-
-inline double seconds_since(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 /// Seeds of the independent random streams of one run: scan k's sensor noise, its pose noise,
 /// and the random choice after it. Mixing keeps runs with neighbouring seeds unrelated.

@@ -86,12 +86,7 @@ void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
   });
   for (std::size_t m = 0; m < k; ++m) {
     ViewGain total;
-    for (std::size_t row = 0; row < rows; ++row) {
-      const ViewGain& r = row_sums[row * k + m];
-      total.gain += r.gain;
-      total.cells += r.cells;
-      total.targets += r.targets;
-    }
+    for (std::size_t row = 0; row < rows; ++row) total += row_sums[row * k + m];
     gains[members[m]] = total;
   }
 }

@@ -126,9 +126,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
       double value = 0.0;
       for (std::size_t k = first[b]; k < first[b + 1]; ++k, ++v) {
         const ViewGain& g = gains[v];
-        sum.gain += g.gain;
-        sum.cells += g.cells;
-        sum.targets += g.targets;
+        sum += g;
         value += (score == PrunedScore::kBits ? g.gain : g.cells) * factor_of(b);
       }
       out.gains[b] = sum;
