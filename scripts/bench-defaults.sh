@@ -43,7 +43,7 @@ p = json.load(open(sys.argv[2]))
 s = p["seconds"]
 print(f"{sys.argv[1]:<34} {1e3 * (s['plan'] - s['reference']):8.1f} ms  "
       f"{p.get('search', '-'):<10} "
-      f"{len(p['candidates'])} views")
+      f"{len(p['candidates'])} views, chose {p['next_best_view']['index']}")
 PY
 }
 for r in $(seq "$runs"); do
@@ -82,7 +82,7 @@ PY
     report "plan, FR-079 frontier ($band m), latombe" "$work/fr079-$band-$r/plan.json"
   done
   # Python's plan_next_view with its defaults, on the Kinect frame's map and plan's candidates.
-  [[ -d "$build/python/vantage" ]] || continue  # a build without the bindings
+  compgen -G "$build/python/vantage/_vantage*.so" >/dev/null || continue  # no bindings built
   PYTHONPATH="$build/python" /usr/bin/python3 - "$work/milk-$r" <<'PY'
 import json, sys
 import numpy as np
