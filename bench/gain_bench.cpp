@@ -1,11 +1,10 @@
 // Gain evaluation of the 30 ring candidates on the 129 x 129 x 65 table top after one scan:
-// exact, fast, and the OctoMap way; and the paper's model's decision among them (BENCHMARK.md).
+// exact and the OctoMap way; and the paper's model's decision among them (BENCHMARK.md).
 #include <benchmark/benchmark.h>
 
 #include "bench/fixtures.hpp"
 #include "bench/octomap_gain.hpp"
 #include "vantage/gain/exact.hpp"
-#include "vantage/gain/fast.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/planner.hpp"
 
@@ -44,11 +43,6 @@ void BM_Gain30_Exact(benchmark::State& state) {
 }
 BENCHMARK(BM_Gain30_Exact)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-void BM_Gain30_Fast(benchmark::State& state) {
-  gain30(state, [](const auto&... args) { return fast_view_gains(args...); });
-}
-BENCHMARK(BM_Gain30_Fast)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
-
 // The paper's model's decision over the same 30 views, by the expected cells seen (E, ViewGain::
 // cells): the swept search, which races the views on the model's exact per-target v_M
 // (docs/decision.md, "The paper's model"). `decision_ms` is the decision's own time (Plan::seconds,
@@ -80,7 +74,7 @@ void BM_Gain30_Decision(benchmark::State& state) {
 }
 BENCHMARK(BM_Gain30_Decision)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// The snapshot alone (part of every fast and exact evaluation above).
+// The snapshot alone (part of every exact evaluation above).
 void BM_GainMapSnapshot(benchmark::State& state) {
   const World& world = table_top_after_one_scan();
   for (auto _ : state)

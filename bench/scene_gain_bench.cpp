@@ -1,6 +1,6 @@
 // Gain evaluation of the 30 ring candidates on the built-in table tops (vantage::sim) after 1, 3
-// and 6 paper-mode scans: the map states of the fast gain's oracle test
-// (tests/gain/fast_gain_scenes_test.cpp), so each evaluation's cost can be followed as a table
+// and 6 paper-mode scans: the map states of the gain's scene test
+// (tests/gain/gain_scenes_test.cpp), so each evaluation's cost can be followed as a table
 // top is explored (BENCHMARK.md, "The built-in scenes").
 #include <benchmark/benchmark.h>
 
@@ -41,16 +41,12 @@ const SceneState& scene_state(int scene, int scans) {
   return states.emplace(key, std::move(state)).first->second;
 }
 
-/// Arguments: scene 1..4, scans 1, 3 or 6, evaluation (0 exact, 1 fast, 2 auto).
+/// Arguments: scene 1..4, scans 1, 3 or 6.
 void BM_SceneGain30(benchmark::State& state) {
   const SceneState& s =
       scene_state(static_cast<int>(state.range(0)), static_cast<int>(state.range(1)));
   GainConfig config;
   config.num_threads = 1;
-  const auto mode = state.range(2);
-  config.evaluation = mode == 0   ? GainEvaluation::kExact
-                      : mode == 1 ? GainEvaluation::kFast
-                                  : GainEvaluation::kAuto;
   double gain = 0.0;
   for (auto _ : state) {
     gain = 0.0;
@@ -59,8 +55,8 @@ void BM_SceneGain30(benchmark::State& state) {
   state.counters["gain_bits"] = gain;
 }
 BENCHMARK(BM_SceneGain30)
-    ->ArgsProduct({{1, 2, 3, 4}, {1, 3, 6}, {0, 1, 2}})
-    ->ArgNames({"tabletop", "scans", "mode"})
+    ->ArgsProduct({{1, 2, 3, 4}, {1, 3, 6}})
+    ->ArgNames({"tabletop", "scans"})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 

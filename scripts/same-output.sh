@@ -40,7 +40,6 @@ run demo                                                  # make demo's explorat
 run tt4-greedy    --scene tabletop-4 --method greedy --scans 4 --seed 3
 run tt1-random    --scene tabletop-1 --method random --scans 3 --seed 5
 run tt2-exact     --scene tabletop-2 --evaluation exact --scans 3 --start 4
-run tt2-fast      --scene tabletop-2 --evaluation fast --scans 3 --start 4
 run tt3-revisit   --scene tabletop-3 --revisit --scans 4 --alpha 0.9999
 run office-prob   --scene office-small-cluttered --scans 3
 run office-yama   --scene office-small-sparse --method yamauchi --scans 3

@@ -91,21 +91,21 @@ void bind_gain(py::module_& m) {
            py::arg("evaluation") = "auto", py::arg("alpha") = kTableTopAlpha,
            py::arg("epsilon") = GainConfig{}.epsilon,
            py::arg("ray_spacing") = GainConfig{}.ray_spacing, py::arg("num_threads") = 0,
-           "method 'probabilistic' or 'greedy'; evaluation 'auto', 'fast' or 'exact'; alpha in "
-           "(0, 1]; epsilon (early stop) in [0, 0.5); ray_spacing [cells] in (0, 1] for the fast "
-           "evaluation; num_threads 0 = all cores (results do not depend on it). ValueError "
+           "method 'probabilistic', 'survival', 'greedy' or a metric's name; evaluation 'auto' or "
+           "'exact' (a metric's every third or every ray); alpha in (0, 1]; epsilon (early stop) "
+           "in [0, 0.5); ray_spacing [cells] in (0, 1] for the metrics' rays; num_threads 0 = all cores (results do not depend on it). ValueError "
            "naming the field when one is bad.")
       .def_property_readonly(
           "method", [](const GainConfig& c) { return std::string(to_string(c.method)); },
           "'probabilistic' (the paper's model) or 'greedy' (infinite visibility).")
       .def_property_readonly(
           "evaluation", [](const GainConfig& c) { return std::string(to_string(c.evaluation)); },
-          "'exact' (a ray to every target cell), 'fast' (rays cast outward) or 'auto'.")
+          "'exact' (a metric's every ray) or 'auto' (every third along each image axis).")
       .def_readonly("alpha", &GainConfig::alpha, "Observability parameter a, in (0, 1].")
       .def_readonly("epsilon", &GainConfig::epsilon,
                     "Early stop: a ray stops once its visibility falls below it, in [0, 0.5).")
       .def_readonly("ray_spacing", &GainConfig::ray_spacing,
-                    "Fast mode: spacing of neighbouring rays at the farthest cell [cells].")
+                    "The metrics: spacing of neighbouring rays at the farthest cell [cells].")
       .def_readonly("num_threads", &GainConfig::num_threads,
                     "0 = all cores; results are identical for any count.");
 
@@ -116,8 +116,7 @@ void bind_gain(py::module_& m) {
                     "Expected number of the unobserved cells in view that the view sees, E (the "
                     "sum of each target's visibility) [cells]; greedy's count for greedy.")
       .def_readonly("targets", &ViewGain::targets,
-                    "Unobserved cells evaluated: exact mode, all those in the frustum; fast mode, "
-                    "those it credited.")
+                    "Unobserved cells evaluated: all those in the frustum.")
       .def("__repr__", [](const ViewGain& g) {
         return cat("ViewGain(gain=", g.gain, ", cells=", g.cells, ", targets=", g.targets, ")");
       });

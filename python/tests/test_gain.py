@@ -57,14 +57,16 @@ def test_known_grid_has_no_gain(setup):
         assert g.gain == 0.0 and g.targets == 0
 
 
-def test_fast_and_exact_agree_and_threads_do_not_matter(setup):
+def test_auto_is_exact_and_threads_do_not_matter(setup):
     _, grid, poses = setup
-    exact = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(evaluation="exact", epsilon=0.0))
-    fast = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(evaluation="fast", epsilon=0.0))
-    np.testing.assert_allclose([g.gain for g in fast], [g.gain for g in exact], rtol=0.05)
-    one = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(evaluation="fast", num_threads=1))
-    two = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(evaluation="fast", num_threads=2))
+    exact = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(evaluation="exact"))
+    auto = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(evaluation="auto"))
+    assert [g.gain for g in auto] == [g.gain for g in exact]
+    one = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(num_threads=1))
+    two = vt.evaluate_views(grid, poses, FOV, vt.GainConfig(num_threads=2))
     assert [g.gain for g in one] == [g.gain for g in two]
+    with pytest.raises(ValueError, match="fast"):  # removed: the exact one costs as little
+        vt.GainConfig(evaluation="fast")
 
 
 def test_plan_chooses_the_highest_gain(setup):

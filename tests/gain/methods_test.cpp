@@ -13,7 +13,6 @@
 
 #include "row_grid.hpp"
 #include "vantage/gain/exact.hpp"
-#include "vantage/gain/fast.hpp"
 #include "vantage/gain/metrics.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/view_gain.hpp"
@@ -47,7 +46,7 @@ TEST(Methods, AMetricHasAnEvaluationAndATargetModelARay) {
     if (t.kind == MethodKind::kMetric) {
       EXPECT_NE(t.metric, nullptr) << t.name;
       EXPECT_EQ(t.ray, TargetRay::kNone) << t.name;
-      EXPECT_FALSE(t.has_objective || t.counts || t.fast_mode) << t.name;
+      EXPECT_FALSE(t.has_objective || t.counts) << t.name;
     } else {
       EXPECT_EQ(t.metric, nullptr) << t.name;
       EXPECT_NE(t.ray, TargetRay::kNone) << t.name;
@@ -57,7 +56,7 @@ TEST(Methods, AMetricHasAnEvaluationAndATargetModelARay) {
 }
 
 // The traits say what the evaluations do: a counting method's bits are its cells and whole
-// numbers; a method without the fast mode gives its exact values under kFast.
+// numbers; a target model gives its exact values under kAuto.
 TEST(Methods, TheTraitsDescribeWhatTheEvaluationsDo) {
   const OccupancyGrid grid = test::row_grid();
   const std::vector<Frustum> views = {test::looking_along_x({-0.5, 0.0, 0.0}),
@@ -70,8 +69,8 @@ TEST(Methods, TheTraitsDescribeWhatTheEvaluationsDo) {
     config.num_threads = 1;
     config.evaluation = GainEvaluation::kExact;
     const std::vector<ViewGain> exact = evaluate_views(grid, views, config);
-    config.evaluation = GainEvaluation::kFast;
-    const std::vector<ViewGain> fast = evaluate_views(grid, views, config);
+    config.evaluation = GainEvaluation::kAuto;
+    const std::vector<ViewGain> automatic = evaluate_views(grid, views, config);
     double total = 0.0;
     for (std::size_t v = 0; v < views.size(); ++v) {
       total += exact[v].cells;
@@ -79,9 +78,7 @@ TEST(Methods, TheTraitsDescribeWhatTheEvaluationsDo) {
         EXPECT_EQ(exact[v].gain, exact[v].cells) << t.name;
         EXPECT_EQ(exact[v].cells, std::round(exact[v].cells)) << t.name;
       }
-      if (!t.fast_mode) {
-        EXPECT_EQ(fast[v].gain, exact[v].gain) << t.name << " view " << v;
-      }
+      EXPECT_EQ(automatic[v].gain, exact[v].gain) << t.name << " view " << v;
     }
     EXPECT_GT(total, 0.0) << t.name;
   }

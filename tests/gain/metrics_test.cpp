@@ -10,7 +10,6 @@
 
 #include "row_grid.hpp"
 #include "vantage/gain/exact.hpp"
-#include "vantage/gain/fast.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/gain/view_gain.hpp"
 
@@ -155,11 +154,11 @@ TEST(Metrics, AreaFactorOfAViewHalfOnAFrontSurfaceAndHalfOnOccplane) {
   EXPECT_NEAR(evaluate_views(grid, std::span<const Frustum>(&view, 1), config)[0].gain, 0.0, 1e-12);
 }
 
-TEST(Metrics, FastCastsFewerRaysButReachesTheRowAlike) {
-  // The fast evaluation keeps every third ray along each axis, the middle ones among them.
+TEST(Metrics, AutoCastsFewerRaysButReachesTheRowAlike) {
+  // The auto evaluation keeps every third ray along each axis, the middle ones among them.
   for (const GainMethod m :
        {GainMethod::kUnobservedVoxel, GainMethod::kProximityCount, GainMethod::kRearSideVoxel}) {
-    EXPECT_DOUBLE_EQ(metric_on_row(m, GainEvaluation::kFast).gain, metric_on_row(m).gain)
+    EXPECT_DOUBLE_EQ(metric_on_row(m, GainEvaluation::kAuto).gain, metric_on_row(m).gain)
         << to_string(m);
   }
 }
@@ -221,16 +220,15 @@ TEST(Metrics, NamesParseBack) {
   EXPECT_THROW(parse_gain_method("rear-side"), std::invalid_argument);
 }
 
-// The paper's evaluations compute its model or greedy's count only: handed a metric directly,
-// they refuse it rather than return the paper's model under the metric's name.
-TEST(Metrics, ThePapersEvaluationsRefuseAMetric) {
+// The paper's evaluation computes the target models only: handed a metric directly, it refuses
+// it rather than return the paper's model under the metric's name.
+TEST(Metrics, ThePapersEvaluationRefusesAMetric) {
   const Frustum view = looking_along_x({0.05, 0.0, 0.0});
   const std::span<const Frustum> views(&view, 1);
   for (const GainMethod method : kMetrics) {
     GainConfig config;
     config.method = method;
     EXPECT_THROW(exact_view_gains(row_grid(), views, config), std::invalid_argument);
-    EXPECT_THROW(fast_view_gains(row_grid(), views, config), std::invalid_argument);
   }
 }
 

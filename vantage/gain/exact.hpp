@@ -2,7 +2,7 @@
 /// @file
 /// The exact gain evaluation (docs/model.md "One view"): every unobserved cell inside the frustum
 /// on its own ray from the sensor origin to the cell's centre, summed. The paper's definition and
-/// the reference for every faster evaluation.
+/// the reference for every faster search.
 
 #include <Eigen/Core>
 #include <cstddef>

@@ -20,23 +20,22 @@ namespace {
 using detail::all_views;
 
 constexpr MethodTraits target_model(GainMethod method, std::string_view name, TargetRay ray,
-                                    bool has_objective, bool counts, bool fast_mode) {
-  return {method, name,   MethodKind::kTargetModel, ray, has_objective, counts, fast_mode,
-          false,  nullptr};
+                                    bool has_objective, bool counts) {
+  return {method, name, MethodKind::kTargetModel, ray, has_objective, counts, false, nullptr};
 }
 
 constexpr MethodTraits metric(GainMethod method, std::string_view name, MetricFn evaluate,
                               bool needs_distances = false) {
   return {method, name,  MethodKind::kMetric, TargetRay::kNone, false,
-          false,  false, needs_distances,     evaluate};
+          false,  needs_distances, evaluate};
 }
 
 // NOTE: the rows' order is the order names are listed in messages.
 constexpr std::array kMethods = {
-    //           method                        name             ray  objective counts fast
-    target_model(GainMethod::kProbabilistic, "probabilistic", TargetRay::kPaper, true, false, true),
-    target_model(GainMethod::kSurvival, "survival", TargetRay::kSurvival, true, false, false),
-    target_model(GainMethod::kGreedy, "greedy", TargetRay::kUnblocked, false, true, false),
+    //           method                        name             ray  objective counts
+    target_model(GainMethod::kProbabilistic, "probabilistic", TargetRay::kPaper, true, false),
+    target_model(GainMethod::kSurvival, "survival", TargetRay::kSurvival, true, false),
+    target_model(GainMethod::kGreedy, "greedy", TargetRay::kUnblocked, false, true),
     metric(GainMethod::kOcclusionAware, "occlusion-aware", &all_views<OcclusionAware>),
     metric(GainMethod::kUnobservedVoxel, "unobserved-voxel", &all_views<UnobservedVoxel>),
     metric(GainMethod::kRearSideVoxel, "rear-side-voxel", &all_views<RearSideVoxel>),

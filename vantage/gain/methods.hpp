@@ -22,7 +22,7 @@ struct MetricContext;
 /// How a method values a view.
 enum class MethodKind {
   /// A prediction per unobserved target cell in the frustum, each on its own ray from the sensor
-  /// (docs/model.md "One view"): exact.hpp, and fast.hpp for the paper's model.
+  /// (docs/model.md "One view"): exact.hpp.
   kTargetModel,
   /// A sum over the cells the view's pinhole rays cross (metrics.hpp).
   kMetric,
@@ -52,9 +52,6 @@ struct MethodTraits {
   /// Its gain is a count of cells, the same in bits and in cells: integer sums, and the
   /// hierarchical count (hierarchy.hpp) serves it.
   bool counts;
-  /// Has the fast evaluation (rays cast outward, fast.hpp); the other target models take the
-  /// exact one for kFast and kAuto.
-  bool fast_mode;
   /// A metric that reads each cell's distance to the nearest occupied cell.
   bool needs_distances;
   MetricFn metric;  ///< a metric's evaluation; nullptr for a target model

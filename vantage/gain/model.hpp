@@ -4,9 +4,9 @@
 /// carries along a ray, the one step that folds in a cell (`PaperModel::step`), and the tables
 /// one evaluation builds once (a^m, the free cells before the grid).
 ///
-/// Where to change the model: `PaperModel` below (docs/model.md, top). The exact and the fast
-/// evaluation, and the OctoMap baseline of the benchmarks, are all templates on the model type;
-/// `BlindModel` is the probe the tests use to show that both modes follow it.
+/// Where to change the model: `PaperModel` below (docs/model.md, top). The exact evaluation and
+/// the OctoMap baseline of the benchmarks are templates on the model type; `BlindModel` is the
+/// probe the tests use to show that the evaluation follows it.
 
 #include <cmath>
 #include <cstddef>
@@ -70,7 +70,7 @@ struct PaperModel {
   }
 
   /// The states after k = 1 … n cells that all have occupancy p (`run[k - 1]`), for the free
-  /// cells before the grid and the uniform regions the fast mode jumps.
+  /// cells before the grid.
   /// NOTE: computed by RayModel::step, the direct form, as before the gain code was split: the
   /// two forms agree to 1e-12 (tests/gain/model_test.cpp), not to the last bit, and the outputs
   /// of every run stay bit for bit those of before.
@@ -78,8 +78,8 @@ struct PaperModel {
 };
 
 /// A model that sees nothing: every cell after the origin's is hidden, so the posterior keeps the
-/// map's occupancy and no cell gains anything. A probe for the tests: evaluated with it, the exact
-/// and the fast mode must both predict nothing.
+/// map's occupancy and no cell gains anything. A probe for the tests: evaluated with it, the
+/// exact evaluation must predict nothing.
 struct BlindModel {
   static RayOdds start(double p0) { return {1.0, p0}; }
   static void step(RayOdds& s, double /*t*/, double /*p_prev*/, double p) { s = RayOdds(0.0, p); }

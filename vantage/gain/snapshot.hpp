@@ -1,8 +1,7 @@
 #pragma once
 /// @file
-/// The snapshot both gain evaluations read (docs/fast-gain.md "Determinism and data"): `GainMap`,
-/// one small code per cell into a table of the grid's distinct values, and `BlockSummary`, which
-/// says where whole blocks of cells share one code.
+/// The snapshot the gain evaluations read: `GainMap`, one small code per cell into a table of the
+/// grid's distinct values.
 
 #include <cstddef>
 #include <cstdint>
@@ -76,20 +75,6 @@ class GainMap {
   std::vector<std::uint32_t> codes32_;
 };
 
-/// Calls `f(codes)` with the snapshot's codes as a pointer of their width (std::uint8_t,
-/// std::uint16_t or std::uint32_t); returns what `f` returns.
-template <typename F>
-decltype(auto) with_codes(const GainMap& map, F&& f) {
-  switch (map.code_width()) {
-    case 1:
-      return f(map.codes<std::uint8_t>());
-    case 2:
-      return f(map.codes<std::uint16_t>());
-    default:
-      return f(map.codes<std::uint32_t>());
-  }
-}
-
 /// Inclusive index box of the grid cells that may lie inside a frustum (its bounding box, cut to
 /// the grid); empty when the frustum misses the grid.
 struct CellBox {
@@ -102,34 +87,5 @@ inline CellBox cells_under(const GridSpec& spec, const Frustum& view) {
   return {spec.lattice_index(box.min()).cwiseMax(Index3::Zero()),
           spec.lattice_index(box.max()).cwiseMin(spec.dims - Index3::Ones())};
 }
-
-/// Blocks of kBlock^3 cells: per block its cells' common code when they share one, and how far
-/// around it every block does too (docs/fast-gain.md "Jumps across uniform space").
-struct BlockSummary {
-  static constexpr int kShift = 1;
-  static constexpr int kBlock = 1 << kShift;  ///< block edge [cells]
-  static constexpr std::uint16_t kMixed = 0xffff;
-
-  Index3 dims = Index3::Zero();          ///< blocks along each axis
-  std::vector<std::uint16_t> code;       ///< the code all cells share, or kMixed
-  std::vector<std::uint8_t> radius;      ///< the cube of blocks within this distance shares `code`
-  std::vector<std::uint8_t> unobserved;  ///< the block holds an unobserved cell
-
-  /// Index of the block that holds `cell`.
-  std::size_t index(const Index3& cell) const {
-    return static_cast<std::size_t>(cell.x() >> kShift) +
-           static_cast<std::size_t>(dims.x()) *
-               (static_cast<std::size_t>(cell.y() >> kShift) +
-                static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(cell.z() >> kShift));
-  }
-  /// Index of block (x, y, z).
-  std::size_t at(int x, int y, int z) const {
-    return static_cast<std::size_t>(x) +
-           dims.x() * (static_cast<std::size_t>(y) + dims.y() * static_cast<std::size_t>(z));
-  }
-};
-
-/// Summarizes the snapshot's blocks (in parallel; the result does not depend on the threads).
-BlockSummary summarize_blocks(const GainMap& map);
 
 }  // namespace vantage

@@ -17,7 +17,7 @@ enum class GainMethod {
   kGreedy,  ///< simple greedy: 1 if nothing occupied lies before the cell (infinite visibility)
   /// The survival reading of the visibility (survival.hpp, docs/model.md): a ray survives each
   /// unobserved cell with probability alpha, free cells always, occupied cells never; the
-  /// paper's occupancy filter on top. Exact evaluation only (kFast and kAuto take it).
+  /// paper's occupancy filter on top.
   kSurvival,
   // The field's volumetric metrics (vantage/gain/metrics.hpp, docs/model.md "The field's
   // metrics"): sums over the cells the view's rays cross, not per-target predictions.
@@ -36,22 +36,17 @@ std::string_view to_string(GainMethod method);
 /// area-factor); throws std::invalid_argument naming the value.
 GainMethod parse_gain_method(std::string_view name);
 
-/// How a view's gain is computed from the per-cell model.
+/// How finely a view's gain is computed. The target models always take one ray from the sensor
+/// to the centre of every unobserved cell in the frustum (the paper's definition, exact.hpp):
+/// the fast evaluation that cast rays outward instead cost as much or more in every state
+/// measured and was removed (BENCHMARK.md, "One planner").
 enum class GainEvaluation {
-  /// One ray from the sensor to the centre of every unobserved cell in the frustum: the paper's
-  /// definition and the reference.
-  kExact,
-  /// Rays cast outward through the frustum, each carrying the model's state along itself and
-  /// crediting the cells it owns (vantage/gain/fast.hpp, docs/fast-gain.md).
-  kFast,
-  /// The cheaper of the two: the exact one for the target models, which since issue 25's faster
-  /// rays costs as little as the fast one or less in every state measured (BENCHMARK.md, "One
-  /// planner"); for the field's metrics, every third ray (metrics.hpp).
-  kAuto,
+  kExact,  ///< a metric's every pixel ray (metrics.hpp)
+  kAuto,   ///< a metric's every third ray along each image axis (metrics.hpp)
 };
 
 std::string_view to_string(GainEvaluation evaluation);
-/// Parses "exact", "fast" or "auto"; throws std::invalid_argument naming the value.
+/// Parses "exact" or "auto"; throws std::invalid_argument naming the value.
 GainEvaluation parse_gain_evaluation(std::string_view name);
 
 /// Settings of a gain evaluation.
@@ -59,14 +54,11 @@ struct GainConfig {
   GainMethod method = GainMethod::kProbabilistic;
   GainEvaluation evaluation = GainEvaluation::kAuto;  ///< used by evaluate_views
   double alpha = kTableTopAlpha;                      ///< observability parameter a, in (0, 1]
-  /// Early stop, in [0, 0.5): a ray stops once its visibility falls below epsilon. In the fast
-  /// mode an unobserved cell whose posterior lies within epsilon of 0.5 ("pinned", gain below
-  /// 3 epsilon^2 bits) is not credited, and a pinned ray crosses uniform unobserved space in one
-  /// jump. 0 gives the literal model of docs/model.md.
+  /// Early stop, in [0, 0.5): a ray stops once its visibility falls below epsilon. 0 gives the
+  /// literal model of docs/model.md.
   double epsilon = 1e-6;
-  /// Fast mode: spacing of neighbouring rays at the farthest cell in view [cells], in (0, 1].
-  /// At most 1/sqrt(2) (the default) guarantees that every cell in view is crossed by the ray
-  /// that owns it.
+  /// The metrics: spacing of neighbouring rays at the farthest cell in view [cells], in (0, 1].
+  /// At most 1/sqrt(2) (the default) guarantees that every cell in view is crossed by a ray.
   double ray_spacing = 0.7071;
   int num_threads = 0;  ///< 0 = all cores; results are identical for any count
 
@@ -79,12 +71,9 @@ struct ViewGain {
   double gain = 0.0;  ///< expected information gain of the view, eq. (1) [bits]
   /// Expected number of the unobserved cells in view that the view sees, E (docs/model.md "The
   /// expected number of cells seen"): the sum of v_M, the visibility of each target [cells]. For
-  /// greedy, its count of unblocked targets (= gain). The fast mode adds the cells it leaves
-  /// uncredited (a pinned posterior) at the visibility of the ray that carries them.
+  /// greedy, its count of unblocked targets (= gain).
   double cells = 0.0;
-  /// Exact mode: the unobserved cells inside the frustum. Fast mode: those it credited; the same
-  /// cells with epsilon = 0, without those behind a ray's early stop and those deep in uniform
-  /// unobserved space with a pinned posterior otherwise.
+  /// The unobserved cells inside the frustum.
   std::size_t targets = 0;
 
   /// Adds `other`'s three sums: the gain of several views (a candidate's, a view's rows).

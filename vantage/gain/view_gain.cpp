@@ -4,15 +4,13 @@
 #include <stdexcept>
 
 #include "vantage/gain/exact.hpp"
-#include "vantage/gain/fast.hpp"
 #include "vantage/gain/metrics.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
 
-constexpr EnumNames<GainEvaluation, 3> kEvaluationNames = {{{GainEvaluation::kExact, "exact"},
-                                                            {GainEvaluation::kFast, "fast"},
-                                                            {GainEvaluation::kAuto, "auto"}}};
+constexpr EnumNames<GainEvaluation, 2> kEvaluationNames = {
+    {{GainEvaluation::kExact, "exact"}, {GainEvaluation::kAuto, "auto"}}};
 
 std::string_view to_string(GainEvaluation evaluation) {
   return name_of(evaluation, kEvaluationNames);
@@ -41,16 +39,7 @@ void GainConfig::validate() const {
 std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const Frustum> views,
                                      const GainConfig& config) {
   if (is_volumetric_metric(config.method)) return metric_view_gains(grid, views, config);
-  switch (config.evaluation) {
-    case GainEvaluation::kFast:
-      return fast_view_gains(grid, views, config);
-    // NOTE: since issue 25's faster rays the exact mode costs as little as the fast one or less
-    // in every state measured (BENCHMARK.md, "One planner"), so the cheaper one is the exact.
-    case GainEvaluation::kAuto:
-    case GainEvaluation::kExact:
-      return exact_view_gains(grid, views, config);
-  }
-  throw std::invalid_argument("gain.evaluation is not a known evaluation");
+  return exact_view_gains(grid, views, config);
 }
 
 }  // namespace vantage

@@ -55,8 +55,8 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                  "gain, eq. 1) or cells (the expected number of unobserved cells seen)")
       ->default_str("the method's own: cells for survival, bits for probabilistic");
   cmd.add_option("--evaluation", evaluation,
-                 "gain evaluation: auto (exact for the paper's model and its readings, the "
-                 "cheaper since issue 25; every third ray for the metrics), fast or exact")
+                 "the metrics' ray pitch: auto (every third ray along each image axis) or exact "
+                 "(every ray); the other methods always evaluate exactly")
       ->capture_default_str();
   if (search_option) {
     std::string help =
