@@ -1,7 +1,7 @@
-// The hierarchical walk and the bounds (vantage/gain/target_ray.hpp, hierarchy.hpp) against their
-// references: TargetWalk against traverse(), leaving a box in one step against walking out of it,
-// block-crossing counts against cell-by-cell ones and the exact evaluation, bit for bit, and the
-// upper bounds against every view's exact value.
+// The hierarchical walk and the bounds (vantage/gain/hierarchy.hpp, bounds.hpp) against their
+// references: block-crossing counts against cell-by-cell ones and the exact evaluation, bit for
+// bit, and the upper bounds against every view's exact value. The walker's jump itself:
+// tests/map/traversal_test.cpp.
 
 #include "vantage/gain/hierarchy.hpp"
 
@@ -12,8 +12,6 @@
 
 #include "vantage/gain/bounds.hpp"
 #include "vantage/gain/exact.hpp"
-#include "vantage/gain/target_ray.hpp"
-#include "vantage/map/traversal.hpp"
 
 namespace vantage {
 namespace {
@@ -73,73 +71,6 @@ std::vector<Frustum> test_views(const GridSpec& spec) {
   views.push_back(view_at(spec.center({5, 18, 20}), spec.center({35, 18, 5})));
   views.push_back(view_at(spec.center({30, 30, 25}), look));  // unobserved space
   return views;
-}
-
-TEST(TargetWalk, TakesTheCellsTraverseVisits) {
-  const OccupancyGrid grid = cluttered_grid();
-  const GridSpec& spec = grid.spec();
-  std::mt19937 rng(11);
-  std::uniform_real_distribution<double> u(-2.0, 2.0);
-  std::uniform_int_distribution<int> ix(0, 39), iy(0, 35), iz(0, 29);
-  for (int trial = 0; trial < 2000; ++trial) {
-    const Eigen::Vector3d from(u(rng), u(rng), 0.75 + 0.75 * u(rng));
-    const Index3 target(ix(rng), iy(rng), iz(rng));
-    std::vector<Index3> expected;
-    traverse(spec, from, spec.center(target), [&](const Index3& c, std::size_t, int m) {
-      expected.push_back(c);
-      (void)m;
-    });
-    TargetWalk walk(spec, from, target);
-    ASSERT_EQ(walk.entered(), !expected.empty());
-    if (expected.empty()) continue;
-    std::vector<Index3> got{walk.cell()};
-    while (!walk.at_target()) {
-      walk.advance();
-      got.push_back(walk.cell());
-      ASSERT_EQ(walk.linear(), spec.linear(walk.cell()));
-    }
-    ASSERT_EQ(got, expected) << "trial " << trial;
-  }
-}
-
-TEST(TargetWalk, LeavingABoxInOneStepIsWalkingOutOfIt) {
-  const GridSpec spec = cluttered_grid().spec();
-  std::mt19937 rng(3);
-  std::uniform_int_distribution<int> ix(0, 39), iy(0, 35), iz(0, 29), side(1, 6);
-  int jumps = 0;
-  for (int trial = 0; trial < 3000; ++trial) {
-    // Half the rays from cell centres, which run through edges and corners (ties between axes).
-    const Index3 o(ix(rng), iy(rng), iz(rng));
-    const Eigen::Vector3d from =
-        trial % 2 == 0 ? spec.center(o)
-                       : spec.center(o) + Eigen::Vector3d(0.013, -0.007, 0.004) * (trial % 7);
-    const Index3 target(ix(rng), iy(rng), iz(rng));
-    TargetWalk walk(spec, from, target);
-    if (!walk.entered()) continue;
-    while (!walk.at_target()) {
-      const Index3 lo = walk.cell() - Index3(side(rng) - 1, side(rng) - 1, side(rng) - 1);
-      const Index3 hi = walk.cell() + Index3(side(rng) - 1, side(rng) - 1, side(rng) - 1);
-      const bool holds_target =
-          (target.array() >= lo.array()).all() && (target.array() <= hi.array()).all();
-      if (holds_target) {
-        walk.advance();
-        continue;
-      }
-      TargetWalk stepped = walk;
-      int cells = 0;
-      while ((stepped.cell().array() >= lo.array()).all() &&
-             (stepped.cell().array() <= hi.array()).all()) {
-        ++cells;
-        stepped.advance();
-      }
-      ASSERT_EQ(walk.leave_box(lo, hi), cells) << "trial " << trial;
-      ASSERT_EQ(walk.cell(), stepped.cell()) << "trial " << trial;
-      ASSERT_EQ(walk.m(), stepped.m());
-      ASSERT_EQ(walk.linear(), spec.linear(walk.cell()));
-      ++jumps;
-    }
-  }
-  EXPECT_GT(jumps, 10000);
 }
 
 TEST(Hierarchy, BlockCrossingCountsAreTheCellByCellOnesAndTheExactOnes) {

@@ -231,71 +231,56 @@ TEST(Traversal, LeavingTheGridEndsTheWalk) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// GridWalk, the one walker: traverse() runs on it (so the oracle tests above cover a walk started
-// in the origin's cell); these check the ways the fast gain starts it mid-ray and moves it ahead.
+// GridWalk, the one walker: traverse() runs on it, so the oracle tests above cover its steps;
+// these check its jump.
 
-/// The cells of a GridWalk along o + s * dir from `first` to `last`, with their m.
-std::vector<Visit> grid_walk(const GridSpec& spec, const Eigen::Vector3d& o,
-                             const Eigen::Vector3d& dir, const Index3& first, const Index3& last) {
-  GridWalk walk;
-  walk.start(spec, o, dir, first, last, spec.lattice_index(o));
-  std::vector<Visit> visits;
-  do {
-    visits.push_back({walk.cell, static_cast<std::size_t>(walk.linear), walk.m});
-  } while (walk.advance());
-  return visits;
+/// A 40 x 36 x 30 grid of 5 cm cells.
+GridSpec box_grid() {
+  GridSpec spec;
+  spec.origin = {-1.0, -0.9, 0.0};
+  spec.resolution = 0.05;
+  spec.dims = {40, 36, 30};
+  return spec;
 }
 
-/// A uniformly random point of the grid's box.
-Eigen::Vector3d random_inside(const GridSpec& spec, std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> u(0.0, 1.0);
-  const double x = u(rng), y = u(rng), z = u(rng);
-  return spec.origin + spec.size().cwiseProduct(Eigen::Vector3d(x, y, z));
-}
-
-TEST(GridWalk, StartedMidRayContinuesTheSameWalk) {
-  const GridSpec spec = test_grid();
-  std::mt19937_64 rng(5);
-  for (int i = 0; i < 2000; ++i) {
-    const Eigen::Vector3d a = random_inside(spec, rng), b = random_inside(spec, rng);
-    const auto whole = walk(spec, a, b);  // traverse(), checked against the oracle above
-    const auto mine = grid_walk(spec, a, b - a, spec.lattice_index(a), spec.lattice_index(b));
-    ASSERT_EQ(mine.size(), whole.size()) << "segment " << i;
-    for (std::size_t k = 0; k < whole.size(); ++k) {
-      ASSERT_EQ(mine[k].cell, whole[k].cell) << "segment " << i << ", cell " << k;
-      ASSERT_EQ(mine[k].linear, whole[k].linear);
-      ASSERT_EQ(mine[k].m, whole[k].m);
-    }
-    // Started in any cell of the walk, it visits the rest of it with the same m.
-    const std::size_t from = whole.size() / 2;
-    const auto rest = grid_walk(spec, a, b - a, whole[from].cell, spec.lattice_index(b));
-    ASSERT_EQ(rest.size(), whole.size() - from) << "segment " << i;
-    for (std::size_t k = 0; k < rest.size(); ++k) {
-      ASSERT_EQ(rest[k].cell, whole[from + k].cell) << "segment " << i << ", cell " << k;
-      ASSERT_EQ(rest[k].m, whole[from + k].m);
-    }
-  }
-}
-
-TEST(GridWalk, SkipMovesAlongTheWalk) {
-  const GridSpec spec = test_grid();
-  std::mt19937_64 rng(9);
-  for (int i = 0; i < 2000; ++i) {
-    const Eigen::Vector3d a = random_inside(spec, rng), b = random_inside(spec, rng);
-    const auto whole = grid_walk(spec, a, b - a, spec.lattice_index(a), spec.lattice_index(b));
-    // Skipping the steps to any visited cell lands on it, and the walk goes on as before.
-    const std::size_t to = whole.size() / 3;
-    GridWalk walk;
-    walk.start(spec, a, b - a, spec.lattice_index(a), spec.lattice_index(b), spec.lattice_index(a));
-    walk.skip((whole[to].cell - whole[0].cell).cwiseAbs());
-    walk.relink(spec);
-    for (std::size_t k = to; k < whole.size(); ++k) {
-      ASSERT_EQ(walk.cell, whole[k].cell) << "segment " << i << ", cell " << k;
-      ASSERT_EQ(static_cast<std::size_t>(walk.linear), whole[k].linear);
-      ASSERT_EQ(walk.m, whole[k].m);
-      ASSERT_EQ(walk.advance(), k + 1 < whole.size());
+TEST(GridWalk, LeavingABoxInOneStepIsWalkingOutOfIt) {
+  const GridSpec spec = box_grid();
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> ix(0, 39), iy(0, 35), iz(0, 29), side(1, 6);
+  int jumps = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    // Half the rays from cell centres, which run through edges and corners (ties between axes).
+    const Index3 o(ix(rng), iy(rng), iz(rng));
+    const Eigen::Vector3d from =
+        trial % 2 == 0 ? spec.center(o)
+                       : spec.center(o) + Eigen::Vector3d(0.013, -0.007, 0.004) * (trial % 7);
+    const Index3 target(ix(rng), iy(rng), iz(rng));
+    GridWalk walk(spec, from, target);
+    if (!walk.entered()) continue;
+    while (!walk.at_end()) {
+      const Index3 lo = walk.cell() - Index3(side(rng) - 1, side(rng) - 1, side(rng) - 1);
+      const Index3 hi = walk.cell() + Index3(side(rng) - 1, side(rng) - 1, side(rng) - 1);
+      const bool holds_target =
+          (target.array() >= lo.array()).all() && (target.array() <= hi.array()).all();
+      if (holds_target) {
+        walk.advance();
+        continue;
+      }
+      GridWalk stepped = walk;
+      int cells = 0;
+      while ((stepped.cell().array() >= lo.array()).all() &&
+             (stepped.cell().array() <= hi.array()).all()) {
+        ++cells;
+        stepped.advance();
+      }
+      ASSERT_EQ(walk.leave_box(lo, hi), cells) << "trial " << trial;
+      ASSERT_EQ(walk.cell(), stepped.cell()) << "trial " << trial;
+      ASSERT_EQ(walk.m(), stepped.m());
+      ASSERT_EQ(walk.linear(), spec.linear(walk.cell()));
+      ++jumps;
     }
   }
+  EXPECT_GT(jumps, 10000);
 }
 
 TEST(GridWalk, ClipToGridFindsTheBoxOrRejectsAParallelMiss) {

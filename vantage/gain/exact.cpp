@@ -14,7 +14,6 @@
 #include "vantage/gain/metrics.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/gain/survival.hpp"
-#include "vantage/gain/target_ray.hpp"
 #include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/hash.hpp"
@@ -28,13 +27,13 @@ using detail::longest_ray;
 using detail::sum_by_origin;
 
 /// Unobserved cells before the target on its ray, or -1 when an occupied cell lies before it
-/// (the cells TargetWalk takes, as the survival reading's exact evaluation).
+/// (the cells GridWalk takes, as the survival reading's exact evaluation).
 int unobserved_before(const GainMap& map, const Eigen::Vector3d& origin, const Index3& target) {
   const GridSpec& spec = map.spec();
-  TargetWalk walk(spec, origin, target);
+  GridWalk walk(spec, origin, target);
   if (!walk.entered()) return -1;  // never seen: predicts nothing, as exact_view_gains
   int unobserved = 0;
-  for (; !walk.at_target(); walk.advance()) {
+  for (; !walk.at_end(); walk.advance()) {
     switch (map.value(walk.linear()).state) {
       case CellState::kOccupied:
         return -1;

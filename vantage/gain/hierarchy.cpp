@@ -10,8 +10,8 @@
 
 #include "vantage/gain/detail/target_sums.hpp"
 #include "vantage/gain/metrics.hpp"
-#include "vantage/gain/target_ray.hpp"
 #include "vantage/map/line_of_sight.hpp"
+#include "vantage/map/traversal.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"
 
@@ -118,9 +118,9 @@ RayCount count_ray(const GridSpec& spec, const Classes& class_of, const ClassBlo
       return r;
     }
   }
-  TargetWalk walk(spec, origin, target);
+  GridWalk walk(spec, origin, target);
   if (!walk.entered()) return r;
-  r.first = walk.at_target();
+  r.first = walk.at_end();
   const Index3 target_block(target.x() >> kShift, target.y() >> kShift, target.z() >> kShift);
   const Index3 target_coarse(target.x() >> kCoarseShift, target.y() >> kCoarseShift,
                              target.z() >> kCoarseShift);
@@ -133,7 +133,7 @@ RayCount count_ray(const GridSpec& spec, const Classes& class_of, const ClassBlo
     r.last_unobserved = unobserved;
   };
   Index3 last_block(-1, -1, -1);  // the block whose cells are being walked one by one
-  while (!walk.at_target()) {
+  while (!walk.at_end()) {
     if (blocks != nullptr) {
       const Index3& c = walk.cell();
       const Index3 b(c.x() >> kShift, c.y() >> kShift, c.z() >> kShift);

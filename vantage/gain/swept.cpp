@@ -19,96 +19,45 @@ namespace {
 
 /// What one ray credits: sum over the unobserved cells it crosses inside [r_min, r_max] of
 /// v * (r1^3 - r0^3), v falling by alpha past each unobserved cell (1 for greedy's alpha), the
-/// ray ending in an occupied cell. Cells outside the grid are free. Amanatides-Woo in the ray's
-/// distance.
+/// ray ending in an occupied cell. Cells outside the grid are free. `d` is a unit direction, so
+/// the walk's parameter times r_max is the distance.
 double ray_credit(const ClassMap& map, const FreeSpace& free, const Eigen::Vector3d& o,
                   const Eigen::Vector3d& d, double r_min, double r_max, double alpha,
                   double epsilon) {
   const GridSpec& spec = map.spec();
-  double s_in = 0.0, s_out = r_max;
-  if (!clip_to_grid(spec, o, d, s_in, s_out) || !(s_in < s_out)) return 0.0;
-  const double h = spec.resolution;
-  const Eigen::Vector3d p = o + s_in * d;
-  Index3 cell = spec.lattice_index(p).cwiseMax(Index3::Zero()).cwiseMin(spec.dims - Index3::Ones());
-  int step[3];
-  double t_next[3], t_delta[3];
-  int octant = 0;
-  for (int a = 0; a < 3; ++a) {
-    step[a] = d[a] > 0.0 ? 1 : (d[a] < 0.0 ? -1 : 0);
-    if (step[a] > 0) octant |= 1 << a;  // FreeSpace's octant (an axis not moved on: either)
-    t_delta[a] = step[a] == 0 ? std::numeric_limits<double>::infinity() : h / std::abs(d[a]);
-  }
-  // The next boundary on each axis from the cell the ray is in.
-  const auto boundaries = [&] {
-    for (int a = 0; a < 3; ++a) {
-      t_next[a] = step[a] == 0
-                      ? std::numeric_limits<double>::infinity()
-                      : (spec.origin[a] + (cell[a] + (step[a] > 0 ? 1 : 0)) * h - o[a]) / d[a];
-    }
-  };
-  boundaries();
-  const std::ptrdiff_t stride[3] = {1, spec.dims.x(),
-                                    static_cast<std::ptrdiff_t>(spec.dims.x()) * spec.dims.y()};
-  std::ptrdiff_t linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
-  double v = 1.0, credit = 0.0, t = s_in;
-  while (t < s_out) {
-    const CellState state = map.state(static_cast<std::size_t>(linear));
+  const Eigen::Vector3d to = o + r_max * d;
+  GridWalk walk(spec, o, to);
+  if (!walk.entered()) return 0.0;
+  const Index3 end = spec.lattice_index(to);
+  const double lo_t = r_min / r_max;
+  double v = 1.0, credit = 0.0;
+  for (;;) {
+    const CellState state = map.state(walk.linear());
     if (state == CellState::kOccupied) break;
-    if (state == CellState::kFree && !free.empty()) {
-      if (const int e = free.extent_at(octant, cell); e > 0) {
-        // Out of the free cube in one step, into the cell past the face it leaves by.
+    if (state == CellState::kFree && !free.empty() && !walk.at_end()) {
+      if (const int e = free.extent_at(walk.octant(), walk.cell()); e > 0) {
+        // Out of the free cube in one step, unless the segment's end lies in it.
         Index3 lo, hi;
-        FreeSpace::cube(cell, octant, e, spec.dims, lo, hi);
-        int exit = 0;
-        double t_exit = std::numeric_limits<double>::infinity();
-        for (int a = 0; a < 3; ++a) {
-          if (step[a] == 0) continue;
-          const double face = spec.origin[a] + (step[a] > 0 ? hi[a] + 1 : lo[a]) * h;
-          const double ta = (face - o[a]) / d[a];
-          if (ta < t_exit) {
-            t_exit = ta;
-            exit = a;
-          }
+        FreeSpace::cube(walk.cell(), walk.octant(), e, spec.dims, lo, hi);
+        if ((end.array() < lo.array()).any() || (end.array() > hi.array()).any()) {
+          walk.leave_box(lo, hi);
+          if (!spec.contains(walk.cell())) break;
+          continue;
         }
-        if (!(t_exit < s_out)) break;
-        for (int a = 0; a < 3; ++a) {
-          cell[a] = a == exit ? (step[a] > 0 ? hi[a] + 1 : lo[a] - 1)
-                              : std::clamp(static_cast<int>(std::floor(
-                                               (o[a] + t_exit * d[a] - spec.origin[a]) / h)),
-                                           lo[a], hi[a]);
-        }
-        if (!spec.contains(cell)) break;
-        linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
-        boundaries();
-        t = std::max(t, t_exit);
-        continue;
       }
     }
-    // NOTE: a branch per axis with constant indices, not an indexed select: the walk's state then
-    // stays in registers.
-    const auto leave_along = [&]<int A>() {
-      const double t_leave = std::min(t_next[A], s_out);
-      if (state == CellState::kUnobserved) {
-        const double lo = std::max(t, r_min);
-        if (t_leave > lo) credit += v * (t_leave * t_leave * t_leave - lo * lo * lo);
-        v *= alpha;
-        if (v < epsilon) return false;
-      }
-      t = std::max(t, t_leave);
-      cell[A] += step[A];
-      if (cell[A] < 0 || cell[A] >= spec.dims[A]) return false;
-      linear += step[A] * stride[A];
-      t_next[A] += t_delta[A];
-      return true;
-    };
-    const bool on = t_next[0] < t_next[1]
-                        ? (t_next[0] < t_next[2] ? leave_along.template operator()<0>()
-                                                 : leave_along.template operator()<2>())
-                        : (t_next[1] < t_next[2] ? leave_along.template operator()<1>()
-                                                 : leave_along.template operator()<2>());
-    if (!on) break;
+    const double t_leave = std::min(walk.t_exit(), 1.0);
+    if (state == CellState::kUnobserved) {
+      const double t0 = std::max(walk.t(), lo_t);
+      if (t_leave > t0) credit += v * (t_leave * t_leave * t_leave - t0 * t0 * t0);
+      v *= alpha;
+      if (v < epsilon) break;
+    }
+    if (walk.at_end() || t_leave >= 1.0) break;
+    walk.advance();
+    if (!spec.contains(walk.cell())) break;
   }
-  return credit;
+  return credit * r_max * r_max * r_max;
 }
 
 /// A point in pixel (i, j), jittered by a hash of (i, j): a regular lattice of rays lines up

@@ -30,7 +30,7 @@ struct ViewCells {
 /// Every view's per-target visibilities under `config.method`, survival or greedy (v_M = 1 when
 /// nothing occupied lies before the target, else 0): each unobserved cell whose centre lies in
 /// the frustum, on its own ray from the view's origin, walked as the exact evaluation walks it
-/// (TargetWalk, target_ray.hpp), with its early stop at `config.epsilon`. Views from one origin
+/// (GridWalk, map/traversal.hpp), with its early stop at `config.epsilon`. Views from one origin
 /// share each target's ray. Origins run in parallel and each list is built in cell order, so the
 /// result is the same for any thread count. With `sample_bits` k > 0, only the targets in the
 /// sampled search's hashed sample of one cell in 2^k (in_cell_sample, exact.hpp), the same for

@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// Exact 6-connected grid traversal (Amanatides & Woo, 1987): one walker, `GridWalk`, used by
-/// every ray in the project, and `traverse`, the walker between two points clipped to the grid,
-/// as a visitor that can stop early.
+/// every ray in the project, with one jump policy (leave a box of cells in one step), and
+/// `traverse`, the walker between two points clipped to the grid, as a visitor that can stop
+/// early.
 
 #include <Eigen/Core>
 #include <algorithm>
@@ -48,107 +49,197 @@ inline bool clip_to_grid(const GridSpec& spec, const Eigen::Vector3d& o, const E
   return true;
 }
 
-/// An exact Amanatides–Woo walk along o + s * dir from a cell the ray crosses to `last`, on the
-/// grid's lattice extended to all of space, with m counted from the origin's cell (c_m of
-/// docs/model.md). Every cell the ray passes through with positive length is visited once,
-/// consecutive cells share a face, and where the ray runs exactly through an edge or a corner
-/// one of the touching cells is visited as the step between them (the lower axis first).
+/// The one grid walker (Amanatides & Woo, 1987), used by every ray in the project: the segment
+/// from `from` to `to`, from the cell of `from` to the cell of `to`, on the grid's lattice
+/// extended to all of space, started at the first grid cell it crosses, with m counted from the
+/// cell of `from` (c_m of docs/model.md). Every cell the segment passes through with positive
+/// length is visited once and consecutive cells share a face; where it runs exactly through an
+/// edge or a corner, one of the touching cells is visited as the step between them (the lower
+/// axis first).
 ///
-/// The state lives in scalars, so that a walk stays in registers.
-struct GridWalk {
-  Index3 cell = Index3::Zero();
-  std::ptrdiff_t linear = 0;
-  int m = 0;
-  double tx = 0, ty = 0, tz = 0;  // ray parameter of the next boundary per axis; inf when done
-  double dx = 0, dy = 0, dz = 0;  // parameter between boundaries per axis
-  int rx = 0, ry = 0, rz = 0;     // steps left per axis
-  int sx = 0, sy = 0, sz = 0;     // +1 or -1
-  std::ptrdiff_t lx = 0, ly = 0, lz = 0;  // signed linear strides
-
-  /// The direction of travel along axis `a`: +1 or -1.
-  int step(int a) const { return a == 0 ? sx : (a == 1 ? sy : sz); }
-
-  /// Starts in `first`, a cell the ray crosses, to end in `last`; m = |first - origin_cell|_1.
-  void start(const GridSpec& spec, const Eigen::Vector3d& o, const Eigen::Vector3d& dir,
-             const Index3& first, const Index3& last, const Index3& origin_cell) {
-    cell = first;
-    const std::ptrdiff_t strides[3] = {1, spec.dims.x(),
-                                       static_cast<std::ptrdiff_t>(spec.dims.x()) * spec.dims.y()};
-    double t_max[3], t_delta[3];
-    int steps[3], left[3];
+/// The k-th boundary of an axis lies at t0 + k * dt, computed afresh rather than by adding dt k
+/// times, so the one jump policy, `leave_box` (a block of one class, a free cube: the callers say
+/// which box), crosses a whole box in one step and lands, to the last bit and ties between axes
+/// included, where stepping cell by cell lands (tests/map/traversal_test.cpp).
+class GridWalk {
+ public:
+  GridWalk() = default;
+  /// The walk along the segment; entered() is false when it never crosses the grid.
+  GridWalk(const GridSpec& spec, const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
+    const Index3 first = spec.lattice_index(from);
+    const Index3 last = spec.lattice_index(to);
+    const Eigen::Vector3d dir = to - from;
+    skipped_ = lattice_cells_between(first, last);
+    end_linear_ = spec.contains(last) ? static_cast<std::ptrdiff_t>(spec.linear(last)) : -1;
+    double t_enter = 0.0, t_exit = 1.0;
+    if (!clip_to_grid(spec, from, dir, t_enter, t_exit) || t_enter > t_exit) return;
     for (int a = 0; a < 3; ++a) {
-      steps[a] = dir[a] > 0.0 ? 1 : -1;
-      left[a] = std::max(0, (last[a] - cell[a]) * steps[a]);
-      if (dir[a] == 0.0 || left[a] == 0) {
-        t_max[a] = std::numeric_limits<double>::infinity();
-        t_delta[a] = 0.0;
-        left[a] = 0;
+      step_[a] = dir[a] > 0.0 ? 1 : -1;
+      left_[a] = std::max(0, (last[a] - first[a]) * step_[a]);
+      if (dir[a] == 0.0 || left_[a] == 0) {
+        left_[a] = 0;
         continue;
       }
-      t_delta[a] = spec.resolution / std::abs(dir[a]);
-      const double boundary = spec.origin[a] + (cell[a] + (steps[a] > 0 ? 1 : 0)) * spec.resolution;
-      t_max[a] = (boundary - o[a]) / dir[a];
+      dt_[a] = spec.resolution / std::abs(dir[a]);
+      const double boundary =
+          spec.origin[a] + (first[a] + (step_[a] > 0 ? 1 : 0)) * spec.resolution;
+      t0_[a] = (boundary - from[a]) / dir[a];
     }
-    tx = t_max[0], ty = t_max[1], tz = t_max[2];
-    dx = t_delta[0], dy = t_delta[1], dz = t_delta[2];
-    rx = left[0], ry = left[1], rz = left[2];
-    sx = steps[0], sy = steps[1], sz = steps[2];
-    lx = sx * strides[0], ly = sy * strides[1], lz = sz * strides[2];
-    m = (cell - origin_cell).cwiseAbs().sum();
-    linear = static_cast<std::ptrdiff_t>(spec.linear(cell));
+    cell_ = first;
+    if (!spec.contains(first)) {
+      // Jump to the cell holding the entry point, pulled onto the grid where rounding put it a
+      // hair outside, and never past the segment's own index range.
+      const Index3 entry = spec.lattice_index(from + t_enter * dir)
+                               .cwiseMax(Index3::Zero())
+                               .cwiseMin(spec.dims - Index3::Ones());
+      for (int a = 0; a < 3; ++a) {
+        done_[a] = std::clamp((entry[a] - first[a]) * step_[a], 0, left_[a]);
+        cell_[a] += done_[a] * step_[a];
+      }
+      if (!spec.contains(cell_)) return;
+      t_ = t_enter;
+    }
+    m_ = done_.sum();
+    skipped_ = m_;
+    stride_[0] = step_.x();
+    stride_[1] = step_.y() * static_cast<std::ptrdiff_t>(spec.dims.x());
+    stride_[2] = step_.z() * static_cast<std::ptrdiff_t>(spec.dims.x()) * spec.dims.y();
+    linear_ = static_cast<std::ptrdiff_t>(spec.linear(cell_));
+    for (int a = 0; a < 3; ++a) refresh(a);
+    octant_ = (step_[0] > 0 ? 1 : 0) | (step_[1] > 0 ? 2 : 0) | (step_[2] > 0 ? 4 : 0);
+    entered_ = true;
   }
+  /// The walk to the centre of `target`, a cell of the grid.
+  GridWalk(const GridSpec& spec, const Eigen::Vector3d& from, const Index3& target)
+      : GridWalk(spec, from, spec.center(target)) {}
 
-  /// Takes `n[a]` steps along each axis at once (at most the steps left), keeping the boundary
-  /// parameters of the walk rather than recomputing them at the new cell. `linear` is stale
-  /// afterwards: call relink().
-  void skip(const Index3& n) {
-    // NOTE: per axis, without pointers to the members, so that a walk stays in registers.
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    if (n.x() > 0) {
-      cell.x() += n.x() * sx;
-      rx -= n.x();
-      tx = rx > 0 ? tx + n.x() * dx : kInf;
-    }
-    if (n.y() > 0) {
-      cell.y() += n.y() * sy;
-      ry -= n.y();
-      ty = ry > 0 ? ty + n.y() * dy : kInf;
-    }
-    if (n.z() > 0) {
-      cell.z() += n.z() * sz;
-      rz -= n.z();
-      tz = rz > 0 ? tz + n.z() * dz : kInf;
-    }
-    m += n.cwiseMax(0).sum();
-  }
+  bool entered() const { return entered_; }
+  /// Lattice cells the segment crossed before it entered the grid (docs/model.md counts them as
+  /// free); all of them when it never enters.
+  int skipped() const { return skipped_; }
+  /// The cell of `to` lies outside the grid, so the walk leaves the grid before its end.
+  bool ends_outside() const { return end_linear_ < 0; }
+  /// The octant of the walk's steps: bit a set when it steps towards higher indices on axis a
+  /// (FreeSpace's octants).
+  int octant() const { return octant_; }
+  /// The cell the walk is in.
+  const Index3& cell() const { return cell_; }
+  /// Its linear index in the grid (while the walk is in the grid).
+  std::size_t linear() const { return static_cast<std::size_t>(linear_); }
+  /// Its position along the segment from the cell of `from`: c_m of docs/model.md.
+  int m() const { return m_; }
+  /// In the cell of `to` (never, when that lies outside the grid).
+  /// NOTE: by linear index: the walk stays in the grid, where it names the cell.
+  bool at_end() const { return linear_ == end_linear_; }
+  /// The segment's parameter (0 at `from`, 1 at `to`) where it enters the cell, and where it
+  /// leaves it (infinity in the cell of `to`).
+  double t() const { return t_; }
+  double t_exit() const { return std::min(next_[0], std::min(next_[1], next_[2])); }
 
-  /// Recomputes `linear` from `cell`.
-  void relink(const GridSpec& spec) { linear = static_cast<std::ptrdiff_t>(spec.linear(cell)); }
-
-  /// Moves to the next cell, along the axis whose boundary comes first (the lower axis on a tie);
-  /// false at the end. Always inlined: GCC kept it a call, about a tenth of the fast mode's time
-  /// on 80 M steps.
-  /// NOTE: a branch on the axis, not a branchless select: on the Gain30 benchmark the select cost
-  /// the exact mode ~20 % and the fast mode ~5 % of CPU time against this form (2 shared cores).
-  [[gnu::always_inline]] bool advance() {
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    if (tx <= ty && tx <= tz) {
-      if (tx == kInf) return false;
-      cell.x() += sx;
-      linear += lx;
-      tx = --rx > 0 ? tx + dx : kInf;
-    } else if (ty <= tz) {
-      cell.y() += sy;
-      linear += ly;
-      ty = --ry > 0 ? ty + dy : kInf;
+  /// Moves to the next cell, along the axis whose boundary comes first (the lower axis on a tie).
+  /// Only before the end.
+  /// NOTE: a branch per axis with constant indices, not an indexed select: the walk's state then
+  /// stays in registers (the race's lists, BM_DecisionAtScale).
+  [[gnu::always_inline]] void advance() {
+    if (next_[0] <= next_[1]) {
+      if (next_[0] <= next_[2]) {
+        step_along<0>();
+      } else {
+        step_along<2>();
+      }
+    } else if (next_[1] <= next_[2]) {
+      step_along<1>();
     } else {
-      cell.z() += sz;
-      linear += lz;
-      tz = --rz > 0 ? tz + dz : kInf;
+      step_along<2>();
     }
-    ++m;
-    return true;
   }
+
+  /// The jump: leaves the box [lo, hi] of cells, which holds the walk's cell and not the
+  /// segment's end, in one step; afterwards the walk is in the first cell outside the box.
+  /// Returns how many cells of the box the walk was in (its cell included).
+  int leave_box(const Index3& lo, const Index3& hi) {
+    // The crossing that leaves the box first: (parameter, axis), ordered as advance() orders them.
+    int exit_axis = -1;
+    double exit_t = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < 3; ++a) {
+      const int inside = step_[a] > 0 ? hi[a] - cell_[a] : cell_[a] - lo[a];  // cells to the face
+      const int k = done_[a] + inside;  // the crossing that leaves through the face
+      if (k >= left_[a]) continue;      // the end's index is reached first on this axis
+      const double t = boundary(a, k);
+      if (t < exit_t) {
+        exit_t = t;
+        exit_axis = a;
+      }
+    }
+    int cells = 1;
+    for (int a = 0; a < 3; ++a) {
+      // Crossings on axis a that come before the exit: boundary(a, k) < exit_t, or equal with
+      // a lower axis; monotonic in k, so counted by an estimate corrected against the formula.
+      int k;
+      if (a == exit_axis) {
+        k = done_[a] + (step_[a] > 0 ? hi[a] - cell_[a] : cell_[a] - lo[a]);
+      } else {
+        const auto before = [&](int kk) {
+          if (kk >= left_[a]) return false;
+          const double t = boundary(a, kk);
+          return a < exit_axis ? t <= exit_t : t < exit_t;
+        };
+        k = done_[a];
+        if (before(k)) {
+          const double guess = std::floor((exit_t - t0_[a]) / dt_[a]);
+          k = std::clamp(static_cast<int>(std::min(guess, 1e9)), done_[a], left_[a]);
+          while (k > done_[a] && !before(k - 1)) --k;
+          while (before(k)) ++k;
+        }
+      }
+      cells += k - done_[a];
+      cell_[a] += (k - done_[a]) * step_[a];
+      linear_ += (k - done_[a]) * stride_[a];
+      m_ += k - done_[a];
+      done_[a] = k;
+    }
+    // The exit crossing itself.
+    cell_[exit_axis] += step_[exit_axis];
+    linear_ += stride_[exit_axis];
+    ++done_[exit_axis];
+    ++m_;
+    t_ = exit_t;
+    for (int a = 0; a < 3; ++a) refresh(a);
+    return cells;
+  }
+
+ private:
+  template <int A>
+  [[gnu::always_inline]] void step_along() {
+    t_ = next_[A];
+    cell_[A] += step_[A];
+    linear_ += stride_[A];
+    ++done_[A];
+    ++m_;
+    refresh(A);
+  }
+  double boundary(int a, int k) const { return t0_[a] + k * dt_[a]; }
+  /// The next boundary of axis a, or infinity when the walk takes no more steps along it.
+  void refresh(int a) {
+    next_[a] =
+        done_[a] < left_[a] ? boundary(a, done_[a]) : std::numeric_limits<double>::infinity();
+  }
+
+  Index3 cell_ = Index3::Zero();
+  Eigen::Vector3d t0_ = Eigen::Vector3d::Zero();  ///< the first boundary's parameter per axis
+  Eigen::Vector3d dt_ = Eigen::Vector3d::Zero();  ///< parameter between boundaries per axis
+  Index3 step_ = Index3::Ones();                  ///< +1 or -1 per axis
+  Index3 left_ = Index3::Zero();          ///< crossings from the cell of `from` to that of `to`
+  Index3 done_ = Index3::Zero();          ///< crossings taken
+  double next_[3] = {0.0, 0.0, 0.0};      ///< refresh(): the next boundary per axis
+  std::ptrdiff_t stride_[3] = {0, 0, 0};  ///< linear step per axis, signed
+  std::ptrdiff_t linear_ = 0;
+  std::ptrdiff_t end_linear_ = -1;
+  double t_ = 0.0;
+  int m_ = 0;
+  int skipped_ = 0;
+  int octant_ = 0;
+  bool entered_ = false;
 };
 
 /// What one traversal did.
@@ -165,47 +256,6 @@ struct TraversalResult {
   bool ends_outside = false;
 };
 
-/// Starts `walk` where `traverse` starts it: in the first grid cell the segment from `from` to
-/// `to` crosses, with m counted from the cell of `from`. False when the segment never enters the
-/// grid. `result.skipped` as traverse reports it; `result.entered` set when it enters;
-/// `result.ends_outside` set.
-inline bool start_in_grid(const GridSpec& spec, const Eigen::Vector3d& from,
-                          const Eigen::Vector3d& to, GridWalk& walk, TraversalResult& result) {
-  const Index3 first = spec.lattice_index(from);
-  const Index3 last = spec.lattice_index(to);
-  const Eigen::Vector3d dir = to - from;
-  const int total = lattice_cells_between(first, last);
-  result.ends_outside = !spec.contains(last);
-  double t_enter = 0.0;
-  double t_exit = 1.0;
-  if (!clip_to_grid(spec, from, dir, t_enter, t_exit) || t_enter > t_exit) {  // misses the box
-    result.skipped = total;
-    return false;
-  }
-  walk.start(spec, from, dir, first, last, first);
-  if (!spec.contains(first)) {
-    // Jump to the entry cell: the cell holding the entry point, pulled onto the grid where
-    // rounding put it a hair outside, and never past the segment's own index range.
-    const Index3 entry_cell = spec.lattice_index(from + t_enter * dir)
-                                  .cwiseMax(Index3::Zero())
-                                  .cwiseMin(spec.dims - Index3::Ones());
-    const Index3 left(walk.rx, walk.ry, walk.rz);
-    Index3 advanced;
-    for (int a = 0; a < 3; ++a) {
-      advanced[a] = std::clamp((entry_cell[a] - first[a]) * walk.step(a), 0, left[a]);
-    }
-    walk.skip(advanced);
-    result.skipped = walk.m;
-    if (!spec.contains(walk.cell)) {
-      result.skipped = total;
-      return false;
-    }
-    walk.relink(spec);
-  }
-  result.entered = true;
-  return true;
-}
-
 /// Visits, in order, the grid cells that the segment from `from` to `to` crosses: a GridWalk from
 /// the cell of `from` to the cell of `to`, which takes exactly |Δi| + |Δj| + |Δk| steps and so
 /// always ends in the cell of `to`.
@@ -221,24 +271,28 @@ template <typename Visitor>
 TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,
                          const Eigen::Vector3d& to, Visitor&& visit) {
   TraversalResult result;
-  GridWalk walk;
-  if (!start_in_grid(spec, from, to, walk, result)) return result;
+  GridWalk walk(spec, from, to);
+  result.skipped = walk.skipped();
+  result.ends_outside = walk.ends_outside();
+  if (!walk.entered()) return result;
+  result.entered = true;
   // NOTE: the walk is monotonic along each axis, so it stays in the box of its entry and end
   // cells: only a segment that ends outside the grid can leave it.
   for (;;) {
     ++result.visited;
-    const auto linear = static_cast<std::size_t>(walk.linear);
-    if constexpr (std::is_void_v<decltype(visit(walk.cell, std::size_t{}, walk.m))>) {
-      visit(walk.cell, linear, walk.m);
-    } else if (!visit(walk.cell, linear, walk.m)) {
+    if constexpr (std::is_void_v<decltype(visit(walk.cell(), std::size_t{}, walk.m()))>) {
+      visit(walk.cell(), walk.linear(), walk.m());
+    } else if (!visit(walk.cell(), walk.linear(), walk.m())) {
       result.stopped = true;
       return result;
     }
-    if (!walk.advance()) {
+    if (walk.at_end()) {
       result.reached_end = true;
       return result;
     }
-    if (result.ends_outside && !spec.contains(walk.cell)) return result;  // left the grid
+    if (walk.t_exit() == std::numeric_limits<double>::infinity()) return result;
+    walk.advance();
+    if (result.ends_outside && !spec.contains(walk.cell())) return result;  // left the grid
   }
 }
 

@@ -18,7 +18,6 @@
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/survival.hpp"
-#include "vantage/gain/target_ray.hpp"
 #include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/occupancy_grid.hpp"
 #include "vantage/map/traversal.hpp"
@@ -42,7 +41,7 @@ struct GridCells {
 /// Leaves the free cube around the walk's cell in one step (the cells it crosses change nothing
 /// on the rays of the survival reading and greedy); false, and no step, when the cell's block is
 /// not in one.
-inline bool cross_free(const FreeSpace& free, const GridSpec& spec, TargetWalk& walk) {
+inline bool cross_free(const FreeSpace& free, const GridSpec& spec, GridWalk& walk) {
   const int e = free.extent_at(walk.octant(), walk.cell());
   if (e == 0) return false;
   Index3 lo, hi;
@@ -53,53 +52,39 @@ inline bool cross_free(const FreeSpace& free, const GridSpec& spec, TargetWalk& 
 
 /// Gain and visibility of the target cell on its ray from `origin` under `Model`; 0 when the ray
 /// stops early (visibility below `epsilon`) before it. `Cells` is GainMap or GridCells.
-/// NOTE: the walk of `traverse` (start_in_grid and the same steps), written out: through the
-/// visitor the paper's race took about twice the time (BM_Gain30_Decision/1, 2026-11-26).
+/// NOTE: the walk written out, not through traverse's visitor: through the visitor the paper's
+/// race took about twice the time (BM_Gain30_Decision/1, 2026-11-26).
 template <typename Model, typename Cells>
 TargetPrediction ray_gain(const Cells& map, const RayTables<Model>& tables,
                           const Eigen::Vector3d& origin, const Index3& target, double epsilon) {
-  const GridSpec& spec = map.spec();
-  const Eigen::Vector3d to = spec.center(target);
-  GridWalk walk;
-  TraversalResult entry;
-  if (!start_in_grid(spec, origin, to, walk, entry)) return {};
-  const std::size_t target_linear = spec.linear(target);
-  RayOdds state;
-  double p_prev = 0.0;
-  bool first = true;
-  for (;;) {
-    const auto linear = static_cast<std::size_t>(walk.linear);
-    const auto& cell = map.value(linear);
-    if (first) {
-      state = tables.enter(walk.m, cell.p);
-      first = false;
-    } else {
-      tables.step(state, walk.m, p_prev, cell.p);
-    }
-    p_prev = cell.p;
-    if (linear == target_linear) {
-      // eq. (4); v_M: c_M's own occupancy does not update it
-      return {cell.entropy - entropy_bits(state.posterior()), state.visibility()};
-    }
-    // The fast mode's early stop: a ray stops once it is hidden.
-    if (state.hidden(epsilon) || !walk.advance()) return {};
-    if (entry.ends_outside && !spec.contains(walk.cell)) return {};
+  GridWalk walk(map.spec(), origin, target);
+  if (!walk.entered()) return {};
+  double p_prev = map.value(walk.linear()).p;
+  RayOdds state = tables.enter(walk.m(), p_prev);
+  while (!walk.at_end()) {
+    if (state.hidden(epsilon)) return {};  // the early stop: a ray stops once it is hidden
+    walk.advance();
+    const double p = map.value(walk.linear()).p;
+    tables.step(state, walk.m(), p_prev, p);
+    p_prev = p;
   }
+  // eq. (4); v_M: c_M's own occupancy does not update it
+  return {map.value(walk.linear()).entropy - entropy_bits(state.posterior()), state.visibility()};
 }
 
 /// Gain and visibility of the target under the survival reading (survival.hpp); 0 once the ray
-/// is stopped (visibility below `epsilon`) before it. Walks the cells TargetWalk takes, as
+/// is stopped (visibility below `epsilon`) before it. Walks the cells GridWalk takes, as
 /// count_view_gains does (hierarchy.hpp), so the two agree bit for bit.
 template <typename Cells>
 TargetPrediction survival_ray_gain(const Cells& map, const SurvivalModel& model,
                                    const Eigen::Vector3d& origin, const Index3& target,
                                    double epsilon) {
   const GridSpec& spec = map.spec();
-  TargetWalk walk(spec, origin, target);
+  GridWalk walk(spec, origin, target);
   if (!walk.entered()) return {};
   GainMap::Value cell = map.value(walk.linear());
   SurvivalModel::State state = model.enter(walk.m(), cell);
-  while (!walk.at_target()) {
+  while (!walk.at_end()) {
     if (!(state.visibility >= epsilon && state.visibility > 0.0)) return {};
     walk.advance();
     const GainMap::Value next = map.value(walk.linear());
@@ -116,11 +101,11 @@ template <typename Cells>
 TargetPrediction survival_visibility(const Cells& map, double alpha, const Eigen::Vector3d& origin,
                                      const Index3& target, double epsilon,
                                      const FreeSpace* free = nullptr) {
-  TargetWalk walk(map.spec(), origin, target);
+  GridWalk walk(map.spec(), origin, target);
   if (!walk.entered()) return {};
   CellState prev = map.value(walk.linear()).state;
   double visibility = 1.0;
-  while (!walk.at_target()) {
+  while (!walk.at_end()) {
     if (!(visibility >= epsilon && visibility > 0.0)) return {};
     if (free != nullptr && prev == CellState::kFree && cross_free(*free, map.spec(), walk)) {
       prev = map.value(walk.linear()).state;
@@ -138,14 +123,14 @@ TargetPrediction survival_visibility(const Cells& map, double alpha, const Eigen
 }
 
 /// Whether nothing occludes the target (the simple greedy gain): 1 or 0, in bits and in cells.
-/// Walks the cells TargetWalk takes, as count_view_gains does (hierarchy.hpp).
+/// Walks the cells GridWalk takes, as count_view_gains does (hierarchy.hpp).
 template <typename Cells>
 TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin, const Index3& target,
                              const FreeSpace* free = nullptr) {
   const GridSpec& spec = map.spec();
-  TargetWalk walk(spec, origin, target);
+  GridWalk walk(spec, origin, target);
   if (walk.entered()) {
-    while (!walk.at_target()) {
+    while (!walk.at_end()) {
       const CellState state = map.value(walk.linear()).state;
       if (occludes(state)) return {0.0, 0.0};
       if (free == nullptr || state != CellState::kFree || !cross_free(*free, spec, walk)) {
