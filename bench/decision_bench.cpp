@@ -320,7 +320,7 @@ void BM_DecisionAtScale(benchmark::State& bench) {
   bench.counters["summary_of_grid"] =  // the summary's bytes over the grid's (4 a cell)
       static_cast<double>(blocks.bytes()) / (4.0 * static_cast<double>(s.grid.size()));
   GainConfig gain = config.gain;
-  gain.method = gain_method_of(config.method);
+  gain.method = config.method.gain;
   const bool greedy = method_traits(gain.method).counts;
   const std::vector<ViewGain> exact = count_view_gains(
       map, &blocks, views, greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain);

@@ -19,7 +19,7 @@ namespace {
 /// Every candidate evaluated by the exact evaluation, whatever GainConfig::evaluation says: the
 /// paper's definition of every view's gain, for the target models that rank by a gain.
 bool serves(const PlannerConfig& config) {
-  return ranks_by_gain(config.method) && gain_method_of(config.method) == GainMethod::kGreedy;
+  return ranks_by_gain(config.method) && config.method.gain == GainMethod::kGreedy;
 }
 
 Plan run(const SearchInput& in) {

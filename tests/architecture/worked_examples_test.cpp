@@ -62,7 +62,7 @@ TEST(WorkedExamples, ASearchInOneFileDecidesBehindTheInterface) {
     const Plan reference = plan_next_view(s.grid, s.candidates, config);
     const CandidateViews views(s.candidates);
     GainConfig gain = config.gain;
-    gain.method = gain_method_of(method);
+    gain.method = method.gain;
     const Plan plan = kExactSearch.run(SearchInput{s.grid, s.candidates, views, config, gain,
                                                    std::chrono::steady_clock::now(), 0});
     EXPECT_EQ(plan.search, DecisionSearch{"exact"});

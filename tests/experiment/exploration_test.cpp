@@ -168,7 +168,7 @@ TEST(Exploration, AutoAlphaCalibratesWithTheMethodsOwnModel) {
     const OccupancyGrid empty(scene.grid, config.mapper.occupancy);
     const Frustum view(run.scans[0].T_world_sensor, scene.fov());
     GainConfig gain = config.planner.gain;
-    gain.method = gain_method_of(method);
+    gain.method = method.gain;
     // NOTE: survival's calibration adds a^n over a histogram of n in one pass: the same sum in
     // another order, and without the early stop.
     const bool survival = method == PlannerMethod::kSurvival;

@@ -1,7 +1,7 @@
 // Navigation: A* through a small maze gives the known shortest path, an unreachable goal gives
 // the nearest reachable place, inflation and the height band work, and A* agrees with Dijkstra.
 
-#include "vantage/planner/navigation.hpp"
+#include "vantage/map/navigation.hpp"
 
 #include <gtest/gtest.h>
 

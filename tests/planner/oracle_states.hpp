@@ -55,16 +55,12 @@ inline std::vector<double> exact_scores(const OccupancyGrid& grid,
   }
   std::vector<double> scores;
   for (std::size_t c = 0; c < cands.size(); ++c) {
-    switch (config.method) {
-      case PlannerMethod::kSurvival:
-        scores.push_back(reference.survival[c].cells);
-        break;
-      case PlannerMethod::kLatombe:
-        scores.push_back(reference.greedy[c].gain * std::exp(-config.lambda * cands[c].travel));
-        break;
-      default:
-        scores.push_back(reference.greedy[c].gain);
-        break;
+    if (config.method == PlannerMethod::kSurvival) {
+      scores.push_back(reference.survival[c].cells);
+    } else if (config.method == PlannerMethod::kLatombe) {
+      scores.push_back(reference.greedy[c].gain * std::exp(-config.lambda * cands[c].travel));
+    } else {
+      scores.push_back(reference.greedy[c].gain);
     }
   }
   return scores;

@@ -60,7 +60,8 @@ TEST(Planner, TheDefaultSearchIsTheFastestThatServesTheMethod) {
         Case{PlannerMethod::kLatombe, GainObjective::kBits, DecisionSearch::kSwept},
         Case{PlannerMethod::kProbabilistic, GainObjective::kBits, DecisionSearch::kPruned},
         Case{PlannerMethod::kSurvival, GainObjective::kBits, DecisionSearch::kPruned},
-        Case{PlannerMethod::kUnobservedVoxel, GainObjective::kBits, DecisionSearch::kExhaustive},
+        Case{PlannerMethod{GainMethod::kUnobservedVoxel}, GainObjective::kBits,
+             DecisionSearch::kExhaustive},
         Case{PlannerMethod::kRandom, GainObjective::kBits, DecisionSearch::kExhaustive},
         Case{PlannerMethod::kYamauchi, GainObjective::kBits, DecisionSearch::kExhaustive}}) {
     PlannerConfig config;
@@ -83,7 +84,7 @@ TEST(Planner, TheDefaultSearchIsTheFastestThatServesTheMethod) {
 TEST(Planner, ASearchThatDoesNotServeTheMethodIsRefused) {
   HalfKnownBlock s;
   PlannerConfig config;
-  config.method = PlannerMethod::kUnobservedVoxel;
+  config.method = PlannerMethod{GainMethod::kUnobservedVoxel};
   config.search = DecisionSearch::kSwept;
   try {
     (void)plan_next_view(s.grid, s.candidates, config);
@@ -122,7 +123,7 @@ TEST(Planner, TheRankingListsNoEstimateAboveTheChoice) {
 // told another horizon or weight.
 TEST(Planner, TheSequenceMethodIsSurvivalPlannedAhead) {
   EXPECT_EQ(parse_planner_method("sequence"), PlannerMethod::kSequence);
-  EXPECT_EQ(gain_method_of(PlannerMethod::kSequence), GainMethod::kSurvival);
+  EXPECT_EQ(PlannerMethod::kSequence.gain, GainMethod::kSurvival);
   EXPECT_TRUE(uses_survival_reading(PlannerMethod::kSequence));
   EXPECT_FALSE(uses_survival_reading(PlannerMethod::kGreedy));
   EXPECT_EQ(natural_objective(PlannerMethod::kSequence), GainObjective::kCells);
@@ -224,6 +225,49 @@ TEST(Planner, RandomIsSeeded) {
   EXPECT_EQ(plan_next_view(s.grid, s.candidates, config, 9).best, a);
   EXPECT_THROW(plan_next_view(s.grid, std::span<const Candidate>(), config), std::invalid_argument);
   EXPECT_THROW(parse_planner_method("fancy"), std::invalid_argument);
+}
+
+// A method is a gain model ranked one way: the CLI's names are the usual pairs, and any other
+// pair is RANKING+GAIN, named back the same way.
+TEST(PlannerMethod, IsAGainRankedOneWay) {
+  EXPECT_EQ(parse_planner_method("unobserved-voxel"),
+            (PlannerMethod{GainMethod::kUnobservedVoxel, Ranking::kBest}));
+  EXPECT_EQ(parse_planner_method("latombe"),
+            (PlannerMethod{GainMethod::kGreedy, Ranking::kTravel}));
+  const PlannerMethod weighed = parse_planner_method("latombe+survival");
+  EXPECT_EQ(weighed, (PlannerMethod{GainMethod::kSurvival, Ranking::kTravel}));
+  for (const std::string name : {"probabilistic", "greedy", "random", "yamauchi", "sequence",
+                                 "latombe+survival", "yamauchi+area-factor", "area-factor"}) {
+    EXPECT_EQ(to_string(parse_planner_method(name)), name);
+  }
+  EXPECT_EQ(to_string(PlannerMethod{GainMethod::kGreedy, Ranking::kTravel}), "latombe");
+  EXPECT_TRUE(uses_travel(weighed));
+  EXPECT_TRUE(ranks_by_gain(weighed));
+  EXPECT_FALSE(ranks_by_gain(PlannerMethod::kYamauchi));
+  for (const char* bad : {"latombe+", "latombe+fancy", "best+greedy", "+greedy"}) {
+    try {
+      parse_planner_method(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("RANKING+GAIN"), std::string::npos) << e.what();
+    }
+  }
+  // Latombe's weighting serves any gain: the survival reading's cells, times exp(-lambda d).
+  HalfKnownBlock s;
+  for (std::size_t c = 0; c < s.candidates.size(); ++c)
+    s.candidates[c].travel = 0.7 * static_cast<double>(c);
+  PlannerConfig config;
+  config.method = weighed;
+  config.objective = GainObjective::kCells;
+  config.search = DecisionSearch::kExhaustive;
+  const Plan plan = plan_next_view(s.grid, s.candidates, config);
+  std::size_t weighed_views = 0;  // views that see something and are weighed below 1
+  for (std::size_t c = 0; c < s.candidates.size(); ++c) {
+    weighed_views += c > 0 && plan.gains[c].cells > 0.0;
+    EXPECT_DOUBLE_EQ(plan.scores[c],
+                     plan.gains[c].cells * std::exp(-config.lambda * s.candidates[c].travel));
+  }
+  EXPECT_GE(weighed_views, 1u);
 }
 
 }  // namespace

@@ -45,7 +45,7 @@ TEST(SequenceScenes, HorizonOneIsTodaysDecisionOnTabletop4) {
       PlannerConfig today;
       today.method = method;
       today.objective = GainObjective::kCells;
-      today.gain.method = gain_method_of(method);
+      today.gain.method = method.gain;
       today.gain.alpha = kSurvivalAlpha;
       today.gain.evaluation = GainEvaluation::kExact;
       today.search = DecisionSearch::kExhaustive;

@@ -295,7 +295,7 @@ TEST(Sequence, HorizonOneWithoutTravelWeightIsTodaysDecision) {
       PlannerConfig today;
       today.method = method;
       today.objective = GainObjective::kCells;
-      today.gain = s.gain(gain_method_of(method));
+      today.gain = s.gain(method.gain);
       today.search = DecisionSearch::kExhaustive;
       const Plan plan = plan_next_view(s.grid, s.candidates, today);
       std::vector<double> travel;

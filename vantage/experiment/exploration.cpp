@@ -118,7 +118,7 @@ ExplorationResult Explorer::run(const ScanCallback& on_scan) {
       const auto start = Clock::now();
       const std::vector<Frustum> views = views_at(record.T_world_sensor);
       GainConfig gain = planner_.gain;
-      gain.method = gain_method_of(planner_.method);
+      gain.method = planner_.method.gain;
       record.calibration = expected_cells_by_alpha(mapper_.grid(), views, gain, fit_->alphas());
       record.seconds.calibrate = seconds_since(start);
     }

@@ -17,8 +17,8 @@
 #include <string_view>
 #include <vector>
 
+#include "vantage/map/navigation.hpp"
 #include "vantage/perception/mapper.hpp"
-#include "vantage/planner/navigation.hpp"
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"

@@ -12,7 +12,7 @@
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/cloud_io.hpp"
 #include "vantage/io/map_files.hpp"
-#include "vantage/planner/navigation.hpp"
+#include "vantage/map/navigation.hpp"
 
 namespace vantage {
 namespace {
@@ -221,12 +221,12 @@ void write_floor_map(const std::filesystem::path& path, const sim::Scene& scene,
 }  // namespace
 
 GainUnits gain_units(const PlannerConfig& planner) {
-  if (is_volumetric_metric(gain_method_of(planner.method))) return {"metric", "metric", "metric"};
+  if (is_volumetric_metric(planner.method.gain)) return {"metric", "metric", "metric"};
   if (has_observability(planner.method)) {
     const std::string_view objective = to_string(planner.objective);
     return {"bits", objective, objective};
   }
-  if (planner.method == PlannerMethod::kYamauchi) return {"cells", "-m", "cells"};
+  if (planner.method.ranking == Ranking::kNearest) return {"cells", "-m", "cells"};
   return {"cells", "cells", "cells"};
 }
 

@@ -1,4 +1,4 @@
-#include "vantage/planner/navigation.hpp"
+#include "vantage/map/navigation.hpp"
 
 #include <algorithm>
 #include <cmath>

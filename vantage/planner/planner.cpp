@@ -17,7 +17,7 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   const auto start = std::chrono::steady_clock::now();
   const CandidateViews views(candidates);
   GainConfig gain = config.gain;
-  gain.method = gain_method_of(config.method);
+  gain.method = config.method.gain;
   return search.run(SearchInput{grid, candidates, views, config, gain, start, seed});
 }
 

@@ -113,8 +113,8 @@ std::vector<ViewGain> CandidateViews::sums(const std::vector<ViewGain>& per_view
 }
 
 double SearchInput::travel_factor(std::size_t c) const {
-  return config.method == PlannerMethod::kLatombe ? std::exp(-config.lambda * candidates[c].travel)
-                                                  : 1.0;
+  return config.method.ranking == Ranking::kTravel ? std::exp(-config.lambda * candidates[c].travel)
+                                                   : 1.0;
 }
 
 std::vector<double> SearchInput::travel_factors() const {

@@ -44,7 +44,7 @@ struct SearchInput {
   std::span<const Candidate> candidates;
   const CandidateViews& views;
   const PlannerConfig& config;
-  GainConfig gain;  ///< config.gain with the method's gain method (gain_method_of)
+  GainConfig gain;  ///< config.gain with the method's gain method (PlannerMethod::gain)
   std::chrono::steady_clock::time_point start;
   std::uint64_t seed = 0;  ///< PlannerMethod::kRandom's
 

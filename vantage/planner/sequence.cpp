@@ -296,7 +296,7 @@ Plan decide_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> ca
     travel.push_back(candidates[c].travel);
   }
   GainConfig gain = config.gain;
-  gain.method = gain_method_of(config.method);
+  gain.method = config.method.gain;
   const SequenceConfig sequence_config = sequence_of(config);
   SequencePlan sequence = plan_sequence(grid, views, travel, gain, sequence_config);
   Plan plan;

@@ -1,6 +1,7 @@
 #include "vantage/planner/types.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -10,40 +11,47 @@
 
 namespace vantage {
 
-// NOTE: the planner's own strategies, then one per gain method it scores by, named as the gain
-// method is (methods.hpp); the rows' order is the order names are listed in messages.
-constexpr EnumNames<PlannerMethod, 14> kPlannerMethodNames = {{
-    {PlannerMethod::kProbabilistic, "probabilistic"},
-    {PlannerMethod::kSurvival, "survival"},
-    {PlannerMethod::kGreedy, "greedy"},
-    {PlannerMethod::kRandom, "random"},
-    {PlannerMethod::kLatombe, "latombe"},
-    {PlannerMethod::kYamauchi, "yamauchi"},
-    {PlannerMethod::kOcclusionAware, "occlusion-aware"},
-    {PlannerMethod::kUnobservedVoxel, "unobserved-voxel"},
-    {PlannerMethod::kRearSideVoxel, "rear-side-voxel"},
-    {PlannerMethod::kRearSideEntropy, "rear-side-entropy"},
-    {PlannerMethod::kProximityCount, "proximity-count"},
-    {PlannerMethod::kAverageEntropy, "average-entropy"},
-    {PlannerMethod::kAreaFactor, "area-factor"},
-    {PlannerMethod::kSequence, "sequence"},
+namespace {
+
+/// The rankings other than the best score, each by its name and the gain it ranks when the name
+/// stands alone.
+struct RankingName {
+  Ranking ranking;
+  std::string_view name;
+  GainMethod gain;
+};
+constexpr std::array<RankingName, 4> kRankings = {{
+    {Ranking::kTravel, "latombe", GainMethod::kGreedy},
+    {Ranking::kNearest, "yamauchi", GainMethod::kGreedy},
+    {Ranking::kRandom, "random", GainMethod::kGreedy},
+    {Ranking::kSequence, "sequence", GainMethod::kSurvival},
 }};
 
-std::string_view to_string(PlannerMethod method) { return name_of(method, kPlannerMethodNames); }
+const RankingName* ranking_named(std::string_view name) {
+  for (const RankingName& r : kRankings) {
+    if (r.name == name) return &r;
+  }
+  return nullptr;
+}
 
-GainMethod gain_method_of(PlannerMethod method) {
-  if (method == PlannerMethod::kSequence) return GainMethod::kSurvival;
-  // NOTE: random, latombe and yamauchi report (latombe: and weigh) greedy's count.
-  return find_gain_method(to_string(method)).value_or(GainMethod::kGreedy);
+}  // namespace
+
+std::string to_string(PlannerMethod method) {
+  const std::string gain(to_string(method.gain));
+  for (const RankingName& r : kRankings) {
+    if (r.ranking != method.ranking) continue;
+    return r.gain == method.gain ? std::string(r.name) : cat(r.name, "+", gain);
+  }
+  return gain;
 }
 
 bool uses_survival_reading(PlannerMethod method) {
-  return method_traits(gain_method_of(method)).ray == TargetRay::kSurvival;
+  return method_traits(method.gain).ray == TargetRay::kSurvival;
 }
 
 SequenceConfig sequence_of(const PlannerConfig& config) {
   SequenceConfig sequence = config.sequence;
-  if (config.method == PlannerMethod::kSequence && !sequence.active()) {
+  if (config.method.ranking == Ranking::kSequence && !sequence.active()) {
     sequence.horizon = kSequenceDefaults.horizon;
     sequence.travel_weight = kSequenceDefaults.travel_weight;
   }
@@ -51,7 +59,22 @@ SequenceConfig sequence_of(const PlannerConfig& config) {
 }
 
 PlannerMethod parse_planner_method(std::string_view name) {
-  return value_named(name, kPlannerMethodNames, "method");
+  const std::size_t plus = name.find('+');
+  const RankingName* ranking = ranking_named(name.substr(0, plus));
+  if (plus != std::string_view::npos && ranking != nullptr) {
+    if (const auto gain = find_gain_method(name.substr(plus + 1))) {
+      return {*gain, ranking->ranking};
+    }
+  } else if (ranking != nullptr) {
+    return {ranking->gain, ranking->ranking};
+  } else if (const auto gain = find_gain_method(name)) {
+    return {*gain, Ranking::kBest};
+  }
+  std::string names;
+  for (const MethodTraits& t : gain_methods()) names += cat(t.name, ", ");
+  for (const RankingName& r : kRankings) names += cat(r.name, ", ");
+  throw std::invalid_argument(cat("unknown method '", name, "' (expected ", names,
+                                  "or RANKING+GAIN, such as latombe+survival)"));
 }
 
 std::string_view to_string(GainObjective objective) {
@@ -69,12 +92,14 @@ GainObjective natural_objective(PlannerMethod method) {
 }
 
 bool ranks_by_gain(PlannerMethod method) {
-  return method != PlannerMethod::kRandom && method != PlannerMethod::kYamauchi;
+  return method.ranking != Ranking::kRandom && method.ranking != Ranking::kNearest;
 }
 
-bool has_observability(PlannerMethod method) {
-  return method_traits(gain_method_of(method)).has_objective;
+bool uses_travel(PlannerMethod method) {
+  return method.ranking == Ranking::kTravel || method.ranking == Ranking::kNearest;
 }
+
+bool has_observability(PlannerMethod method) { return method_traits(method.gain).has_objective; }
 
 void PlannerConfig::validate() const {
   gain.validate();
@@ -85,8 +110,9 @@ void PlannerConfig::validate() const {
     throw std::invalid_argument(cat("planner.swept_rays must lie in [1, 4096], got ", swept_rays));
   }
   sequence.validate();
-  if (sequence.active() || method == PlannerMethod::kSequence) {
-    if (!uses_survival_reading(method) && method != PlannerMethod::kGreedy) {
+  if (sequence.active() || method.ranking == Ranking::kSequence) {
+    if ((method.gain != GainMethod::kSurvival && method.gain != GainMethod::kGreedy) ||
+        (method.ranking != Ranking::kBest && method.ranking != Ranking::kSequence)) {
       throw std::invalid_argument(
           cat("planner.sequence plans with survival, sequence or greedy, not ", to_string(method)));
     }

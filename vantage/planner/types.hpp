@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -15,43 +16,52 @@
 
 namespace vantage {
 
-/// How the next view is chosen.
-enum class PlannerMethod {
-  kProbabilistic,  ///< highest expected gain under the paper's visibility model
-  kSurvival,       ///< the same under the survival reading of it (gain/survival.hpp)
-  kGreedy,         ///< highest simple-greedy gain (infinite visibility)
-  kRandom,         ///< a uniformly random candidate, seeded
-  kLatombe,        ///< González-Baños & Latombe: greedy gain * exp(-lambda * travel)
-  kYamauchi,       ///< the candidate nearest by travel distance
-  // The highest value of one of the field's volumetric metrics (vantage/gain/metrics.hpp).
-  kOcclusionAware,
-  kUnobservedVoxel,
-  kRearSideVoxel,
-  kRearSideEntropy,
-  kProximityCount,
-  kAverageEntropy,
-  kAreaFactor,
-  /// Plans past the next scan (sequence.hpp, docs/decision.md "Planning a sequence"): the
-  /// survival reading's expected cells, the views that jointly see the most toured from the
-  /// current pose, PlannerConfig::sequence, or kSequenceDefaults when that plans one view.
+/// How a gain is turned into a choice: the ways to rank any gain model's views.
+enum class Ranking {
+  kBest,     ///< the highest score
+  kTravel,   ///< González-Baños & Latombe: the score times exp(-lambda * travel)
+  kNearest,  ///< Yamauchi: the candidate nearest by travel; of those, the one that sees most
+  kRandom,   ///< a uniformly random candidate, seeded
+  /// Plans past the next scan (sequence.hpp, docs/decision.md "Planning a sequence"): the views
+  /// that jointly see the most toured from the current pose, PlannerConfig::sequence, or
+  /// kSequenceDefaults when that plans one view.
   kSequence,
 };
 
-std::string_view to_string(PlannerMethod method);
+/// How the next view is chosen: a gain model (GainMethod, whose registry names it) ranked one
+/// way. Named as the CLI names it: a gain method's own name ranks it best; `latombe`,
+/// `yamauchi` and `random` rank greedy's count, `sequence` the survival reading's cells; any
+/// other pair is RANKING+GAIN, such as `latombe+survival`.
+struct PlannerMethod {
+  GainMethod gain = GainMethod::kProbabilistic;
+  Ranking ranking = Ranking::kBest;
+
+  static const PlannerMethod kProbabilistic, kSurvival, kGreedy, kRandom, kLatombe, kYamauchi,
+      kSequence;
+  friend bool operator==(const PlannerMethod&, const PlannerMethod&) = default;
+};
+inline constexpr PlannerMethod PlannerMethod::kProbabilistic{GainMethod::kProbabilistic};
+inline constexpr PlannerMethod PlannerMethod::kSurvival{GainMethod::kSurvival};
+inline constexpr PlannerMethod PlannerMethod::kGreedy{GainMethod::kGreedy};
+inline constexpr PlannerMethod PlannerMethod::kRandom{GainMethod::kGreedy, Ranking::kRandom};
+inline constexpr PlannerMethod PlannerMethod::kLatombe{GainMethod::kGreedy, Ranking::kTravel};
+inline constexpr PlannerMethod PlannerMethod::kYamauchi{GainMethod::kGreedy, Ranking::kNearest};
+inline constexpr PlannerMethod PlannerMethod::kSequence{GainMethod::kSurvival, Ranking::kSequence};
+
+std::string to_string(PlannerMethod method);
 /// Whether the method predicts with the survival reading of the visibility (survival, sequence):
 /// its a is a chance per unobserved cell, fitted online by default, and it ranks by cells.
 bool uses_survival_reading(PlannerMethod method);
-/// Parses probabilistic, greedy, random, latombe, yamauchi or a metric's name (as GainMethod's);
-/// throws std::invalid_argument.
+/// Parses a gain method's name, latombe, yamauchi, random, sequence or RANKING+GAIN; throws
+/// std::invalid_argument naming the value and the names there are.
 PlannerMethod parse_planner_method(std::string_view name);
-/// The gain method a planner method scores by: probabilistic, survival, a metric, or greedy for
-/// the rest.
-GainMethod gain_method_of(PlannerMethod method);
 /// Whether the method predicts with a visibility model of parameter a (probabilistic, survival):
 /// it takes --alpha (auto too) and --objective, and reports its expected cells seen.
 bool has_observability(PlannerMethod method);
 /// Whether the method ranks candidates by a gain (not random or Yamauchi's nearest).
 bool ranks_by_gain(PlannerMethod method);
+/// Whether the method weighs travel, so a decision needs the robot's pose (Latombe, Yamauchi).
+bool uses_travel(PlannerMethod method);
 
 /// What the probabilistic method maximises over the candidates.
 enum class GainObjective {
@@ -100,7 +110,7 @@ struct PlannerConfig {
   /// What the probabilistic and survival methods rank by; the others count cells whatever it
   /// says.
   GainObjective objective = GainObjective::kBits;
-  /// Gain evaluation settings; `gain.method` is set from `method` (gain_method_of).
+  /// Gain evaluation settings; `gain.method` is set from `method.gain`.
   GainConfig gain;
   double lambda = 0.5;  ///< kLatombe's travel penalty [1/m]
   /// The search; none: the fastest that serves the method (resolve_search, search.hpp). A

@@ -41,7 +41,8 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                  "(survival's views planned past the next scan and toured: --horizon, "
                  "--travel-weight; default 3 views, 0.1/m), or one of the field's metrics: "
                  "occlusion-aware, unobserved-voxel, rear-side-voxel, rear-side-entropy, "
-                 "proximity-count, average-entropy, area-factor (docs/model.md); explore and bench "
+                 "proximity-count, average-entropy, area-factor (docs/model.md); a ranking of "
+                 "another gain as RANKING+GAIN (latombe+survival); explore and bench "
                  "on a table top also take greedy-oracle (the view whose true hits add the most "
                  "surface, docs/yardstick.md)")
       ->capture_default_str();

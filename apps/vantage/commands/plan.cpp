@@ -42,10 +42,6 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-bool needs_pose(PlannerMethod method) {
-  return method == PlannerMethod::kLatombe || method == PlannerMethod::kYamauchi;
-}
-
 fs::path out_dir(const PlanOptions& o) {
   if (!o.out.empty()) return o.out;
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -103,7 +99,7 @@ void run(const PlanOptions& o) {
   if (!o.pose.empty()) {
     robot = parse_pose(o.pose, "--pose");
     robot_source = "--pose";
-  } else if (needs_pose(planner.method) && o.input.empty()) {
+  } else if (uses_travel(planner.method) && o.input.empty()) {
     throw UsageError(
         fmt::format("--method {} weighs travel and needs the robot's pose: give --pose "
                     "x,y,z,roll,pitch,yaw or a manifest (its last cloud's pose is used)",
@@ -266,7 +262,7 @@ void run(const PlanOptions& o) {
   const Eigen::AlignedBox3d roi =
       manifest ? manifest->roi : Eigen::AlignedBox3d(spec.origin, spec.max_corner());
 
-  if (needs_pose(planner.method) && !robot) {
+  if (uses_travel(planner.method) && !robot) {
     throw std::invalid_argument(
         fmt::format("--method {} needs the robot's pose: the manifest has no clouds; give --pose",
                     to_string(planner.method)));

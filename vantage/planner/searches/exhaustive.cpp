@@ -31,12 +31,12 @@ Plan run(const SearchInput& in) {
   plan.gains = in.views.sums(per_view);
   plan.scores = in.views.sums(values);
   plan.evaluated = in.candidates.size();
-  switch (config.method) {
-    case PlannerMethod::kRandom:
+  switch (config.method.ranking) {
+    case Ranking::kRandom:
       // NOTE: a uniformly random view, so a candidate of several views is as likely as its views.
       plan.best = in.views.candidate_of(choose_random(in.views.frusta.size(), in.seed));
       break;
-    case PlannerMethod::kYamauchi: {
+    case Ranking::kNearest: {
       std::vector<double> counts;
       for (const ViewGain& g : plan.gains) counts.push_back(g.gain);
       plan.scores.clear();

@@ -145,7 +145,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
 
 bool serves(const PlannerConfig& config) {
   return ranks_by_gain(config.method) &&
-         method_traits(gain_method_of(config.method)).kind == MethodKind::kTargetModel;
+         method_traits(config.method.gain).kind == MethodKind::kTargetModel;
 }
 
 Plan run(const SearchInput& in) {
@@ -156,8 +156,8 @@ Plan run(const SearchInput& in) {
   if (counts) {
     score = PrunedScore::kGreedy;
   } else if (in.config.objective == GainObjective::kCells) {
-    score = in.config.method == PlannerMethod::kSurvival ? PrunedScore::kSurvivalCells
-                                                         : PrunedScore::kModelCells;
+    score = uses_survival_reading(in.config.method) ? PrunedScore::kSurvivalCells
+                                                    : PrunedScore::kModelCells;
   }
   Pruning pruning = prune_candidates(in.grid, in.views.frusta, in.views.first, in.travel_factors(),
                                      in.gain, score);

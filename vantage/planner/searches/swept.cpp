@@ -25,7 +25,7 @@ namespace {
 /// cells seen (when it ranks by cells) or greedy's count (greedy, Latombe).
 std::optional<CountRule> swept_rule(const PlannerConfig& config) {
   if (!ranks_by_gain(config.method)) return std::nullopt;
-  switch (method_traits(gain_method_of(config.method)).ray) {
+  switch (method_traits(config.method.gain).ray) {
     case TargetRay::kUnblocked:
       return CountRule::kGreedy;
     case TargetRay::kSurvival:
@@ -43,7 +43,7 @@ std::optional<CountRule> swept_rule(const PlannerConfig& config) {
 /// (docs/decision.md, "The paper's model").
 bool paper_race(const PlannerConfig& config) {
   return ranks_by_gain(config.method) &&
-         method_traits(gain_method_of(config.method)).ray == TargetRay::kPaper &&
+         method_traits(config.method.gain).ray == TargetRay::kPaper &&
          config.objective == GainObjective::kCells;
 }
 
