@@ -1,5 +1,5 @@
 // The exact gain evaluation's own properties: the snapshot it reads against the grid, views that
-// share an origin, thread-count independence, the façade's dispatch and settings, and its early
+// share an origin, the façade's dispatch and settings, and its early
 // stop against the literal model on synthetic table-top map states after 1, 3 and 6 scans. The
 // exact evaluation against hand-computed values: view_gain_test.cpp.
 
@@ -103,29 +103,6 @@ TEST(ExactGain, ViewsFromOneOriginShareRaysBitForBit) {
       EXPECT_EQ(alone.gain, together[v].gain) << to_string(method) << ", view " << v;
       EXPECT_EQ(alone.cells, together[v].cells) << to_string(method) << ", view " << v;
       EXPECT_EQ(alone.targets, together[v].targets) << to_string(method) << ", view " << v;
-    }
-  }
-}
-
-TEST(ExactGain, SameResultForAnyThreadCount) {
-  const RandomWorld world;
-  for (const GainMethod method : {GainMethod::kProbabilistic, GainMethod::kGreedy}) {
-    GainConfig one;
-    one.method = method;
-    one.num_threads = 1;
-    GainConfig two = one;
-    two.num_threads = 2;
-    GainConfig three = one;
-    three.num_threads = 3;
-    const auto a = exact_view_gains(world.grid, world.views, one);
-    const auto b = exact_view_gains(world.grid, world.views, two);
-    const auto c = exact_view_gains(world.grid, world.views, three);
-    for (std::size_t v = 0; v < world.views.size(); ++v) {
-      EXPECT_EQ(a[v].gain, b[v].gain);  // bitwise
-      EXPECT_EQ(a[v].gain, c[v].gain);
-      EXPECT_EQ(a[v].cells, b[v].cells);
-      EXPECT_EQ(a[v].cells, c[v].cells);
-      EXPECT_EQ(a[v].targets, b[v].targets);
     }
   }
 }
