@@ -16,6 +16,7 @@
 #include "shell.hpp"
 #include "vantage/perception/registration.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/util/work.hpp"
 
 namespace {
 
@@ -113,6 +114,9 @@ int main(int argc, char** argv) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
     return report_error(parse_message(e, app), vantage::cli::kExitUsage);
   } catch (const vantage::cli::UsageError& e) {
+    return report_error(e.what(), vantage::cli::kExitUsage);
+  } catch (const vantage::WorkBudgetError& e) {
+    // NOTE: work the budget refused is the command line's to change, as an option out of range.
     return report_error(e.what(), vantage::cli::kExitUsage);
   } catch (const std::filesystem::filesystem_error& e) {
     // NOTE: what() is "filesystem error: cannot ...: <reason> [path]"; say the path and reason.

@@ -114,10 +114,19 @@ double mapping_cost(int num_threads) {
       num_threads > 0 ? num_threads : static_cast<int>(std::thread::hardware_concurrency()));
 }
 
+WorkBudget& python_budget() {
+  // NOTE: Python's one process-wide setting, as numpy's seterr: the calls that allocate a grid
+  // or decide take no budget argument each.
+  static WorkBudget budget{kDefaultMaxWorkSeconds, 0, "max_work", "max_memory"};
+  return budget;
+}
+
 void check_grid_memory(const GridSpec& spec, double bytes_per_cell, const std::string& what) {
   check_memory(
-      {static_cast<std::uint64_t>(spec.num_cells()), bytes_per_cell, 0.0}, 0,
-      cat(what, " of ", spec.dims.x(), " x ", spec.dims.y(), " x ", spec.dims.z(), " cells"));
+      {static_cast<std::uint64_t>(spec.num_cells()), bytes_per_cell, 0.0},
+      python_budget().max_bytes,
+      cat(what, " of ", spec.dims.x(), " x ", spec.dims.y(), " x ", spec.dims.z(), " cells"),
+      python_budget().memory_option);
 }
 
 }  // namespace vantage::python

@@ -16,6 +16,7 @@
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/map/point_cloud.hpp"
 #include "vantage/util/memory.hpp"
+#include "vantage/util/work.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage::python {
@@ -83,6 +84,10 @@ auto with_file(const std::filesystem::path& path, bool writing, F&& f) {
     raise_file_error(path, e.what(), writing);
   }
 }
+
+/// The budget every call is checked against, as the CLI's --max-memory and --max-work
+/// (vt.set_budget; docs/robustness.md, "Work"): one per process, the defaults until set.
+WorkBudget& python_budget();
 
 /// What a Mapper's or a plan's grid costs a cell on `num_threads` threads (0: every core).
 double mapping_cost(int num_threads);

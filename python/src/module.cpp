@@ -1,7 +1,10 @@
 // The `vantage._vantage` extension module; the `vantage` package re-exports it.
 
 #include "bindings.hpp"
+#include "convert.hpp"
 #include "vantage/util/memory.hpp"
+#include "vantage/util/text.hpp"
+#include "vantage/util/work.hpp"
 
 PYBIND11_MODULE(_vantage, m) {
   m.doc() =
@@ -18,8 +21,38 @@ PYBIND11_MODULE(_vantage, m) {
       if (p) std::rethrow_exception(p);
     } catch (const vantage::MemoryBudgetError& e) {
       PyErr_SetString(PyExc_MemoryError, e.what());
+    } catch (const vantage::WorkBudgetError& e) {
+      PyErr_SetString(e.memory ? PyExc_MemoryError : PyExc_ValueError, e.what());
     }
   });
+  m.def(
+      "set_budget",
+      [](std::uint64_t max_memory, double max_work) {
+        if (!(max_work > 0.0)) {
+          throw std::invalid_argument(
+              vantage::cat("max_work must be a positive number of seconds, got ", max_work));
+        }
+        vantage::WorkBudget& budget = vantage::python::python_budget();
+        budget.max_bytes = max_memory;
+        budget.max_seconds = max_work;
+      },
+      pybind11::arg("max_memory") = 0, pybind11::arg("max_work") = vantage::kDefaultMaxWorkSeconds,
+      "The budget every later call is checked against, as the CLI's --max-memory and --max-work "
+      "(docs/robustness.md, \"Work\"): max_memory [bytes] for a grid (OccupancyGrid, Mapper, "
+      "plan, load) and a decision beside it, 0 for the memory available when the call is made; "
+      "max_work [s] for a decision's estimated work (plan_next_view, plan). A grid past it raises "
+      "MemoryError, a decision past it ValueError (MemoryError for its memory), each one line "
+      "naming the estimate, before anything is allocated or computed.");
+  m.def(
+      "budget",
+      [] {
+        const vantage::WorkBudget& budget = vantage::python::python_budget();
+        pybind11::dict out;
+        out["max_memory"] = budget.max_bytes;
+        out["max_work"] = budget.max_seconds;
+        return out;
+      },
+      "The budget set_budget set: {'max_memory': bytes (0: what is available), 'max_work': s}.");
   vantage::python::bind_map(m);
   vantage::python::bind_gain(m);
   vantage::python::bind_plan(m);

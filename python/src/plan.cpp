@@ -16,6 +16,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "vantage/experiment/decision_cost.hpp"
 #include "vantage/experiment/planning_settings.hpp"
 #include "vantage/experiment/recorded.hpp"
 #include "vantage/io/cloud_io.hpp"
@@ -40,6 +41,7 @@ RankedPlan decide(const OccupancyGrid& grid, const DoubleArray& candidates, cons
   config.validate();
   std::vector<Candidate> views;
   for (const Frustum& view : to_views(candidates, fov, "candidates")) views.push_back({view});
+  check_decision_on(grid, views, config, python_budget());  // before any of it is computed
   RankedPlan out;
   {
     py::gil_scoped_release release;

@@ -48,6 +48,39 @@ file(WRITE ${hard}/many_stops.yaml "${many_stops}")
 vantage_cli_failure(scene_stops_too_many "makes 50000 stops, more than the 20000 the ground truth sweeps from"
                     scene ${hard}/many_stops.yaml)
 
+# 2b. A decision's work and memory estimated before it is computed, against --max-work and
+# --max-memory (docs/robustness.md, "Work"). A narrow sensor over a grid of 80^3 cells leaves
+# nearly every cell unobserved: 99 999 ring views are estimated at about 110 s (the swept search
+# took 22 s for 30 000 views on such a grid), refused once the map is built, before the decision.
+file(WRITE ${hard}/narrow.yaml "clouds: [{file: front.pcd, pose: ${identity}}]\nsensor: {frame: x_forward, fov_deg: {horizontal: 10, vertical: 10}, min_range: 0.1, max_range: 3.0}\nroi: {min: [0.5, -0.5, -0.5], max: [1.5, 0.5, 0.5]}\nresolution: 0.0125\noptions: {table_segmentation: false, icp: false}\n")
+add_test(NAME cli.plan_ring_work_budget
+         COMMAND ${expect} --code 2 --absent ${hard}/out_ring "more than --max-work 60 s allows: raise it"
+                 $<TARGET_FILE:vantage> plan ${hard}/narrow.yaml --candidates ring --views 33333 --no-plots
+                 --out ${hard}/out_ring)
+# issue 39: --method sequence --views 100000 --shortlist 1000000 said "out of memory" after 108 s:
+# its travel table alone is 80 GB, refused before the clouds are mapped.
+add_test(NAME cli.plan_sequence_shortlist_memory
+         COMMAND ${expect} --code 2 --absent ${hard}/out_seq "more than --max-memory 4 GiB: decide among fewer views (or a smaller shortlist"
+                 $<TARGET_FILE:vantage> plan ${hard}/front.yaml --method sequence --views 33333
+                 --shortlist 1000000 --max-memory 4G --no-plots --out ${hard}/out_seq)
+# The least the decision can cost, whatever the map, is weighed before the clouds are mapped.
+vantage_cli_usage(plan_max_work_tiny "the swept search over 30 views, about 7107 grid cells in each view's frustum, is estimated at 0.0241 s"
+                  plan ${hard}/front.yaml --max-work 0.001 --no-plots --out ${hard}/out_work)
+vantage_cli_usage(plan_max_work_zero "--max-work: " plan ${hard}/front.yaml --max-work 0)
+# explore and bench: a sequence's shortlist up front (13 164 hemisphere views: a travel table of
+# 1.4 GB), before the world is built; each decision on its map as the run goes (the paper's method
+# after the first scan: its pruned search at worst evaluates every view).
+vantage_cli_usage(explore_sequence_shortlist_memory "more than --max-memory 1 GiB: decide among fewer views (or a smaller shortlist"
+                  explore --method sequence --candidates hemisphere --view-spacing 0.003 --shortlist 100000
+                  --max-memory 1G --scans 2 --out ${hard}/out_explore_seq)
+vantage_cli_usage(bench_sequence_shortlist_memory "more than --max-memory 1 GiB: decide among fewer views (or a smaller shortlist"
+                  bench tabletop --scenes tabletop-1 --methods sequence --candidates hemisphere --view-spacing 0.003
+                  --shortlist 100000 --max-memory 1G --trials 1 --scans 2 --out ${hard}/out_bench_seq)
+add_test(NAME cli.explore_work_budget
+         COMMAND ${expect} --code 2 --absent ${hard}/out_explore_work "the pruned search over 29 views"
+                 $<TARGET_FILE:vantage> explore --method probabilistic --max-work 1 --scans 2 --no-plots --quiet
+                 --out ${hard}/out_explore_work)
+
 # 3. Values accepted that should not be.
 vantage_cli_usage(ray_cells_hex "--cells: '0x1p-3' (item 0) is not a number" ray --cells 0x1p-3)
 file(WRITE ${hard}/res_twice.bt "# Octomap OcTree binary file\nid OcTree\nsize 0\nres 0.1\nres 10\ndata\n")

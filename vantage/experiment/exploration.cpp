@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "vantage/experiment/decision_cost.hpp"
 #include "vantage/experiment/detail/explorer.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/util/text.hpp"
@@ -281,6 +282,7 @@ Decision Explorer::plan_view(const ScanRecord& current, std::uint64_t seed) {
     return d;
   }
   if (config_.greedy_oracle) return oracle_view(current, open, index, std::move(d));
+  check_decision_on(mapper_.grid(), open, planner_, config_.budget);
   const Plan plan = plan_next_view(mapper_.grid(), open, planner_, seed);
   double best_gain = 0.0;  // of any candidate, whichever the method chose
   for (const ViewGain& g : plan.gains) best_gain = std::max(best_gain, g.gain);

@@ -22,6 +22,7 @@
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"
+#include "vantage/util/work.hpp"
 #include "vantage/views/hemisphere.hpp"
 
 namespace vantage {
@@ -69,6 +70,9 @@ struct ExplorationConfig {
   /// is not needed: greedy's prediction is made for the chosen view only, after the decision
   /// (ScanRecord::greedy_predicted_gain).
   PlannerConfig planner;
+  /// What each decision may cost (decision_cost.hpp): estimated on the map it is made on and
+  /// refused (WorkBudgetError) before it is computed.
+  WorkBudget budget;
   MapperConfig mapper;    ///< registration, table segmentation, integration
   int scans = 10;         ///< N, the number of scans to take (the first included)
   double min_gain = 0.0;  ///< stop early once the best predicted gain falls below this

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vantage/experiment/decision_cost.hpp"
 #include "vantage/experiment/detail/explorer.hpp"
 #include "vantage/util/text.hpp"
 
@@ -93,6 +94,7 @@ Decision Explorer::plan_stop(int k, std::uint64_t seed) {
     views.erase(views.begin());
     candidates.push_back({first, s.travel, s.reachable, std::move(views)});
   }
+  check_decision_on(grid, candidates, planner_, config_.budget);
   const Plan plan = plan_next_view(grid, candidates, planner_, seed);
   const std::size_t best = plan.best;
   result_.candidates = poses;

@@ -120,9 +120,10 @@ struct MemoryBudgetError : std::runtime_error {
 };
 
 /// Throws MemoryBudgetError naming `what` when the estimate exceeds `limit` bytes, or, when
-/// `limit` is 0, the memory available now (a limit of 0 with nothing known checks nothing).
-inline void check_memory(const MemoryEstimate& estimate, std::uint64_t limit,
-                         std::string_view what) {
+/// `limit` is 0, the memory available now (a limit of 0 with nothing known checks nothing);
+/// `option` is the limit's name where the user set it.
+inline void check_memory(const MemoryEstimate& estimate, std::uint64_t limit, std::string_view what,
+                         std::string_view option = "--max-memory") {
   const bool given = limit > 0;
   const std::uint64_t budget = given ? limit : available_memory();
   if (budget == 0 || estimate.bytes() <= static_cast<double>(budget)) return;
@@ -130,7 +131,7 @@ inline void check_memory(const MemoryEstimate& estimate, std::uint64_t limit,
       cat(what, " needs about ", describe_bytes(estimate.bytes()), " (", estimate.cells,
           " cells x ", estimate.bytes_per_cell, " bytes",
           estimate.copies > 1 ? cat(" x ", estimate.copies, " jobs") : std::string(),
-          "), more than ", given ? "--max-memory " : "the ",
+          "), more than ", given ? cat(option, " ") : std::string("the "),
           describe_bytes(static_cast<double>(budget)), given ? "" : " this machine has available",
           "; use a coarser resolution or a smaller region"));
 }

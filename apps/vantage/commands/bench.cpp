@@ -43,9 +43,10 @@ struct BenchOptions {
   bool project_stops = true;  ///< office: unreachable frontier centroids move into their region
   PlanningOptions planning;
   MappingOptions mapping;
-  CandidateOptions candidates;   ///< tabletop only
-  std::uint64_t max_memory = 0;  // 0: what the machine has available
-  int generated = 0;             ///< tabletop: generated piles, instead of --scenes unless given
+  CandidateOptions candidates;               ///< tabletop only
+  std::uint64_t max_memory = 0;              // 0: what the machine has available
+  double max_work = kDefaultMaxWorkSeconds;  ///< [s] of a decision's estimated work
+  int generated = 0;  ///< tabletop: generated piles, instead of --scenes unless given
   int objects = sim::PileConfig{}.objects;
   std::uint64_t generated_seed = 1;
   bool scenes_given = false;  ///< --scenes was on the command line
@@ -134,6 +135,7 @@ BenchConfig bench_config(const BenchOptions& o) {
   config.exploration.revisit = o.revisit;
   config.exploration.office.project_stops = o.project_stops;
   o.candidates.apply(config.exploration);
+  config.exploration.budget = work_budget(o.max_work, o.max_memory);
   config.jobs = o.jobs;
   parse_shard(o.shard, config);
   config.validate();
@@ -144,17 +146,30 @@ void run(const BenchOptions& o) {
   const BenchConfig config = from_options([&] { return bench_config(o); });
 
   // NOTE: --jobs trials at once, each with its own grid; the largest scene decides.
+  std::vector<sim::Scene> scenes;
+  for (const std::string& name : config.scenes) scenes.push_back(sim::load_scene(name));
+  if (config.generated > 0) scenes.push_back(sim::pile_scene(bench_piles(config).front()));
   std::uint64_t cells = 0;
-  for (const std::string& name : config.scenes) {
-    cells = std::max<std::uint64_t>(cells, sim::load_scene(name).grid.num_cells());
-  }
-  if (config.generated > 0) {
-    cells = std::max<std::uint64_t>(cells,
-                                    sim::pile_scene(bench_piles(config).front()).grid.num_cells());
+  for (const sim::Scene& scene : scenes) {
+    cells = std::max<std::uint64_t>(cells, scene.grid.num_cells());
   }
   check_memory({cells, grid_bytes_per_cell(o.planning.threads), kFixedRunBytes,
                 static_cast<std::uint64_t>(o.jobs)},
                o.max_memory, "the sweep's grids");
+  // Every method's decision on every scene's candidates, against the work budget (and each
+  // trial's decisions on their maps, ExplorationConfig::budget).
+  for (const sim::Scene& scene : scenes) {
+    for (const PlannerMethod method : config.methods) {
+      ExplorationConfig exploration = config.exploration;
+      exploration.planner.method = method;
+      exploration.planner.objective = natural_objective(method);
+      if (const auto cost = estimate_run_decision(scene, exploration)) {
+        check_decision_budget(*cost, config.exploration.budget,
+                              scene.grid.num_cells() * static_cast<std::uint64_t>(o.jobs),
+                              o.planning.threads);
+      }
+    }
+  }
   const std::size_t total = bench_trials(config).size();
   fmt::print("bench: {} trials in all, shard {}, {} job(s), into {}\n", total, o.shard, o.jobs,
              o.out);
@@ -210,6 +225,7 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   cmd->add_option("--out,-o", o->out, "sweep folder; rerunning resumes it")->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "skip plots and summary");
   add_memory_option(*cmd, o->max_memory);
+  add_work_option(*cmd, o->max_work);
   if (o->kind == "tabletop") {
     cmd->add_flag("--revisit", o->revisit,
                   "views already taken stay candidates (the paper's loop taken literally)");

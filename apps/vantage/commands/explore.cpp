@@ -41,7 +41,8 @@ struct ExploreOptions {
   std::string out;
   bool plots = true;
   bool quiet = false;
-  std::uint64_t max_memory = 0;  // 0: what the machine has available
+  std::uint64_t max_memory = 0;              // 0: what the machine has available
+  double max_work = kDefaultMaxWorkSeconds;  // [s] of a decision's estimated work
 };
 
 fs::path default_out(const ExploreOptions& o) {
@@ -126,6 +127,10 @@ void run(const ExploreOptions& o) {
   check_memory({scene.grid.num_cells(), grid_bytes_per_cell(o.planning.threads), kFixedRunBytes},
                o.max_memory, grid_name);
   require_octomap_range(scene.grid, grid_name);
+  config.budget = work_budget(o.max_work, o.max_memory);
+  if (const auto cost = estimate_run_decision(scene, config)) {
+    check_decision_budget(*cost, config.budget, scene.grid.num_cells(), o.planning.threads);
+  }
   if (!o.quiet) {
     fmt::print(
         "exploring {} with {} ({} evaluation, {} search{}), {} scans from start {}, "
@@ -200,6 +205,7 @@ void add_explore_command(CLI::App& app) {
   cmd->add_flag("!--no-plots", o->plots, "skip the pictures");
   cmd->add_flag("--quiet,-q", o->quiet, "no per-scan progress");
   add_memory_option(*cmd, o->max_memory);
+  add_work_option(*cmd, o->max_work);
   cmd->callback([o] { run(*o); });
 }
 

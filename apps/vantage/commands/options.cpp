@@ -198,6 +198,29 @@ void add_memory_option(CLI::App& cmd, std::uint64_t& bytes) {
       ->capture_default_str();
 }
 
+void add_work_option(CLI::App& cmd, double& seconds) {
+  cmd.add_option("--max-work", seconds,
+                 fmt::format("refuse a decision estimated to take more than this, before any of it "
+                             "is computed: its candidates' rays through the grid's cells in "
+                             "their frusta at {} ns a ray-cell step, the worst case [s]",
+                             kNanosecondsPerStep))
+      ->check(number_in(0.0, 1e9, /*open_low=*/true))
+      ->capture_default_str();
+}
+
+WorkBudget work_budget(double max_work, std::uint64_t max_memory) {
+  WorkBudget budget;
+  budget.max_seconds = max_work;
+  budget.max_bytes = max_memory;
+  return budget;
+}
+
+void check_decision_budget(const DecisionCost& cost, const WorkBudget& budget, std::uint64_t cells,
+                           int threads) {
+  check_decision(cost, budget,
+                 static_cast<double>(cells) * grid_bytes_per_cell(threads) + kFixedRunBytes);
+}
+
 void add_threads_option(CLI::App& cmd, int& threads, const std::string& description) {
   cmd.add_option("--threads,-j", threads, description)
       ->check(whole_in(0, kMaxThreads))

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "vantage/experiment/decision_cost.hpp"
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/planning_settings.hpp"
 #include "vantage/gain/ray_model.hpp"
@@ -71,6 +72,17 @@ inline constexpr double kFixedRunBytes = 200.0 * 1024 * 1024;
 /// --max-memory SIZE (bytes, or with K, M, G, T: 512M, 4G); 0, the default, is the memory the
 /// machine has available when the run starts.
 void add_memory_option(CLI::App& cmd, std::uint64_t& bytes);
+
+/// --max-work SECONDS: the estimated work one decision may take (docs/robustness.md, "Work").
+void add_work_option(CLI::App& cmd, double& seconds);
+
+/// The budget of --max-work and --max-memory.
+WorkBudget work_budget(double max_work, std::uint64_t max_memory);
+
+/// Refuses (WorkBudgetError, exit 2) a decision `cost` the budget does not allow, beside a grid
+/// of `cells` cells at the mapping figure (threads as --threads).
+void check_decision_budget(const DecisionCost& cost, const WorkBudget& budget, std::uint64_t cells,
+                           int threads);
 
 /// --integration, --no-icp, --no-segmentation, --no-hole-filling.
 struct MappingOptions {

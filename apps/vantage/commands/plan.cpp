@@ -161,13 +161,23 @@ void run(const PlanOptions& o) {
   // NOTE: plan needs no object cloud; without it, memory stays bounded however many clouds come.
   mapper_config.keep_object_cloud = false;
 
-  // Refused before any work: a grid too large for memory, or one whose map cannot be written.
+  // Refused before any work: a grid too large for memory, or one whose map cannot be written,
+  // and a decision the work budget does not allow (its views known from the grid's box or the
+  // manifest's roi, all but frontier views).
+  const WorkBudget budget = work_budget(o.max_work, o.max_memory);
   auto check_grid = [&](const GridSpec& spec, const std::string& source) {
     check_memory({spec.num_cells(), grid_bytes_per_cell(o.planning.threads), kFixedRunBytes},
                  o.max_memory,
                  fmt::format("the grid of {} ({} x {} x {} cells)", source, spec.dims.x(),
                              spec.dims.y(), spec.dims.z()));
     require_octomap_range(spec, source);
+    const auto box = manifest ? manifest->roi : Eigen::AlignedBox3d(spec.origin, spec.max_corner());
+    if (const auto poses = planned_poses(o, box, frame)) {
+      // NOTE: the least the decision can cost whatever the map (no cell unobserved); the map's
+      // own share is weighed once it is built.
+      check_decision_budget(estimate_decision(spec, *poses, fov, planner, /*unobserved=*/0.0),
+                            budget, spec.num_cells(), o.planning.threads);
+    }
   };
   if (manifest) check_grid(manifest->grid, manifest->file.string());
 
@@ -275,6 +285,7 @@ void run(const PlanOptions& o) {
     const double travel = robot ? (pose.translation() - robot->translation()).norm() : 0.0;
     candidates.push_back({Frustum(pose, fov), travel});
   }
+  check_decision_on(grid, candidates, planner, budget);
   const Plan plan = plan_next_view(grid, candidates, planner, /*seed=*/1);
   report_plan({o, plan, planner, units, candidates, poses, robot, robot_source, grid, frame, fov,
                manifest ? manifest->clouds.size() : 0, map_seconds, dir});
@@ -317,6 +328,7 @@ void add_plan_command(CLI::App& app) {
   cmd->add_flag("--json", o->json_only, "print only plan.json, for other programs");
   cmd->add_flag("!--no-plots", o->plots, "skip the picture (map.png)");
   add_memory_option(*cmd, o->max_memory);
+  add_work_option(*cmd, o->max_work);
   cmd->add_option("--top", o->top, "rows of the ranked table")
       ->check(whole_in(1, kMaxIndex))
       ->capture_default_str();

@@ -39,13 +39,19 @@ struct PlanOptions {
   bool json_only = false;
   bool plots = true;
   int top = 10;
-  std::uint64_t max_memory = 0;  // 0: what the machine has available
+  std::uint64_t max_memory = 0;              // 0: what the machine has available
+  double max_work = kDefaultMaxWorkSeconds;  // [s] of a decision's estimated work
 };
 
 /// --fov-deg and --range as the sensor without a manifest; throws UsageError.
 SensorFov fov_from_options(const PlanOptions& o);
 /// --sensor-height: one height, or a range min,max [m]; throws UsageError.
 std::optional<std::pair<double, double>> sensor_band(const PlanOptions& o);
+/// The candidate views --candidates names that do not depend on the map (all but frontier), in
+/// the map's frame; nothing for frontier.
+std::optional<std::vector<Eigen::Isometry3d>> planned_poses(const PlanOptions& o,
+                                                            const Eigen::AlignedBox3d& roi,
+                                                            CloudFrame frame);
 /// The candidate views --candidates names, in the map's frame (ring, sphere, hemisphere,
 /// frontier, or a file of poses in `frame`).
 std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen::AlignedBox3d& roi,

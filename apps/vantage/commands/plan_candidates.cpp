@@ -101,8 +101,9 @@ std::optional<std::pair<double, double>> sensor_band(const PlanOptions& o) {
   return std::pair{lo, hi};
 }
 
-std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen::AlignedBox3d& roi,
-                                               CloudFrame frame, const OccupancyGrid& grid) {
+std::optional<std::vector<Eigen::Isometry3d>> planned_poses(const PlanOptions& o,
+                                                            const Eigen::AlignedBox3d& roi,
+                                                            CloudFrame frame) {
   const Eigen::Vector3d center = roi.center();
   const double half_diagonal = 0.5 * roi.sizes().head<2>().norm();
   if (o.candidates == "ring") {
@@ -127,17 +128,21 @@ std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen
     hemisphere.radii = {0.75 * radius, radius, 1.25 * radius};
     return hemisphere_poses(hemisphere);
   }
-  if (o.candidates == "frontier") {
-    const FrontierViews views = frontier_poses(grid, sensor_band(o));
-    if (!o.json_only) {
-      fmt::print("frontier: {} regions, {} views{}\n", views.regions, views.poses.size(),
-                 views.dropped > 0
-                     ? fmt::format(" ({} dropped: their place is not known free)", views.dropped)
-                     : "");
-    }
-    return views.poses;
-  }
+  if (o.candidates == "frontier") return std::nullopt;
   return read_candidate_poses(o.candidates, frame);  // run() checked that the file exists
+}
+
+std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen::AlignedBox3d& roi,
+                                               CloudFrame frame, const OccupancyGrid& grid) {
+  if (auto poses = planned_poses(o, roi, frame)) return std::move(*poses);
+  const FrontierViews views = frontier_poses(grid, sensor_band(o));
+  if (!o.json_only) {
+    fmt::print("frontier: {} regions, {} views{}\n", views.regions, views.poses.size(),
+               views.dropped > 0
+                   ? fmt::format(" ({} dropped: their place is not known free)", views.dropped)
+                   : "");
+  }
+  return views.poses;
 }
 
 }  // namespace vantage::cli
