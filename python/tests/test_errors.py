@@ -203,3 +203,42 @@ def test_candidate_counts_beyond_the_limit_are_refused_before_they_are_made():
         vt.ring_poses((0, 0, 0), 1.0, 1.0, 100000)
     with pytest.raises(ValueError, match=r"sphere.views \(200000\) is more than the 100000"):
         vt.sphere_poses((0, 0, 0), 1.0, 200000)
+
+
+# issue 39: Python honours a user's budget as the CLI's --max-memory and --max-work do, through
+# one process-wide setting (vt.set_budget), checked before a grid is allocated or a decision made.
+@pytest.fixture
+def budget():
+    before = vt.budget()
+    yield
+    vt.set_budget(**before)
+
+
+def test_a_grid_past_the_users_memory_budget_is_refused(budget):
+    spec = vt.GridSpec((0, 0, 0), 0.01, (100, 100, 100))  # 4 MB of log-odds
+    vt.set_budget(max_memory=1 << 20)
+    with pytest.raises(MemoryError) as refused:
+        vt.OccupancyGrid(spec)
+    line = str(refused.value)
+    assert "100 x 100 x 100 cells needs about" in line and "more than max_memory 1 MiB" in line
+    assert "\n" not in line
+    vt.set_budget(max_memory=64 << 20)
+    assert vt.OccupancyGrid(spec).spec.num_cells == 10**6
+    assert vt.budget() == {"max_memory": 64 << 20, "max_work": 60.0}
+
+
+def test_a_decision_past_the_users_work_budget_is_refused_before_it_runs(budget):
+    spec = vt.GridSpec((-0.5, -0.5, 0.5), 0.02, (50, 50, 25))
+    grid = vt.OccupancyGrid(spec)
+    poses = vt.ring_candidates(spec)
+    fov = vt.SensorFov()
+    vt.set_budget(max_work=1e-6)
+    with pytest.raises(ValueError) as refused:
+        vt.plan_next_view(grid, poses, fov, vt.PlannerConfig(method="survival"))
+    line = str(refused.value)
+    assert "the swept search over 30 views" in line and "more than max_work 1e-06 s" in line
+    assert "\n" not in line
+    vt.set_budget()
+    assert vt.plan_next_view(grid, poses, fov, vt.PlannerConfig(method="survival")).search == "swept"
+    with pytest.raises(ValueError, match="max_work must be a positive number of seconds"):
+        vt.set_budget(max_work=0)
