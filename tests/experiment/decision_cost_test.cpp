@@ -114,7 +114,7 @@ TEST(DecisionCost, TheBudgetRefusesWithTheEstimateAndTheOption) {
     const std::string what = e.what();
     EXPECT_FALSE(e.memory);
     EXPECT_NE(what.find("more than --max-work"), std::string::npos) << what;
-    EXPECT_NE(what.find("ray-cell steps at 6 ns"), std::string::npos) << what;
+    EXPECT_NE(what.find("ray-cell steps at 10 ns"), std::string::npos) << what;
     EXPECT_NE(what.find("the swept search over 100 views"), std::string::npos) << what;
   }
   budget.work_option = "max_work";

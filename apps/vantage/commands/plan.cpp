@@ -285,10 +285,11 @@ void run(const PlanOptions& o) {
     const double travel = robot ? (pose.translation() - robot->translation()).norm() : 0.0;
     candidates.push_back({Frustum(pose, fov), travel});
   }
-  check_decision_on(grid, candidates, planner, budget);
+  const DecisionCost cost = estimate_decision(spec, candidates, planner, unobserved_share(grid));
+  check_decision_budget(cost, budget, spec.num_cells(), o.planning.threads);
   const Plan plan = plan_next_view(grid, candidates, planner, /*seed=*/1);
   report_plan({o, plan, planner, units, candidates, poses, robot, robot_source, grid, frame, fov,
-               manifest ? manifest->clouds.size() : 0, map_seconds, dir});
+               manifest ? manifest->clouds.size() : 0, map_seconds, dir, cost.seconds()});
 }
 
 }  // namespace

@@ -76,6 +76,7 @@ struct PlanReport {
   std::size_t clouds;  ///< the manifest's clouds mapped
   double map_seconds;  ///< [s]
   const std::filesystem::path& dir;
+  double estimated_seconds;  ///< the work budget's estimate of the decision [s]
 };
 
 /// Writes the results folder whole (plan.json, the maps, the picture) and prints plan.json

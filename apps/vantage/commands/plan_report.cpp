@@ -113,7 +113,8 @@ void report_plan(const PlanReport& report) {
        {{"map", map_seconds},
         {"plan", plan.seconds},
         {"reference", plan.reference_seconds},
-        {"prediction", plan.prediction_seconds}}}};
+        {"prediction", plan.prediction_seconds},
+        {"estimate", report.estimated_seconds}}}};
   for (const std::size_t i : ranking) out["candidates"].push_back(nbv(i));
 
   write_folder_atomically(dir, [&](const fs::path& partial) {
