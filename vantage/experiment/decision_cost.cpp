@@ -148,15 +148,13 @@ DecisionCost cost_of(const ViewCost& v, std::size_t views, std::size_t candidate
     }
     return cost;
   }
-  const MethodTraits& traits = method_traits(gain_method_of(config.method));
+  const MethodTraits& traits = method_traits(config.method.gain);
   // A full evaluation: a metric's rays outward (every third of them but for exact), a target
-  // model's fast rays outward, or one walk a target.
-  double full = exact;
-  if (traits.metric != nullptr) {
-    full = v.outward_steps / (config.gain.evaluation == GainEvaluation::kExact ? 1.0 : 3.0);
-  } else if (traits.fast_mode && config.gain.evaluation == GainEvaluation::kFast) {
-    full = v.outward_steps;
-  }
+  // model's one walk a target.
+  const double full =
+      traits.metric != nullptr
+          ? v.outward_steps / (config.gain.evaluation == GainEvaluation::kExact ? 1.0 : 3.0)
+          : exact;
   const DecisionSearch search = resolve_search(config);
   if (search == DecisionSearch::kSwept) {
     cost.path = cat("the swept search over ", views, " views");
