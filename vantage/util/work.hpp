@@ -15,9 +15,9 @@ namespace vantage {
 /// on its way to an unobserved one) on this project's 2-core test machine, shared, at two
 /// threads [ns]: the slowest measured, the greedy reference of `vantage plan` over the 355
 /// hemisphere views of examples/own-scans (walks across free space to the unobserved cells behind
-/// the objects), took 6.4 ns a step under the load of three other sessions (docs/robustness.md,
-/// "Work"; scripts/calibrate-work.sh for the unobserved grid, 2.7-4.6 ns); 10 with a margin of
-/// 50 %.
+/// the objects), took 6.4 ns a step under the load of three other sessions on the walker before
+/// the one grid walker, 3.3 ns since (docs/robustness.md, "Work"; scripts/calibrate-work.sh for
+/// the unobserved grid); 10 holds a margin of 50 % over the first, of 3 over the second.
 inline constexpr double kNanosecondsPerStep = 10.0;
 
 /// The default of --max-work and of Python's set_budget(max_work=) [s of estimated work].
