@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <numbers>
 #include <stdexcept>
 
@@ -12,7 +13,11 @@ namespace vantage {
 
 MapperConfig mapper_config_for(const Manifest& manifest) {
   MapperConfig config;
-  config.register_scans = manifest.options.icp;
+  // NOTE: a cloud without a pose after the first is placed by registration, whatever `icp` says.
+  config.register_scans =
+      manifest.options.icp ||
+      std::any_of(manifest.clouds.begin(), manifest.clouds.end(),
+                  [](const ManifestCloud& c) { return c.pose_from_registration; });
   config.segment_table = manifest.options.table_segmentation;
   config.integration.mode = manifest.options.integration;
   return config;
@@ -20,6 +25,8 @@ MapperConfig mapper_config_for(const Manifest& manifest) {
 
 void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback& on_cloud) {
   const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(manifest.frame).transpose();
+  // The pose the last cloud was mapped at: the guess of the next one without a pose.
+  std::optional<Eigen::Isometry3d> last_pose;
   for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
     const ManifestCloud& cloud = manifest.clouds[i];
     RecordedCloud recorded;
@@ -53,10 +60,21 @@ void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback&
         }
         T_world_sensor = recorded.table_pose->T_world_sensor;
       }
-      recorded.update = mapper.add_scan(points, T_world_sensor, manifest.fov);
+      PoseGuess guess = PoseGuess::kOdometry;
+      if (cloud.pose_from_registration) {
+        guess = PoseGuess::kPreviousScan;
+        if (last_pose) T_world_sensor = *last_pose;
+      }
+      recorded.update = mapper.add_scan(points, T_world_sensor, manifest.fov, guess);
+    } catch (const RegistrationFailed& e) {
+      throw std::runtime_error(fmt::format(
+          "{}: {} (cloud {} of {}, registered to the map of {})", cloud.file.string(), e.what(),
+          i + 1, manifest.clouds.size(),
+          i == 1 ? manifest.clouds[0].file.filename().string() : fmt::format("clouds 1 to {}", i)));
     } catch (const std::exception& e) {
       throw std::runtime_error(fmt::format("{}: {}", cloud.file.string(), e.what()));
     }
+    last_pose = recorded.update.T_world_sensor;
     if (on_cloud) on_cloud(recorded);
   }
 }

@@ -381,7 +381,6 @@ Manifest read_manifest(const fs::path& path) {
       }
     }
   } else {
-    std::optional<std::size_t> from_table;  // the cloud whose pose comes from the table
     for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
       const std::string key = cat("clouds[", i, "].pose");
       if (entries[i] && entries[i]->has("pose")) {
@@ -392,24 +391,20 @@ Manifest read_manifest(const fs::path& path) {
       const std::optional<Eigen::Isometry3d> viewpoint =
           read_cloud_viewpoint(manifest.clouds[i].file);
       const std::string name = manifest.clouds[i].file.filename().string();
+      // NOTE: only the first cloud defines the world (a pose from the table would define it
+      // again, and disagree); each later cloud without a pose is registered to the map so far.
+      if (!viewpoint && i > 0) {
+        manifest.clouds[i].pose_from_registration = true;
+        continue;
+      }
       if (!viewpoint && manifest.options.table_segmentation) {
-        // NOTE: a pose from the table places the cloud on its own; two such clouds would each
-        // define the world, and disagree.
-        if (from_table) {
-          at_entry(i).fail_as(
-              key, cat("missing: clouds ", manifest.clouds[*from_table].file.filename().string(),
-                       " and ", name,
-                       " have no pose, and a pose from the table can place only one cloud (give "
-                       "poses, or a trajectory)"));
-        }
-        from_table = i;
         manifest.clouds[i].pose_from_table = true;
         continue;
       }
       if (!viewpoint) {
         at_entry(i).fail_as(key,
-                            cat("missing: cloud ", name,
-                                " has no pose (give a pose per cloud, a trajectory, a "
+                            cat("missing: the first cloud ", name,
+                                " has no pose (give it a pose, a trajectory, a "
                                 "VIEWPOINT other than the identity in the PCD file, or "
                                 "options.table_segmentation: true for a pose from the table)"));
       }

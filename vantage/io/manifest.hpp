@@ -68,6 +68,10 @@ struct ManifestCloud {
   /// No pose was given: with table segmentation on, the pose is estimated from the table when the
   /// cloud is read (perception::estimate_table_pose); the poses above are the identity till then.
   bool pose_from_table = false;
+  /// No pose was given for a cloud after the first: its pose is found by registering it to the
+  /// map of the clouds before it (frame to model), starting from the previous cloud's pose; the
+  /// poses above are the identity till then.
+  bool pose_from_registration = false;
 };
 
 /// Processing switches the manifest sets.

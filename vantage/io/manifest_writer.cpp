@@ -28,7 +28,8 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
     fs::path file = fs::absolute(cloud.file).lexically_relative(folder);
     if (file.empty()) file = fs::absolute(cloud.file);
     out << YAML::Key << "file" << YAML::Value << file.generic_string();
-    if (!cloud.pose_from_table) {  // no pose: read back, it is estimated from the table again
+    // NOTE: no pose: read back, it is estimated again (from the table, or by registration).
+    if (!cloud.pose_from_table && !cloud.pose_from_registration) {
       out << YAML::Key << "pose" << YAML::Value << YAML::BeginSeq;
       const Eigen::Matrix4d m = cloud.T_world_cloud.matrix();
       for (int r = 0; r < 4; ++r) {

@@ -53,7 +53,8 @@ fs::path out_dir(const PlanOptions& o) {
 }
 
 /// The ICP column of a cloud's line.
-std::string registration_note(const RecordedCloud& c, bool icp, bool first) {
+std::string registration_note(const RecordedCloud& c, bool icp, bool first, bool unposed) {
+  if (unposed) return "  (pose from registration to the map so far)";
   if (!icp) return "";
   if (c.update.registered) return "  (ICP corrected)";
   // NOTE: the first cloud of a map defines its frame; there is nothing to register it against.
@@ -247,7 +248,8 @@ void run(const PlanOptions& o) {
                  cloud.pose_from_viewpoint ? "  (pose from its VIEWPOINT)" : "",
                  c.table_pose ? "  (pose from the table)" : "",
                  mapper_config.segment_table ? segmentation_note(c) : "",
-                 registration_note(c, mapper_config.register_scans, mapper->scans() == 1));
+                 registration_note(c, mapper_config.register_scans, mapper->scans() == 1,
+                                   cloud.pose_from_registration));
       if (c.table_pose) {
         const perception::TablePose& t = *c.table_pose;
         fmt::print(
