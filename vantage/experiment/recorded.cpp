@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "vantage/io/cloud_io.hpp"
+#include "vantage/io/depth_image.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/io/trajectory.hpp"
 
 namespace vantage {
@@ -23,6 +25,30 @@ MapperConfig mapper_config_for(const Manifest& manifest) {
   return config;
 }
 
+namespace {
+
+/// A cloud's points in its cloud frame: a PCD or PLY file's, or a depth image's one per pixel.
+PointCloud read_frame(const Manifest& manifest, const ManifestCloud& cloud, CloudReadStats& stats) {
+  if (lower_extension(cloud.file) != ".png") {
+    return read_point_cloud(cloud.file, {.skip_non_finite = manifest.options.skip_non_finite},
+                            &stats);
+  }
+  const DepthImage image = read_depth_png(cloud.file);
+  try {
+    // NOTE: read_manifest requires both with a depth image; a Manifest built in code may not.
+    if (!manifest.intrinsics || !manifest.depth) {
+      throw std::invalid_argument("a depth image needs the manifest's intrinsics and depth");
+    }
+    PointCloud points = depth_to_points(image, *manifest.intrinsics, *manifest.depth);
+    if (points.empty()) throw std::runtime_error("no pixel has depth");
+    return points;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(fmt::format("{}: {}", cloud.file.string(), e.what()));
+  }
+}
+
+}  // namespace
+
 void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback& on_cloud) {
   const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(manifest.frame).transpose();
   // The pose the last cloud was mapped at: the guess of the next one without a pose.
@@ -34,8 +60,7 @@ void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback&
     CloudReadStats stats;
     PointCloud points;
     try {
-      points = read_point_cloud(cloud.file, {.skip_non_finite = manifest.options.skip_non_finite},
-                                &stats);
+      points = read_frame(manifest, cloud, stats);
     } catch (const NonFinitePointError& e) {
       throw std::runtime_error(fmt::format(
           "{} (an organized RGB-D cloud marks pixels without depth so: set "

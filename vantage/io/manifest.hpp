@@ -5,6 +5,7 @@
 /// This reads and checks the description only; the perception module reads the clouds.
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string_view>
@@ -50,6 +51,16 @@ struct PinholeIntrinsics {
 SensorFov fov_from_intrinsics(const PinholeIntrinsics& intrinsics, double min_range,
                               double max_range);
 
+/// How a depth image's raw values map to metres.
+struct DepthEncoding {
+  double units_per_metre = 1000.0;  ///< [1/m] 1000: millimetres (ROS 16UC1); 5000: TUM RGB-D
+  std::uint16_t invalid = 0;        ///< the value of a pixel without depth
+
+  /// Throws std::invalid_argument naming the field: a finite, positive scale.
+  void validate() const;
+  bool operator==(const DepthEncoding&) const = default;
+};
+
 /// How trajectory poses are paired with clouds.
 enum class PoseMatch {
   kOrder,      ///< the i-th pose with the i-th cloud; the counts must be equal
@@ -58,7 +69,8 @@ enum class PoseMatch {
 
 /// One cloud of the data set.
 struct ManifestCloud {
-  std::filesystem::path file;  ///< PCD or PLY, resolved against the manifest's folder
+  /// PCD or PLY, or a 16-bit depth PNG (Manifest::depth), resolved against the manifest's folder
+  std::filesystem::path file;
   /// Pose of the cloud's frame: points_world = T_world_cloud * points_cloud.
   Eigen::Isometry3d T_world_cloud = Eigen::Isometry3d::Identity();
   /// The same pose with Vantage's sensor axes, for Frustum: T_world_cloud * R_cloud_sensor.
@@ -92,8 +104,12 @@ struct Manifest {
   std::filesystem::path file;  ///< the manifest that was read
   std::vector<ManifestCloud> clouds;
   CloudFrame frame = CloudFrame::kOptical;
-  SensorFov fov;                                    ///< from `fov_deg` or from `intrinsics`
-  std::optional<PinholeIntrinsics> intrinsics;      ///< when the manifest gives them
+  SensorFov fov;                                ///< from `fov_deg` or from `intrinsics`
+  std::optional<PinholeIntrinsics> intrinsics;  ///< when the manifest gives them
+  /// `sensor.depth`: how the depth images among the clouds encode depth; needed with any (a TUM
+  /// RGB-D folder's default: 5000 units a metre, 0 invalid).
+  std::optional<DepthEncoding> depth;
+  std::optional<std::filesystem::path> tum;         ///< the TUM RGB-D folder the clouds came from
   std::optional<std::filesystem::path> trajectory;  ///< the TUM file the poses came from, if any
   PoseMatch match = PoseMatch::kOrder;
   double max_time_difference = 0.02;  ///< [s], for PoseMatch::kTimestamp
@@ -108,10 +124,18 @@ struct Manifest {
 /// an empty or non-finite box, a non-positive resolution or a grid over kMaxGridCells.
 GridSpec grid_for_roi(const Eigen::AlignedBox3d& roi, double resolution);
 
+/// What the command line may change in how a manifest is read.
+struct ManifestReadOptions {
+  /// Of a TUM RGB-D folder (`tum`), take the first frame and every `every`-th after it, in place
+  /// of `tum.every`.
+  std::optional<int> every;
+};
+
 /// Reads and checks a manifest: a YAML file, or a folder holding `manifest.yaml`. When the
-/// manifest lists no clouds, every `.pcd` and `.ply` file beside it is taken, sorted by name.
+/// manifest lists no clouds, every `.pcd` and `.ply` file beside it is taken, sorted by name; with
+/// `tum`, the depth frames of a TUM RGB-D folder and their ground-truth poses (io/tum_rgbd.hpp).
 /// Every problem throws std::runtime_error with one line "file:line: key: what".
-Manifest read_manifest(const std::filesystem::path& path);
+Manifest read_manifest(const std::filesystem::path& path, const ManifestReadOptions& options = {});
 
 /// Writes a manifest that read_manifest reads back to the same clouds, poses (one 4x4 matrix per
 /// cloud, never a trajectory), sensor, ROI and options; cloud paths are written relative to the

@@ -151,7 +151,14 @@ void run(const PlanOptions& o) {
   }
   const auto start = std::chrono::steady_clock::now();
   std::optional<Manifest> manifest;
-  if (!o.input.empty()) manifest = read_manifest(o.input);
+  if (o.every > 0 && o.input.empty()) {
+    throw UsageError("--every takes every n-th frame of a TUM folder: give its manifest");
+  }
+  if (!o.input.empty()) {
+    ManifestReadOptions read;
+    if (o.every > 0) read.every = o.every;
+    manifest = read_manifest(o.input, read);
+  }
   const SensorFov fov = manifest ? manifest->fov : fov_from_options(o);
   const CloudFrame frame = manifest ? manifest->frame : CloudFrame::kOptical;
   if (!manifest && !o.json_only) {
@@ -294,6 +301,10 @@ void add_plan_command(CLI::App& app) {
       "plan", "Real scans in, next view out: map recorded clouds and choose the next best view");
   cmd->add_option("input", o->input, "manifest YAML, or a folder holding manifest.yaml");
   cmd->add_option("--map", o->map, "start from this OctoMap (.bt or .ot)");
+  cmd->add_option("--every", o->every,
+                  "of a TUM RGB-D folder's depth frames (the manifest's tum), the first and every "
+                  "n-th after it")
+      ->check(CLI::Range(1, 1'000'000));
   cmd->add_option("--candidates,-c", o->candidates,
                   "ring, sphere, hemisphere (an arm's views: rings at several radii and elevations "
                   "looking at the ROI's centre), frontier (4 level views at each frontier "

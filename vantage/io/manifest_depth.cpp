@@ -1,0 +1,65 @@
+#include "vantage/io/detail/manifest_depth.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "vantage/io/input_file.hpp"
+#include "vantage/io/tum_rgbd.hpp"
+#include "vantage/util/text.hpp"
+
+namespace vantage::detail {
+
+void read_tum_key(const YamlField& tum, const std::filesystem::path& manifest_folder,
+                  const ManifestReadOptions& options, Manifest& manifest) {
+  tum.allow_keys({"folder", "every", "max_time_difference"});
+  TumReadOptions read;
+  if (const auto every = tum.get("every")) read.every = every->integer(1, 1'000'000);
+  if (options.every) {
+    if (*options.every < 1) tum.fail_as("every", cat("--every must be >= 1, got ", *options.every));
+    read.every = *options.every;
+  }
+  if (const auto dt = tum.get("max_time_difference")) read.max_time_difference = dt->positive();
+  const YamlField folder = tum.at("folder");
+  manifest.tum = (manifest_folder / folder.text()).lexically_normal();
+  std::vector<TumFrame> frames;
+  try {
+    frames = read_tum_rgbd(*manifest.tum, read);
+  } catch (const std::runtime_error& e) {
+    folder.fail(e.what());
+  }
+  for (const TumFrame& frame : frames) {
+    ManifestCloud cloud;
+    cloud.file = frame.file;
+    cloud.stamp = frame.stamp;
+    // NOTE: marks a frame without ground truth; read_manifest places it (the first frame from
+    // the table, a later one by registration).
+    cloud.pose_from_registration = !frame.T_world_cloud;
+    if (frame.T_world_cloud) cloud.T_world_cloud = *frame.T_world_cloud;
+    manifest.clouds.push_back(cloud);
+  }
+  if (!manifest.depth) manifest.depth = DepthEncoding{.units_per_metre = 5000.0, .invalid = 0};
+}
+
+void check_depth_images(const YamlField& root, const Manifest& manifest) {
+  const auto image =
+      std::find_if(manifest.clouds.begin(), manifest.clouds.end(),
+                   [](const ManifestCloud& c) { return lower_extension(c.file) == ".png"; });
+  if (image == manifest.clouds.end()) return;
+  const std::string name = image->file.filename().string();
+  const YamlField sensor = root.at("sensor");
+  if (!manifest.intrinsics) {
+    sensor.fail_as("sensor.intrinsics",
+                   cat("missing: a depth image (", name, ") needs the camera's intrinsics"));
+  }
+  if (!manifest.depth) {
+    sensor.fail_as("sensor.depth", cat("missing: a depth image (", name,
+                                       ") needs its scale (units a metre: 1000 for millimetres, "
+                                       "5000 for TUM RGB-D) and its invalid value"));
+  }
+  if (manifest.frame != CloudFrame::kOptical) {
+    sensor.fail_as("sensor.frame",
+                   cat("must be optical: a depth image (", name, ") is in the camera's frame"));
+  }
+}
+
+}  // namespace vantage::detail
