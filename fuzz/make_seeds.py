@@ -204,7 +204,36 @@ def octomap_seeds():
     write("octomap", "color.ot", ot(True))
 
 
+def png(width, height, bit_depth, colour, rows, interlace=0):
+    """A PNG of raw `rows` (each with its filter byte), zlib'd into one IDAT."""
+    import zlib
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(
+            ">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
+    ihdr = struct.pack(">IIBBBBB", width, height, bit_depth, colour, 0, 0, interlace)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(rows)) +
+            chunk(b"IEND", b""))
+
+
+def depth_png_seeds():
+    # 4 x 3 depths, 16-bit big-endian, each row with filter 0 (none), 1 (sub) or 2 (up).
+    rows = b"".join(bytes([r % 3]) + struct.pack(">4H", 0, 5000 + r, 65535, 7) for r in range(3))
+    write("depth_png", "tiny.png", png(4, 3, 16, 0, rows))
+    write("depth_png", "interlaced.png", png(4, 3, 16, 0, rows, interlace=1))
+    write("depth_png", "eight_bit.png", png(2, 1, 8, 0, b"\x00\x01\x02"))
+    write("depth_png", "rgb.png", png(1, 1, 16, 2, b"\x00" + bytes(6)))
+
+
+def tum_seeds():
+    write("tum", "depth.txt", "# depth maps\n# timestamp filename\n1305031102.175304 depth/a.png\n"
+          "1305031102.211214 depth/b.png\n")
+    write("tum", "empty.txt", "# nothing\n")
+
+
 if __name__ == "__main__":
+    depth_png_seeds()
+    tum_seeds()
     pcd_seeds()
     ply_seeds()
     manifest_seeds()

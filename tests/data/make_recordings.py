@@ -13,6 +13,11 @@ code), in every layout Vantage reads:
                           (x = (u - cx) z / fx, y = (v - cy) z / fy, rounded to float32)
   OUT_DIR/pcd.yaml        the manifest of the PCD clouds, posed by the TUM folder's ground truth
   OUT_DIR/tum.yaml        the manifest that names the TUM folder
+  OUT_DIR/kinect.bag      a ROS 1 bag written by Debian's python3-rosbag: the clouds as
+                          sensor_msgs/PointCloud2 on /camera/depth/points (frame
+                          camera_depth_optical_frame), /tf world -> base_link at each frame's stamp
+                          (the ground truth), /tf_static base_link -> camera_depth_optical_frame
+  OUT_DIR/bag.yaml        the manifest that names the bag
   OUT_DIR/bad/            depth images Vantage must refuse
 """
 
@@ -156,6 +161,50 @@ options: {table_segmentation: true}
 """
 
 
+def write_bag(path, stamps, clouds, poses):
+    """The frames as a ROS 1 bag, by Debian's python3-rosbag and its generated messages."""
+    try:
+        import genpy
+        import rosbag
+        from geometry_msgs.msg import TransformStamped
+        from sensor_msgs.msg import PointCloud2, PointField
+        from tf2_msgs.msg import TFMessage
+    except ImportError as e:
+        sys.exit(f"make_recordings: {e}: install python3-rosbag, python3-sensor-msgs and "
+                 "python3-tf2-msgs (scripts/install-deps.sh)")
+
+    def transform(stamp, parent, child, pose):
+        t = TransformStamped()
+        t.header.stamp = stamp
+        t.header.frame_id = parent
+        t.child_frame_id = child
+        t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = (
+            float(c) for c in pose[:3, 3])
+        q = t.transform.rotation
+        q.x, q.y, q.z, q.w = (float(c) for c in quaternion(pose[:3, :3]))
+        return t
+
+    with rosbag.Bag(path, "w") as bag:  # NOTE: uncompressed chunks, rosbag's default
+        first = genpy.Time(*(int(x) for x in stamps[0].split(".")))
+        static = TFMessage([transform(first, "base_link", "camera_depth_optical_frame", np.eye(4))])
+        bag.write("/tf_static", static, first)
+        for stamp_text, points, pose in zip(stamps, clouds, poses):
+            sec, frac = stamp_text.split(".")
+            stamp = genpy.Time(int(sec), int(frac.ljust(9, "0")))
+            bag.write("/tf", TFMessage([transform(stamp, "world", "base_link", pose)]), stamp)
+            cloud = PointCloud2()
+            cloud.header.stamp = stamp
+            cloud.header.frame_id = "camera_depth_optical_frame"
+            cloud.height, cloud.width = 1, len(points)
+            cloud.fields = [PointField(n, 4 * i, PointField.FLOAT32, 1)
+                            for i, n in enumerate("xyz")]
+            cloud.is_bigendian = False
+            cloud.point_step, cloud.row_step = 12, 12 * len(points)
+            cloud.data = points.astype("<f4").tobytes()
+            cloud.is_dense = True
+            bag.write("/camera/depth/points", cloud, stamp)
+
+
 def frames():
     """The three depth images, and each camera's pose (optical frame in the world)."""
     z = kinect_depth()
@@ -188,6 +237,10 @@ def main(out):
     open(os.path.join(out, "pcd.yaml"), "w").write(
         "clouds:\n" + clouds +
         "trajectory: {file: tum/groundtruth.txt, match: timestamp}\n" + SETTINGS)
+    write_bag(os.path.join(out, "kinect.bag"), STAMPS, [back_project(i) for i in images], poses)
+    open(os.path.join(out, "bag.yaml"), "w").write(
+        "recording: {file: kinect.bag, topic: /camera/depth/points, fixed_frame: world}\n" +
+        SETTINGS)
     # Refused: an 8-bit image, and the first frame cut short.
     write_png(os.path.join(out, "bad", "eight_bit.png"), (images[0] // 256).astype(np.uint8), 8)
     good = open(os.path.join(out, "tum", "depth", STAMPS[0] + ".png"), "rb").read()

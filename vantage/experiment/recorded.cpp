@@ -29,6 +29,10 @@ namespace {
 
 /// A cloud's points in its cloud frame: a PCD or PLY file's, or a depth image's one per pixel.
 PointCloud read_frame(const Manifest& manifest, const ManifestCloud& cloud, CloudReadStats& stats) {
+  if (cloud.points) {
+    stats.non_finite_skipped = cloud.non_finite;
+    return *cloud.points;
+  }
   if (lower_extension(cloud.file) != ".png") {
     return read_point_cloud(cloud.file, {.skip_non_finite = manifest.options.skip_non_finite},
                             &stats);

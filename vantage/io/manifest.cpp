@@ -15,7 +15,7 @@
 
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/cloud_io.hpp"
-#include "vantage/io/detail/manifest_depth.hpp"
+#include "vantage/io/detail/manifest_sources.hpp"
 #include "vantage/io/format_parsing.hpp"
 #include "vantage/io/input_file.hpp"
 #include "vantage/io/trajectory.hpp"
@@ -176,8 +176,8 @@ Manifest read_manifest(const fs::path& path, const ManifestReadOptions& read_opt
       read_yaml_file(manifest.file,
                      "a manifest: give the folder that holds it, or a manifest YAML that lists it "
                      "(docs/manifest.md)");
-  root.allow_keys(
-      {"version", "clouds", "trajectory", "tum", "sensor", "roi", "resolution", "options"});
+  root.allow_keys({"version", "clouds", "trajectory", "tum", "recording", "sensor", "roi",
+                   "resolution", "options"});
   if (const auto version = root.get("version")) {
     if (version->number() != 1.0) version->fail("only version 1 exists");
   }
@@ -282,18 +282,27 @@ Manifest read_manifest(const fs::path& path, const ManifestReadOptions& read_opt
   };
   // Clouds posed as they were read (a TUM folder's ground truth).
   std::vector<bool> posed;
-  if (const auto tum = root.get("tum")) {
-    if (root.has("clouds")) tum->fail("give clouds or a TUM folder, not both");
-    if (root.has("trajectory")) tum->fail("a TUM folder's poses are its groundtruth.txt");
-    detail::read_tum_key(*tum, folder, read_options, manifest);
+  const auto tum = root.get("tum");
+  const auto recording = root.get("recording");
+  if (tum || recording) {
+    const YamlField& key = tum ? *tum : *recording;
+    if (tum && recording) key.fail("give a TUM folder or a recording, not both");
+    if (root.has("clouds")) key.fail("give clouds, a TUM folder or a recording, not two");
+    if (root.has("trajectory")) key.fail("its poses come with it: give no trajectory");
+    if (tum) {
+      detail::read_tum_key(*tum, folder, read_options, manifest);
+    } else {
+      detail::read_recording_key(*recording, folder, read_options, manifest);
+    }
     posed.resize(manifest.clouds.size());
     for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
       posed[i] = !manifest.clouds[i].pose_from_registration;
     }
     entries.assign(manifest.clouds.size(), std::nullopt);
-  } else if (read_options.every) {
-    root.fail_as("tum",
-                 "--every takes every n-th frame of a TUM folder, and the manifest names none");
+  } else if (read_options.every || read_options.topic) {
+    root.fail_as("",
+                 "--every and --topic choose frames of a TUM folder or a recording, and the "
+                 "manifest names neither (tum, recording)");
   } else if (const auto clouds = root.get("clouds")) {
     const std::vector<YamlField> items = clouds->items();
     if (items.empty()) clouds->fail("is empty");
@@ -421,8 +430,9 @@ Manifest read_manifest(const fs::path& path, const ManifestReadOptions& read_opt
       }
       // A PCD file may carry its own pose (VIEWPOINT), as PCL and strands' nbv_planning record it.
       const std::optional<Eigen::Isometry3d> viewpoint =
-          is_depth_image(manifest.clouds[i].file) ? std::nullopt
-                                                  : read_cloud_viewpoint(manifest.clouds[i].file);
+          is_depth_image(manifest.clouds[i].file) || manifest.clouds[i].points
+              ? std::nullopt
+              : read_cloud_viewpoint(manifest.clouds[i].file);
       const std::string name = manifest.clouds[i].file.filename().string();
       // NOTE: only the first cloud defines the world (a pose from the table would define it
       // again, and disagree); each later cloud without a pose is registered to the map so far.

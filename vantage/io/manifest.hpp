@@ -7,12 +7,14 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <vector>
 
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/map/integrate.hpp"
+#include "vantage/map/point_cloud.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
@@ -69,8 +71,12 @@ enum class PoseMatch {
 
 /// One cloud of the data set.
 struct ManifestCloud {
-  /// PCD or PLY, or a 16-bit depth PNG (Manifest::depth), resolved against the manifest's folder
+  /// PCD or PLY, or a 16-bit depth PNG (Manifest::depth), resolved against the manifest's folder;
+  /// for a recording's frame, the recording and the frame's stamp ("run.bag@1305031102.175304").
   std::filesystem::path file;
+  /// A recording's frame: its points, read with the manifest (there is no file of its own).
+  std::shared_ptr<const PointCloud> points;
+  std::size_t non_finite = 0;  ///< points of a recording's frame dropped as non-finite
   /// Pose of the cloud's frame: points_world = T_world_cloud * points_cloud.
   Eigen::Isometry3d T_world_cloud = Eigen::Isometry3d::Identity();
   /// The same pose with Vantage's sensor axes, for Frustum: T_world_cloud * R_cloud_sensor.
@@ -110,6 +116,7 @@ struct Manifest {
   /// RGB-D folder's default: 5000 units a metre, 0 invalid).
   std::optional<DepthEncoding> depth;
   std::optional<std::filesystem::path> tum;         ///< the TUM RGB-D folder the clouds came from
+  std::optional<std::filesystem::path> recording;   ///< the bag or MCAP file they came from
   std::optional<std::filesystem::path> trajectory;  ///< the TUM file the poses came from, if any
   PoseMatch match = PoseMatch::kOrder;
   double max_time_difference = 0.02;  ///< [s], for PoseMatch::kTimestamp
@@ -128,7 +135,9 @@ GridSpec grid_for_roi(const Eigen::AlignedBox3d& roi, double resolution);
 struct ManifestReadOptions {
   /// Of a TUM RGB-D folder (`tum`), take the first frame and every `every`-th after it, in place
   /// of `tum.every`.
-  std::optional<int> every;
+  std::optional<int> every = std::nullopt;
+  std::optional<std::string> topic =
+      std::nullopt;  ///< of a recording (`recording`), in place of its topic
 };
 
 /// Reads and checks a manifest: a YAML file, or a folder holding `manifest.yaml`. When the

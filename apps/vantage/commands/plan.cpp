@@ -151,12 +151,14 @@ void run(const PlanOptions& o) {
   }
   const auto start = std::chrono::steady_clock::now();
   std::optional<Manifest> manifest;
-  if (o.every > 0 && o.input.empty()) {
-    throw UsageError("--every takes every n-th frame of a TUM folder: give its manifest");
+  if ((o.every > 0 || !o.topic.empty()) && o.input.empty()) {
+    throw UsageError(
+        "--every and --topic choose frames of a TUM folder or a recording: give its manifest");
   }
   if (!o.input.empty()) {
     ManifestReadOptions read;
     if (o.every > 0) read.every = o.every;
+    if (!o.topic.empty()) read.topic = o.topic;
     manifest = read_manifest(o.input, read);
   }
   const SensorFov fov = manifest ? manifest->fov : fov_from_options(o);
@@ -302,9 +304,12 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("input", o->input, "manifest YAML, or a folder holding manifest.yaml");
   cmd->add_option("--map", o->map, "start from this OctoMap (.bt or .ot)");
   cmd->add_option("--every", o->every,
-                  "of a TUM RGB-D folder's depth frames (the manifest's tum), the first and every "
-                  "n-th after it")
+                  "of a TUM RGB-D folder's depth frames or a recording's (the manifest's tum or "
+                  "recording), the first and every n-th after it")
       ->check(CLI::Range(1, 1'000'000));
+  cmd->add_option("--topic", o->topic,
+                  "the sensor_msgs/PointCloud2 topic of the manifest's recording (a ROS 1 bag or "
+                  "an MCAP file), in place of its recording.topic");
   cmd->add_option("--candidates,-c", o->candidates,
                   "ring, sphere, hemisphere (an arm's views: rings at several radii and elevations "
                   "looking at the ROI's centre), frontier (4 level views at each frontier "

@@ -1,9 +1,11 @@
-#include "vantage/io/detail/manifest_depth.hpp"
+#include "vantage/io/detail/manifest_sources.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <stdexcept>
 
 #include "vantage/io/input_file.hpp"
+#include "vantage/io/recording.hpp"
 #include "vantage/io/tum_rgbd.hpp"
 #include "vantage/util/text.hpp"
 
@@ -38,6 +40,46 @@ void read_tum_key(const YamlField& tum, const std::filesystem::path& manifest_fo
     manifest.clouds.push_back(cloud);
   }
   if (!manifest.depth) manifest.depth = DepthEncoding{.units_per_metre = 5000.0, .invalid = 0};
+}
+
+void read_recording_key(const YamlField& recording, const std::filesystem::path& manifest_folder,
+                        const ManifestReadOptions& options, Manifest& manifest) {
+  recording.allow_keys({"file", "topic", "fixed_frame", "every", "max_time_difference"});
+  RecordingOptions read;
+  if (const auto topic = recording.get("topic")) read.topic = topic->text();
+  if (options.topic) read.topic = *options.topic;
+  if (read.topic.empty()) recording.fail_as("recording.topic", "missing (or give --topic)");
+  if (const auto frame = recording.get("fixed_frame")) read.fixed_frame = frame->text();
+  if (const auto every = recording.get("every")) read.every = every->integer(1, 1'000'000);
+  if (options.every) {
+    if (*options.every < 1) {
+      recording.fail_as("every", cat("--every must be >= 1, got ", *options.every));
+    }
+    read.every = *options.every;
+  }
+  if (const auto dt = recording.get("max_time_difference")) {
+    read.max_time_difference = dt->positive();
+  }
+  const YamlField file = recording.at("file");
+  manifest.recording = (manifest_folder / file.text()).lexically_normal();
+  std::vector<RecordingFrame> frames;
+  try {
+    frames = read_recording(*manifest.recording, read);
+  } catch (const std::runtime_error& e) {
+    file.fail(e.what());
+  }
+  for (RecordingFrame& frame : frames) {
+    ManifestCloud cloud;
+    char stamp[32];
+    std::snprintf(stamp, sizeof(stamp), "%.6f", frame.stamp);
+    cloud.file = cat(manifest.recording->string(), "@", stamp);
+    cloud.stamp = frame.stamp;
+    cloud.pose_from_registration = !frame.T_fixed_cloud;  // NOTE: as read_tum_key marks it
+    if (frame.T_fixed_cloud) cloud.T_world_cloud = *frame.T_fixed_cloud;
+    cloud.non_finite = frame.non_finite;
+    cloud.points = std::make_shared<const PointCloud>(std::move(frame.points));
+    manifest.clouds.push_back(std::move(cloud));
+  }
 }
 
 void check_depth_images(const YamlField& root, const Manifest& manifest) {

@@ -1,6 +1,7 @@
 #pragma once
 /// @file
-/// The manifest's depth images: a TUM RGB-D folder (`tum`) and the checks depth images need.
+/// Where a manifest's clouds come from besides its files: a TUM RGB-D folder (`tum`), a recording
+/// (`recording`); and the checks depth images need.
 
 #include <filesystem>
 
@@ -14,6 +15,12 @@ namespace vantage::detail {
 /// it has none; `sensor.depth` defaults to the format's (5000 units a metre, 0 invalid).
 void read_tum_key(const YamlField& tum, const std::filesystem::path& manifest_folder,
                   const ManifestReadOptions& options, Manifest& manifest);
+
+/// Reads the `recording` key ({file, topic, fixed_frame, every, max_time_difference}): the
+/// topic's frames become the manifest's clouds, with their points, each with its pose from tf, or
+/// marked pose_from_registration when tf gives none.
+void read_recording_key(const YamlField& recording, const std::filesystem::path& manifest_folder,
+                        const ManifestReadOptions& options, Manifest& manifest);
 
 /// With any depth image among the clouds: intrinsics, `sensor.depth` and the optical frame are
 /// required (each missing one fails at `root`).
