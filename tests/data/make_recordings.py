@@ -18,6 +18,8 @@ code), in every layout Vantage reads:
                           camera_depth_optical_frame), /tf world -> base_link at each frame's stamp
                           (the ground truth), /tf_static base_link -> camera_depth_optical_frame
   OUT_DIR/bag.yaml        the manifest that names the bag
+  OUT_DIR/mcap.yaml       the manifest that names OUT_DIR/kinect.mcap, which tests/data/make_mcap.js
+                          writes from these frames with npm's @mcap/core
   OUT_DIR/bad/            depth images Vantage must refuse
 """
 
@@ -241,6 +243,8 @@ def main(out):
     open(os.path.join(out, "bag.yaml"), "w").write(
         "recording: {file: kinect.bag, topic: /camera/depth/points, fixed_frame: world}\n" +
         SETTINGS)
+    open(os.path.join(out, "mcap.yaml"), "w").write(
+        "recording: {file: kinect.mcap, topic: /camera/depth/points}\n" + SETTINGS)
     # Refused: an 8-bit image, and the first frame cut short.
     write_png(os.path.join(out, "bad", "eight_bit.png"), (images[0] // 256).astype(np.uint8), 8)
     good = open(os.path.join(out, "tum", "depth", STAMPS[0] + ".png"), "rb").read()

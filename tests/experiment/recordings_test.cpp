@@ -1,7 +1,8 @@
 // issue 38: a robot's recordings in. The frames tests/data/make_recordings.py makes from the shared
 // Kinect frame (ctest's recordings fixture writes them into the build tree), handed over as a
-// TUM RGB-D folder of 16-bit depth PNGs, give the map of the same frames as PCD clouds, cell for
-// cell.
+// TUM RGB-D folder of 16-bit depth PNGs, a ROS 1 bag (Debian's python3-rosbag) and an MCAP file
+// (npm's @mcap/core, tests/data/make_mcap.js), give the map of the same frames as PCD clouds
+// posed by a trajectory, cell for cell.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,7 @@
 #include "test_scene.hpp"
 #include "vantage/experiment/recorded.hpp"
 #include "vantage/io/depth_image.hpp"
+#include "vantage/io/recording.hpp"
 
 namespace vantage {
 namespace {
@@ -45,6 +47,83 @@ TEST(Recordings, ATumFolderMapsAsTheManifestOfItsFrames) {
   }
   EXPECT_EQ(tum.depth, (DepthEncoding{.units_per_metre = 5000.0, .invalid = 0}));
   expect_same_map(map_of(pcd), map_of(tum));
+}
+
+// A recording's frames come with their poses from tf (world -> base_link at each stamp, and the
+// static base_link -> camera_depth_optical_frame), the same as the trajectory gives the PCDs.
+void expect_recording_maps_as_pcds(const std::string& manifest) {
+  const Manifest pcd = read_manifest(recordings() / "pcd.yaml");
+  const Manifest recorded = read_manifest(recordings() / manifest);
+  ASSERT_EQ(recorded.clouds.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    ASSERT_TRUE(recorded.clouds[i].points);
+    EXPECT_FALSE(recorded.clouds[i].pose_from_registration);
+    EXPECT_EQ(recorded.clouds[i].T_world_cloud.matrix(), pcd.clouds[i].T_world_cloud.matrix());
+    EXPECT_EQ(*recorded.clouds[i].stamp, *pcd.clouds[i].stamp);
+  }
+  expect_same_map(map_of(pcd), map_of(recorded));
+}
+
+TEST(Recordings, ARos1BagMapsAsTheManifestOfItsFrames) {
+  expect_recording_maps_as_pcds("bag.yaml");
+}
+
+TEST(Recordings, AnMcapFileMapsAsTheManifestOfItsFrames) {
+  expect_recording_maps_as_pcds("mcap.yaml");
+}
+
+TEST(Recordings, TopicsEveryNthAndErrors) {
+  for (const char* file : {"kinect.bag", "kinect.mcap"}) {
+    const std::filesystem::path path = recordings() / file;
+    EXPECT_EQ(read_recording(path, {.topic = "/camera/depth/points", .every = 2}).size(), 2u);
+    try {
+      read_recording(path, {.topic = "/camera/rgb/points"});
+      ADD_FAILURE() << "an absent topic was read";
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind(path.string() + ": no message on topic /camera/rgb/points (its topics: "
+                                           "/camera/depth/points (sensor_msgs/",
+                           0),
+                0u)
+          << what;
+    }
+    try {
+      read_recording(path, {.topic = "/tf"});
+      ADD_FAILURE() << "a tf topic was read as clouds";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("not sensor_msgs/PointCloud2"), std::string::npos)
+          << e.what();
+    }
+    // Without tf to the fixed frame asked for, the frames have no pose: registration places them.
+    const auto unposed =
+        read_recording(path, {.topic = "/camera/depth/points", .fixed_frame = "map"});
+    EXPECT_FALSE(unposed.front().T_fixed_cloud.has_value());
+  }
+  // The command line's topic and every win over the manifest's.
+  EXPECT_EQ(read_manifest(recordings() / "bag.yaml", {.every = 3, .topic = "/camera/depth/points"})
+                .clouds.size(),
+            1u);
+}
+
+TEST(Recordings, BrokenRecordingsAreRefusedInOneLine) {
+  const std::filesystem::path dir = testing::fresh_dir("broken_recordings");
+  for (const char* file : {"kinect.bag", "kinect.mcap"}) {
+    const std::string bytes = testing::read_text(recordings() / file);
+    testing::write_text(dir / file, bytes.substr(0, bytes.size() / 2));
+    try {
+      read_recording(dir / file, {.topic = "/camera/depth/points"});
+      ADD_FAILURE() << "half of " << file << " was read";
+    } catch (const std::runtime_error& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(what.rfind((dir / file).string() + ": ", 0), 0u) << what;
+      EXPECT_NE(what.find("runs past the end"), std::string::npos) << what;
+      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+    }
+  }
+  testing::write_text(dir / "x.bag", "#ROSBAG V1.2\n");
+  EXPECT_THROW(read_recording(dir / "x.bag", {.topic = "/a"}), std::runtime_error);
+  testing::write_text(dir / "x.mcap", "not mcap");
+  EXPECT_THROW(read_recording(dir / "x.mcap", {.topic = "/a"}), std::runtime_error);
 }
 
 TEST(Recordings, EveryNthFrame) {

@@ -108,12 +108,7 @@ std::vector<RecordingFrame> read_recording(const std::filesystem::path& path,
       ++index;
       topics.emplace(m.topic, m.type);
       try {
-        if ((m.topic == "/tf" || m.topic == "/tf_static") &&
-            is_type(m.type, "tf2_msgs", "TFMessage")) {
-          for (const RosTransform& t : decode_tf_message(m.data, m.encoding)) {
-            tf.add(t, m.topic == "/tf_static");
-          }
-        } else if (m.topic == options.topic) {
+        if (m.topic == options.topic) {
           if (!is_type(m.type, "sensor_msgs", "PointCloud2")) {
             throw FormatError(cat("topic ", options.topic, " holds ", printable(m.type, 60),
                                   ", not sensor_msgs/PointCloud2"));
@@ -122,6 +117,11 @@ std::vector<RecordingFrame> read_recording(const std::filesystem::path& path,
           RosCloud cloud = decode_point_cloud2(m.data, m.encoding);
           frames.push_back({cloud.header.stamp, std::move(cloud.header.frame_id),
                             std::move(cloud.points), cloud.non_finite, std::nullopt});
+        } else if ((m.topic == "/tf" || m.topic == "/tf_static") &&
+                   is_type(m.type, "tf2_msgs", "TFMessage")) {
+          for (const RosTransform& t : decode_tf_message(m.data, m.encoding)) {
+            tf.add(t, m.topic == "/tf_static");
+          }
         }
       } catch (const FormatError& e) {
         throw FormatError(cat("message ", index, " (", printable(m.topic, 60), " at ", m.log_time,

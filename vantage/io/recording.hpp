@@ -16,9 +16,9 @@ namespace vantage {
 
 /// Which frames of a recording, and how they are posed.
 struct RecordingOptions {
-  std::string topic;  ///< a sensor_msgs/PointCloud2 topic
+  std::string topic = {};  ///< a sensor_msgs/PointCloud2 topic
   /// tf's fixed frame (`map`, `odom`, `world`); empty: the root of the first frame's tf tree.
-  std::string fixed_frame;
+  std::string fixed_frame = {};
   int every = 1;  ///< the first frame and every `every`-th after it
   /// [s] the tf samples around a frame's stamp must lie this close to it (static ones always do).
   double max_time_difference = 0.1;
