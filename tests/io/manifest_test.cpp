@@ -447,7 +447,7 @@ TEST_F(ManifestTest, OtherMistakesAreNamed) {
   expect_error(kSensor + kRegion + replace(kClouds, "scans/a.pcd", "scans/missing.pcd"),
                "clouds[0].file", "no such file");
   expect_error(kSensor + kRegion + replace(kClouds, "scans/a.pcd", "scans/a.xyz"), "clouds[0].file",
-               "not a .pcd or .ply file");
+               "not a .pcd, .ply or .png file");
   expect_error(kSensor + kRegion + "clouds: []\n", "clouds", "is empty");
   expect_error(kSensor + kRegion + kClouds + "trajectory: {file: poses.txt}\n", "clouds[0].pose",
                "not both");

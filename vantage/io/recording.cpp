@@ -9,6 +9,7 @@
 #include "vantage/io/input_file.hpp"
 #include "vantage/io/recording_formats.hpp"
 #include "vantage/io/trajectory.hpp"
+#include "vantage/util/memory.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -98,6 +99,15 @@ std::vector<RecordingFrame> read_recording(const std::filesystem::path& path,
     const std::string ext = lower_extension(path);
     if (ext != ".bag" && ext != ".mcap") {
       throw FormatError("not a recording: give a ROS 1 bag (.bag) or an MCAP file (.mcap)");
+    }
+    // NOTE: read whole: the file, then its frames' points (about twice its size), must fit.
+    const std::uintmax_t size = require_input_file(path, InputKind::kRecording);
+    if (const std::uint64_t available = available_memory();
+        available > 0 && 3.0 * static_cast<double>(size) > static_cast<double>(available)) {
+      throw FormatError(cat("is ", describe_bytes(static_cast<double>(size)),
+                            ", and reading it needs about three times that, more than the ",
+                            describe_bytes(static_cast<double>(available)),
+                            " this machine has available"));
     }
     const std::string bytes = read_input_file(path, InputKind::kRecording);
     std::vector<RecordingFrame> frames;

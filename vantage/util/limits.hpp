@@ -58,7 +58,7 @@ inline constexpr std::array<Limit, 12> kLimits = {{
     {"pose file", static_cast<double>(kMaxPoseFileBytes / kMiB), "MiB"},
     {"results file", static_cast<double>(kMaxResultsFileBytes / kMiB), "MiB"},
     {"depth image file", static_cast<double>(kMaxDepthImageFileBytes / kMiB), "MiB"},
-    {"pixels of a depth image", static_cast<double>(kMaxDepthImagePixels), "pixels"},
+    {"pixels of a depth image", static_cast<double>(kMaxDepthImagePixels >> 20), "Mi pixels"},
     {"recording file", static_cast<double>(kMaxRecordingFileBytes / kMiB), "MiB"},
     {"candidate views of a decision", static_cast<double>(kMaxCandidateViews), "views"},
     {"objects of a scene", static_cast<double>(kMaxSceneObjects), "objects"},
