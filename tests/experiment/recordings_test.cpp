@@ -126,6 +126,23 @@ TEST(Recordings, BrokenRecordingsAreRefusedInOneLine) {
   EXPECT_THROW(read_recording(dir / "x.mcap", {.topic = "/a"}), std::runtime_error);
 }
 
+TEST(Recordings, ATumManifestWritesBackAsItsDepthImagesABagsDoesNot) {
+  const std::filesystem::path dir = testing::fresh_dir("tum_written_back");
+  const Manifest tum = read_manifest(recordings() / "tum.yaml");
+  write_manifest(dir / "back.yaml", tum);
+  const Manifest back = read_manifest(dir / "back.yaml");
+  ASSERT_EQ(back.clouds.size(), tum.clouds.size());
+  for (std::size_t i = 0; i < tum.clouds.size(); ++i) {
+    EXPECT_EQ(std::filesystem::canonical(back.clouds[i].file),
+              std::filesystem::canonical(tum.clouds[i].file));
+    EXPECT_EQ(back.clouds[i].T_world_cloud.matrix(), tum.clouds[i].T_world_cloud.matrix());
+  }
+  EXPECT_EQ(back.depth, tum.depth);
+  EXPECT_THROW(write_manifest(dir / "bag.yaml", read_manifest(recordings() / "bag.yaml")),
+               std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(dir / "bag.yaml"));
+}
+
 TEST(Recordings, EveryNthFrame) {
   const Manifest every2 = read_manifest(recordings() / "tum.yaml", {.every = 2});
   ASSERT_EQ(every2.clouds.size(), 2u);

@@ -148,7 +148,7 @@ Manifest read_manifest(const std::filesystem::path& path, const ManifestReadOpti
 
 /// Writes a manifest that read_manifest reads back to the same clouds, poses (one 4x4 matrix per
 /// cloud, never a trajectory), sensor, ROI and options; cloud paths are written relative to the
-/// manifest's folder. Atomic.
+/// manifest's folder. Atomic. Throws std::invalid_argument for a recording's frame (no file).
 void write_manifest(const std::filesystem::path& path, const Manifest& manifest);
 
 }  // namespace vantage

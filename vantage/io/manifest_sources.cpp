@@ -10,17 +10,33 @@
 #include "vantage/util/text.hpp"
 
 namespace vantage::detail {
+namespace {
+
+/// The sequence's key's `every` (1 when absent), or the command line's, which wins.
+int every_of(const YamlField& key, const ManifestReadOptions& options) {
+  int every = 1;
+  if (const auto given = key.get("every")) every = given->integer(1, 1'000'000);
+  if (options.every) {
+    if (*options.every < 1) key.fail_as("every", cat("--every must be >= 1, got ", *options.every));
+    every = *options.every;
+  }
+  return every;
+}
+
+/// The sequence's key's `max_time_difference` [s], or `fallback`.
+double max_dt_of(const YamlField& key, double fallback) {
+  const auto given = key.get("max_time_difference");
+  return given ? given->positive() : fallback;
+}
+
+}  // namespace
 
 void read_tum_key(const YamlField& tum, const std::filesystem::path& manifest_folder,
                   const ManifestReadOptions& options, Manifest& manifest) {
   tum.allow_keys({"folder", "every", "max_time_difference"});
   TumReadOptions read;
-  if (const auto every = tum.get("every")) read.every = every->integer(1, 1'000'000);
-  if (options.every) {
-    if (*options.every < 1) tum.fail_as("every", cat("--every must be >= 1, got ", *options.every));
-    read.every = *options.every;
-  }
-  if (const auto dt = tum.get("max_time_difference")) read.max_time_difference = dt->positive();
+  read.every = every_of(tum, options);
+  read.max_time_difference = max_dt_of(tum, read.max_time_difference);
   const YamlField folder = tum.at("folder");
   manifest.tum = (manifest_folder / folder.text()).lexically_normal();
   std::vector<TumFrame> frames;
@@ -50,16 +66,8 @@ void read_recording_key(const YamlField& recording, const std::filesystem::path&
   if (options.topic) read.topic = *options.topic;
   if (read.topic.empty()) recording.fail_as("recording.topic", "missing (or give --topic)");
   if (const auto frame = recording.get("fixed_frame")) read.fixed_frame = frame->text();
-  if (const auto every = recording.get("every")) read.every = every->integer(1, 1'000'000);
-  if (options.every) {
-    if (*options.every < 1) {
-      recording.fail_as("every", cat("--every must be >= 1, got ", *options.every));
-    }
-    read.every = *options.every;
-  }
-  if (const auto dt = recording.get("max_time_difference")) {
-    read.max_time_difference = dt->positive();
-  }
+  read.every = every_of(recording, options);
+  read.max_time_difference = max_dt_of(recording, read.max_time_difference);
   const YamlField file = recording.at("file");
   manifest.recording = (manifest_folder / file.text()).lexically_normal();
   std::vector<RecordingFrame> frames;
