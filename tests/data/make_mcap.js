@@ -3,7 +3,9 @@
 // container, chunked, uncompressed) and @foxglove/rosmsg2-serialization (ROS 2 CDR messages),
 // as scripts/fetch-mcap-writer.sh pins and fetches them. The same layout as the bag:
 // sensor_msgs/msg/PointCloud2 on /camera/depth/points (camera_depth_optical_frame), /tf world ->
-// base_link at each frame's stamp, /tf_static base_link -> camera_depth_optical_frame.
+// base_link at each frame's stamp, /tf_static base_link -> camera_depth_optical_frame, and the
+// depth images (raw/*.u16) as sensor_msgs/msg/Image (16UC1) on /camera/depth/image_raw with their
+// sensor_msgs/msg/CameraInfo.
 //
 // usage: node make_mcap.js OUT_DIR NODE_MODULES_DIR
 "use strict";
@@ -45,6 +47,19 @@ const kTypes = {
   "geometry_msgs/msg/TransformStamped": [
     c("std_msgs/msg/Header", "header"), f("string", "child_frame_id"),
     c("geometry_msgs/msg/Transform", "transform")],
+  "sensor_msgs/msg/Image": [
+    c("std_msgs/msg/Header", "header"), f("uint32", "height"), f("uint32", "width"),
+    f("string", "encoding"), f("uint8", "is_bigendian"), f("uint32", "step"),
+    f("uint8", "data", { isArray: true })],
+  "sensor_msgs/msg/RegionOfInterest": [
+    f("uint32", "x_offset"), f("uint32", "y_offset"), f("uint32", "height"), f("uint32", "width"),
+    f("bool", "do_rectify")],
+  "sensor_msgs/msg/CameraInfo": [
+    c("std_msgs/msg/Header", "header"), f("uint32", "height"), f("uint32", "width"),
+    f("string", "distortion_model"), f("float64", "d", { isArray: true }),
+    f("float64", "k", { isArray: true, arrayLength: 9 }), f("float64", "r", { isArray: true, arrayLength: 9 }),
+    f("float64", "p", { isArray: true, arrayLength: 12 }), f("uint32", "binning_x"), f("uint32", "binning_y"),
+    c("sensor_msgs/msg/RegionOfInterest", "roi")],
   "tf2_msgs/msg/TFMessage": [
     c("geometry_msgs/msg/TransformStamped", "transforms", { isArray: true })],
 };
@@ -93,6 +108,10 @@ async function main() {
   const tf = await channel("/tf", "tf2_msgs/msg/TFMessage");
   const tfStatic = await channel("/tf_static", "tf2_msgs/msg/TFMessage");
   const points = await channel("/camera/depth/points", "sensor_msgs/msg/PointCloud2");
+  const images = await channel("/camera/depth/image_raw", "sensor_msgs/msg/Image");
+  const infos = await channel("/camera/depth/camera_info", "sensor_msgs/msg/CameraInfo");
+  const imageWriter = new MessageWriter(definitions("sensor_msgs/msg/Image"));
+  const infoWriter = new MessageWriter(definitions("sensor_msgs/msg/CameraInfo"));
   const tfWriter = new MessageWriter(definitions("tf2_msgs/msg/TFMessage"));
   const cloudWriter = new MessageWriter(definitions("sensor_msgs/msg/PointCloud2"));
   const time = (s) => BigInt(s.sec) * 1000000000n + BigInt(s.nanosec);
@@ -115,6 +134,20 @@ async function main() {
       fields: ["x", "y", "z"].map((name, i) => ({ name, offset: 4 * i, datatype: 7, count: 1 })),
       is_bigendian: false, point_step: 12, row_step: 12 * n, data: new Uint8Array(data), is_dense: true,
     }));
+  }
+  for (const row of truth) {
+    const stamp = stampOf(row[0]);
+    const header = { stamp, frame_id: "camera_depth_optical_frame" };
+    const [fx, fy, cx, cy, w, h] = [525.0, 525.0, 319.5, 239.5, 640, 480];
+    await add(infos, stamp, infoWriter.writeMessage({
+      header, height: h, width: w, distortion_model: "plumb_bob", d: [0, 0, 0, 0, 0],
+      k: [fx, 0, cx, 0, fy, cy, 0, 0, 1], r: [1, 0, 0, 0, 1, 0, 0, 0, 1],
+      p: [fx, 0, cx, 0, 0, fy, cy, 0, 0, 0, 1, 0], binning_x: 0, binning_y: 0,
+      roi: { x_offset: 0, y_offset: 0, height: 0, width: 0, do_rectify: false } }));
+    const raw = fs.readFileSync(path.join(out, "raw", `${row[0]}.u16`));
+    await add(images, stamp, imageWriter.writeMessage({
+      header, height: h, width: w, encoding: "16UC1", is_bigendian: 0, step: 2 * w,
+      data: new Uint8Array(raw) }));
   }
   await writer.end();
   fs.writeFileSync(path.join(out, "kinect.mcap"), Buffer.concat(chunks));

@@ -17,9 +17,13 @@ code), in every layout Vantage reads:
                           sensor_msgs/PointCloud2 on /camera/depth/points (frame
                           camera_depth_optical_frame), /tf world -> base_link at each frame's stamp
                           (the ground truth), /tf_static base_link -> camera_depth_optical_frame
-  OUT_DIR/bag.yaml        the manifest that names the bag
+                          and the depth images as sensor_msgs/Image (16UC1, 5000 units a metre)
+                          on /camera/depth/image_raw with their sensor_msgs/CameraInfo
+  OUT_DIR/bag.yaml        the manifest that names the bag (bag_image.yaml: its image topic)
+  OUT_DIR/raw/*.u16       the depth images as raw little-endian 16-bit rows, for make_mcap.js
   OUT_DIR/mcap.yaml       the manifest that names OUT_DIR/kinect.mcap, which tests/data/make_mcap.js
-                          writes from these frames with npm's @mcap/core
+                          writes from these frames with npm's @mcap/core (mcap_image.yaml: its
+                          image topic)
   OUT_DIR/bad/            depth images Vantage must refuse
 """
 
@@ -163,13 +167,13 @@ options: {table_segmentation: true}
 """
 
 
-def write_bag(path, stamps, clouds, poses):
+def write_bag(path, stamps, clouds, poses, images):
     """The frames as a ROS 1 bag, by Debian's python3-rosbag and its generated messages."""
     try:
         import genpy
         import rosbag
         from geometry_msgs.msg import TransformStamped
-        from sensor_msgs.msg import PointCloud2, PointField
+        from sensor_msgs.msg import CameraInfo, Image, PointCloud2, PointField
         from tf2_msgs.msg import TFMessage
     except ImportError as e:
         sys.exit(f"make_recordings: {e}: install python3-rosbag, python3-sensor-msgs and "
@@ -186,11 +190,18 @@ def write_bag(path, stamps, clouds, poses):
         q.x, q.y, q.z, q.w = (float(c) for c in quaternion(pose[:3, :3]))
         return t
 
+    info = CameraInfo()
+    info.height, info.width = H, W
+    info.distortion_model = "plumb_bob"
+    info.D = [0.0] * 5
+    info.K = [FX, 0, CX, 0, FY, CY, 0, 0, 1]
+    info.R = [1.0, 0, 0, 0, 1, 0, 0, 0, 1]
+    info.P = [FX, 0, CX, 0, 0, FY, CY, 0, 0, 0, 1, 0]
     with rosbag.Bag(path, "w") as bag:  # NOTE: uncompressed chunks, rosbag's default
         first = genpy.Time(*(int(x) for x in stamps[0].split(".")))
         static = TFMessage([transform(first, "base_link", "camera_depth_optical_frame", np.eye(4))])
         bag.write("/tf_static", static, first)
-        for stamp_text, points, pose in zip(stamps, clouds, poses):
+        for stamp_text, points, pose, depth in zip(stamps, clouds, poses, images):
             sec, frac = stamp_text.split(".")
             stamp = genpy.Time(int(sec), int(frac.ljust(9, "0")))
             bag.write("/tf", TFMessage([transform(stamp, "world", "base_link", pose)]), stamp)
@@ -205,6 +216,17 @@ def write_bag(path, stamps, clouds, poses):
             cloud.data = points.astype("<f4").tobytes()
             cloud.is_dense = True
             bag.write("/camera/depth/points", cloud, stamp)
+            info.header.stamp = stamp
+            info.header.frame_id = "camera_depth_optical_frame"
+            bag.write("/camera/depth/camera_info", info, stamp)
+            image = Image()
+            image.header = info.header
+            image.height, image.width = H, W
+            image.encoding = "16UC1"
+            image.is_bigendian = 0
+            image.step = 2 * W
+            image.data = depth.astype("<u2").tobytes()
+            bag.write("/camera/depth/image_raw", image, stamp)
 
 
 def frames():
@@ -239,7 +261,15 @@ def main(out):
     open(os.path.join(out, "pcd.yaml"), "w").write(
         "clouds:\n" + clouds +
         "trajectory: {file: tum/groundtruth.txt, match: timestamp}\n" + SETTINGS)
-    write_bag(os.path.join(out, "kinect.bag"), STAMPS, [back_project(i) for i in images], poses)
+    write_bag(os.path.join(out, "kinect.bag"), STAMPS, [back_project(i) for i in images], poses,
+              images)
+    os.makedirs(os.path.join(out, "raw"), exist_ok=True)
+    for stamp, image in zip(STAMPS, images):
+        open(os.path.join(out, "raw", stamp + ".u16"), "wb").write(image.astype("<u2").tobytes())
+    image_settings = SETTINGS.replace("  max_range: 3.0\n", "  max_range: 3.0\n  depth: {scale: 5000}\n")
+    for name, recording in (("bag_image", "kinect.bag"), ("mcap_image", "kinect.mcap")):
+        open(os.path.join(out, name + ".yaml"), "w").write(
+            f"recording: {{file: {recording}, topic: /camera/depth/image_raw}}\n" + image_settings)
     open(os.path.join(out, "bag.yaml"), "w").write(
         "recording: {file: kinect.bag, topic: /camera/depth/points, fixed_frame: world}\n" +
         SETTINGS)

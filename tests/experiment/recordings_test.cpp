@@ -72,6 +72,31 @@ TEST(Recordings, AnMcapFileMapsAsTheManifestOfItsFrames) {
   expect_recording_maps_as_pcds("mcap.yaml");
 }
 
+// An image topic (sensor_msgs/Image 16UC1 with CameraInfo): each pixel one ray, as the PNGs.
+TEST(Recordings, ABagsDepthImagesMapAsTheManifestOfItsFrames) {
+  expect_recording_maps_as_pcds("bag_image.yaml");
+}
+
+TEST(Recordings, AnMcapFilesDepthImagesMapAsTheManifestOfItsFrames) {
+  expect_recording_maps_as_pcds("mcap_image.yaml");
+}
+
+TEST(Recordings, DepthImagesWithoutCameraInfoAreRefused) {
+  for (const char* file : {"kinect.bag", "kinect.mcap"}) {
+    try {
+      read_recording(recordings() / file, {.topic = "/camera/depth/image_raw",
+                                           .camera_info = "/camera/rgb/camera_info"});
+      ADD_FAILURE() << "images without camera info were read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(
+                    "no sensor_msgs/CameraInfo on /camera/rgb/camera_info for the depth images of "
+                    "/camera/depth/image_raw"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 TEST(Recordings, TopicsEveryNthAndErrors) {
   for (const char* file : {"kinect.bag", "kinect.mcap"}) {
     const std::filesystem::path path = recordings() / file;
@@ -82,7 +107,7 @@ TEST(Recordings, TopicsEveryNthAndErrors) {
     } catch (const std::runtime_error& e) {
       const std::string what = e.what();
       EXPECT_EQ(what.rfind(path.string() + ": no message on topic /camera/rgb/points (its topics: "
-                                           "/camera/depth/points (sensor_msgs/",
+                                           "/camera/depth/camera_info (sensor_msgs/",
                            0),
                 0u)
           << what;
@@ -91,7 +116,8 @@ TEST(Recordings, TopicsEveryNthAndErrors) {
       read_recording(path, {.topic = "/tf"});
       ADD_FAILURE() << "a tf topic was read as clouds";
     } catch (const std::runtime_error& e) {
-      EXPECT_NE(std::string(e.what()).find("not sensor_msgs/PointCloud2"), std::string::npos)
+      EXPECT_NE(std::string(e.what()).find("not sensor_msgs/PointCloud2 or sensor_msgs/Image"),
+                std::string::npos)
           << e.what();
     }
     // Without tf to the fixed frame asked for, the frames have no pose: registration places them.

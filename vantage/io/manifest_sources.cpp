@@ -60,8 +60,11 @@ void read_tum_key(const YamlField& tum, const std::filesystem::path& manifest_fo
 
 void read_recording_key(const YamlField& recording, const std::filesystem::path& manifest_folder,
                         const ManifestReadOptions& options, Manifest& manifest) {
-  recording.allow_keys({"file", "topic", "fixed_frame", "every", "max_time_difference"});
+  recording.allow_keys(
+      {"file", "topic", "camera_info", "fixed_frame", "every", "max_time_difference"});
   RecordingOptions read;
+  if (manifest.depth) read.depth = *manifest.depth;  // an image topic's; else ROS's millimetres
+  if (const auto info = recording.get("camera_info")) read.camera_info = info->text();
   if (const auto topic = recording.get("topic")) read.topic = topic->text();
   if (options.topic) read.topic = *options.topic;
   if (read.topic.empty()) recording.fail_as("recording.topic", "missing (or give --topic)");

@@ -114,19 +114,34 @@ std::vector<RecordingFrame> read_recording(const std::filesystem::path& path,
     std::map<std::string, std::string, std::less<>> topics;  // topic: type
     TfTree tf;
     std::size_t listed = 0, index = 0;
+    std::vector<RosDepthImage> images;
+    std::vector<RosCameraInfo> infos;
+    const std::string info_topic =
+        !options.camera_info.empty()
+            ? options.camera_info
+            : options.topic.substr(0, options.topic.rfind('/') + 1) + "camera_info";
     const auto visit = [&](const RecordedMessage& m) {
       ++index;
       topics.emplace(m.topic, m.type);
       try {
         if (m.topic == options.topic) {
-          if (!is_type(m.type, "sensor_msgs", "PointCloud2")) {
+          const bool image = is_type(m.type, "sensor_msgs", "Image");
+          if (!image && !is_type(m.type, "sensor_msgs", "PointCloud2")) {
             throw FormatError(cat("topic ", options.topic, " holds ", printable(m.type, 60),
-                                  ", not sensor_msgs/PointCloud2"));
+                                  ", not sensor_msgs/PointCloud2 or sensor_msgs/Image"));
           }
           if (listed++ % static_cast<std::size_t>(options.every) != 0) return;
+          if (image) {
+            images.push_back(decode_depth_image(m.data, m.encoding));
+            frames.push_back(
+                {images.back().header.stamp, images.back().header.frame_id, {}, 0, std::nullopt});
+            return;
+          }
           RosCloud cloud = decode_point_cloud2(m.data, m.encoding);
           frames.push_back({cloud.header.stamp, std::move(cloud.header.frame_id),
                             std::move(cloud.points), cloud.non_finite, std::nullopt});
+        } else if (m.topic == info_topic && is_type(m.type, "sensor_msgs", "CameraInfo")) {
+          infos.push_back(decode_camera_info(m.data, m.encoding));
         } else if ((m.topic == "/tf" || m.topic == "/tf_static") &&
                    is_type(m.type, "tf2_msgs", "TFMessage")) {
           for (const RosTransform& t : decode_tf_message(m.data, m.encoding)) {
@@ -151,6 +166,25 @@ std::vector<RecordingFrame> read_recording(const std::filesystem::path& path,
       }
       throw FormatError(cat("no message on topic ", printable(options.topic, 60),
                             " (its topics: ", names.empty() ? "none" : names, ")"));
+    }
+    if (!images.empty()) {
+      if (infos.empty()) {
+        throw FormatError(cat("no sensor_msgs/CameraInfo on ", printable(info_topic, 60),
+                              " for the depth images of ", printable(options.topic, 60)));
+      }
+      for (std::size_t i = 0; i < images.size(); ++i) {
+        const RosCameraInfo* info = &infos.front();
+        for (const RosCameraInfo& c : infos) {
+          if (c.header.stamp <= images[i].header.stamp) info = &c;
+        }
+        try {
+          frames[i].points = depth_to_points(images[i].image, info->intrinsics, options.depth);
+        } catch (const std::invalid_argument& e) {
+          throw FormatError(
+              cat("image ", i + 1, " of ", printable(options.topic, 60), ": ", e.what()));
+        }
+        images[i].image.depth = {};
+      }
     }
     tf.finish();
     const std::string fixed =

@@ -6,8 +6,10 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <stdexcept>
 
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -113,6 +115,65 @@ double read_float(const char* p, std::uint8_t datatype, bool big_endian) {
 }
 
 }  // namespace
+
+RosDepthImage decode_depth_image(std::string_view message, RosEncoding encoding) {
+  Wire wire(message, encoding);
+  RosDepthImage out;
+  out.header = wire.header();
+  const std::uint32_t height = wire.scalar<std::uint32_t>("height");
+  const std::uint32_t width = wire.scalar<std::uint32_t>("width");
+  const std::string type = wire.string("encoding");
+  const bool big_endian = wire.scalar<std::uint8_t>("is_bigendian") != 0;
+  const std::uint32_t step = wire.scalar<std::uint32_t>("step");
+  const std::string_view data = wire.bytes(wire.count("data", 1), "data");
+  if (type != "16UC1" && type != "mono16") {
+    throw FormatError(
+        cat("image encoding '", printable(type, 20), "' is not a depth image's 16UC1 or mono16"));
+  }
+  if (std::uint64_t{width} * height > kMaxDepthImagePixels) {
+    throw FormatError(cat("the image is ", width, " x ", height, " pixels, more than the ",
+                          kMaxDepthImagePixels, " a depth image may have"));
+  }
+  if (std::uint64_t{width} * 2 > step || std::uint64_t{step} * height > data.size()) {
+    throw FormatError(cat("step ", step, " and height ", height, " do not fit ", width,
+                          " 16-bit pixels a row in ", data.size(), " bytes"));
+  }
+  out.image.width = static_cast<int>(width);
+  out.image.height = static_cast<int>(height);
+  out.image.depth.resize(std::size_t{width} * height);
+  for (std::uint32_t v = 0; v < height; ++v) {
+    for (std::uint32_t u = 0; u < width; ++u) {
+      const auto* p = reinterpret_cast<const unsigned char*>(data.data() + std::size_t{v} * step +
+                                                             std::size_t{u} * 2);
+      out.image.depth[std::size_t{v} * width + u] =
+          static_cast<std::uint16_t>(big_endian ? (p[0] << 8) | p[1] : (p[1] << 8) | p[0]);
+    }
+  }
+  return out;
+}
+
+RosCameraInfo decode_camera_info(std::string_view message, RosEncoding encoding) {
+  Wire wire(message, encoding);
+  RosCameraInfo out;
+  out.header = wire.header();
+  out.intrinsics.height = static_cast<int>(wire.scalar<std::uint32_t>("height") & 0x7fffffff);
+  out.intrinsics.width = static_cast<int>(wire.scalar<std::uint32_t>("width") & 0x7fffffff);
+  wire.string("distortion_model");
+  const std::uint32_t d = wire.count("d", 8);
+  for (std::uint32_t i = 0; i < d; ++i) wire.scalar<double>("d");
+  std::array<double, 9> k{};
+  for (double& x : k) x = wire.scalar<double>("k");
+  out.intrinsics.fx = k[0];
+  out.intrinsics.cx = k[2];
+  out.intrinsics.fy = k[4];
+  out.intrinsics.cy = k[5];
+  try {
+    out.intrinsics.validate();
+  } catch (const std::invalid_argument& e) {
+    throw FormatError(cat("camera info: ", e.what()));
+  }
+  return out;
+}
 
 RosCloud decode_point_cloud2(std::string_view message, RosEncoding encoding) {
   Wire wire(message, encoding);

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vantage/io/depth_image.hpp"
 #include "vantage/map/point_cloud.hpp"
 
 namespace vantage {
@@ -39,6 +40,27 @@ struct RosTransform {
   std::string child;
   Eigen::Isometry3d T_parent_child = Eigen::Isometry3d::Identity();
 };
+
+/// sensor_msgs/Image of a depth camera: 16-bit depths (encoding 16UC1 or mono16).
+struct RosDepthImage {
+  RosHeader header;
+  DepthImage image;
+};
+
+/// sensor_msgs/CameraInfo's pinhole part: K's focal lengths and principal point, the size.
+struct RosCameraInfo {
+  RosHeader header;
+  PinholeIntrinsics intrinsics;
+};
+
+/// Decodes a sensor_msgs/Image of encoding 16UC1 or mono16 (another is refused naming it), rows
+/// of `step` bytes, big- or little-endian. Throws FormatError as decode_point_cloud2 does, and for
+/// more than kMaxDepthImagePixels.
+RosDepthImage decode_depth_image(std::string_view message, RosEncoding encoding);
+
+/// Decodes a sensor_msgs/CameraInfo (ROS 1 or ROS 2 field names, the same layout). Throws
+/// FormatError as above, and for intrinsics PinholeIntrinsics::validate refuses.
+RosCameraInfo decode_camera_info(std::string_view message, RosEncoding encoding);
 
 /// Decodes a sensor_msgs/PointCloud2. Throws FormatError with one line saying what is wrong
 /// (a field past the message's end, a count the data cannot hold, no float x, y and z fields, a
