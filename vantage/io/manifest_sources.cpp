@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
+#include <string_view>
 
 #include "vantage/io/input_file.hpp"
 #include "vantage/io/recording.hpp"
@@ -29,22 +30,31 @@ double max_dt_of(const YamlField& key, double fallback) {
   return given ? given->positive() : fallback;
 }
 
+/// A sequence's frames: `read` (its options, every and max_time_difference from `key` or the
+/// command line) of the path `key.path_key` names, resolved into `source`; what `reader` throws
+/// fails at that key.
+template <class Options, class Reader>
+auto read_sequence(const YamlField& key, std::string_view path_key,
+                   const std::filesystem::path& manifest_folder, const ManifestReadOptions& options,
+                   Options read, std::optional<std::filesystem::path>& source, Reader reader) {
+  read.every = every_of(key, options);
+  read.max_time_difference = max_dt_of(key, read.max_time_difference);
+  const YamlField path = key.at(path_key);
+  source = (manifest_folder / path.text()).lexically_normal();
+  try {
+    return reader(*source, read);
+  } catch (const std::runtime_error& e) {
+    path.fail(e.what());
+  }
+}
+
 }  // namespace
 
 void read_tum_key(const YamlField& tum, const std::filesystem::path& manifest_folder,
                   const ManifestReadOptions& options, Manifest& manifest) {
   tum.allow_keys({"folder", "every", "max_time_difference"});
-  TumReadOptions read;
-  read.every = every_of(tum, options);
-  read.max_time_difference = max_dt_of(tum, read.max_time_difference);
-  const YamlField folder = tum.at("folder");
-  manifest.tum = (manifest_folder / folder.text()).lexically_normal();
-  std::vector<TumFrame> frames;
-  try {
-    frames = read_tum_rgbd(*manifest.tum, read);
-  } catch (const std::runtime_error& e) {
-    folder.fail(e.what());
-  }
+  const std::vector<TumFrame> frames = read_sequence(
+      tum, "folder", manifest_folder, options, TumReadOptions{}, manifest.tum, &read_tum_rgbd);
   for (const TumFrame& frame : frames) {
     ManifestCloud cloud;
     cloud.file = frame.file;
@@ -69,16 +79,8 @@ void read_recording_key(const YamlField& recording, const std::filesystem::path&
   if (options.topic) read.topic = *options.topic;
   if (read.topic.empty()) recording.fail_as("recording.topic", "missing (or give --topic)");
   if (const auto frame = recording.get("fixed_frame")) read.fixed_frame = frame->text();
-  read.every = every_of(recording, options);
-  read.max_time_difference = max_dt_of(recording, read.max_time_difference);
-  const YamlField file = recording.at("file");
-  manifest.recording = (manifest_folder / file.text()).lexically_normal();
-  std::vector<RecordingFrame> frames;
-  try {
-    frames = read_recording(*manifest.recording, read);
-  } catch (const std::runtime_error& e) {
-    file.fail(e.what());
-  }
+  std::vector<RecordingFrame> frames = read_sequence(recording, "file", manifest_folder, options,
+                                                     read, manifest.recording, &read_recording);
   for (RecordingFrame& frame : frames) {
     ManifestCloud cloud;
     char stamp[32];
