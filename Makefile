@@ -17,6 +17,7 @@ deps:
 	@scripts/install-deps.sh
 	@scripts/fetch-models.sh
 	@scripts/fetch-web.sh
+	@scripts/fetch-mcap-writer.sh
 
 configure: deps
 	@cmake --preset $(PRESET) >/dev/null

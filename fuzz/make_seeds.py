@@ -204,7 +204,103 @@ def octomap_seeds():
     write("octomap", "color.ot", ot(True))
 
 
+def png(width, height, bit_depth, colour, rows, interlace=0):
+    """A PNG of raw `rows` (each with its filter byte), zlib'd into one IDAT."""
+    import zlib
+
+    def chunk(kind, body):
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(
+            ">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
+    ihdr = struct.pack(">IIBBBBB", width, height, bit_depth, colour, 0, 0, interlace)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", zlib.compress(rows)) +
+            chunk(b"IEND", b""))
+
+
+def depth_png_seeds():
+    # 4 x 3 depths, 16-bit big-endian, each row with filter 0 (none), 1 (sub) or 2 (up).
+    rows = b"".join(bytes([r % 3]) + struct.pack(">4H", 0, 5000 + r, 65535, 7) for r in range(3))
+    write("depth_png", "tiny.png", png(4, 3, 16, 0, rows))
+    write("depth_png", "interlaced.png", png(4, 3, 16, 0, rows, interlace=1))
+    write("depth_png", "eight_bit.png", png(2, 1, 8, 0, b"\x00\x01\x02"))
+    write("depth_png", "rgb.png", png(1, 1, 16, 2, b"\x00" + bytes(6)))
+
+
+def tum_seeds():
+    write("tum", "depth.txt", "# depth maps\n# timestamp filename\n1305031102.175304 depth/a.png\n"
+          "1305031102.211214 depth/b.png\n")
+    write("tum", "empty.txt", "# nothing\n")
+
+
+def cloud_and_tf_ros1():
+    """A 2-point PointCloud2 and a one-transform TFMessage in ROS 1 serialization."""
+    def string(text):
+        return struct.pack("<I", len(text)) + text.encode()
+    header = struct.pack("<III", 0, 7, 500) + string("camera")
+    fields = struct.pack("<I", 3) + b"".join(
+        string(n) + struct.pack("<IBI", 4 * i, 7, 1) for i, n in enumerate("xyz"))
+    data = struct.pack("<6f", 0.1, 0.2, 1.0, float("nan"), 0.0, 2.0)
+    cloud = (header + struct.pack("<II", 1, 2) + fields + struct.pack("<BII", 0, 12, 24) +
+             struct.pack("<I", len(data)) + data + b"\x01")
+    tf = (struct.pack("<I", 1) + struct.pack("<III", 0, 7, 0) + string("world") + string("camera") +
+          struct.pack("<7d", 1, 2, 3, 0, 0, 0, 1))
+    return cloud, tf
+
+
+def rosbag_seeds():
+    """A tiny bag, written by Debian's python3-rosbag when it is there."""
+    try:
+        import rosbag
+        import genpy
+        from sensor_msgs.msg import PointCloud2
+        from tf2_msgs.msg import TFMessage
+    except ImportError:
+        print("make_seeds: no python3-rosbag; the rosbag seeds are left as they are")
+        return
+    import tempfile
+    cloud, tf = cloud_and_tf_ros1()
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "tiny.bag")
+        with rosbag.Bag(path, "w") as bag:
+            t = genpy.Time(7, 500)
+            bag.write("/tf", TFMessage().deserialize(tf), t)
+            bag.write("/camera/depth/points", PointCloud2().deserialize(cloud), t)
+        write("rosbag", "tiny.bag", open(path, "rb").read())
+
+
+def mcap_seeds():
+    """Tiny MCAP files by hand (mcap.dev/spec): the messages in ROS 1 serialization, one file
+    without chunks and one with an uncompressed chunk."""
+    def record(op, body):
+        return bytes([op]) + struct.pack("<Q", len(body)) + body
+
+    def string(text):
+        return struct.pack("<I", len(text)) + text.encode()
+    cloud, tf = cloud_and_tf_ros1()
+    schemas = (record(3, struct.pack("<H", 1) + string("sensor_msgs/PointCloud2") + string("ros1msg") +
+                      struct.pack("<I", 0)) +
+               record(3, struct.pack("<H", 2) + string("tf2_msgs/TFMessage") + string("ros1msg") +
+                      struct.pack("<I", 0)))
+    channels = (record(4, struct.pack("<HH", 1, 1) + string("/camera/depth/points") + string("ros1") +
+                       struct.pack("<I", 0)) +
+                record(4, struct.pack("<HH", 2, 2) + string("/tf") + string("ros1") +
+                       struct.pack("<I", 0)))
+    messages = (record(5, struct.pack("<HIQQ", 2, 0, 7_000_000_500, 7_000_000_500) + tf) +
+                record(5, struct.pack("<HIQQ", 1, 1, 7_000_000_500, 7_000_000_500) + cloud))
+    magic = b"\x89MCAP0\r\n"
+    header = record(1, string("ros1") + string("make_seeds.py"))
+    footer = record(2, struct.pack("<QQI", 0, 0, 0))
+    write("mcap", "tiny.mcap", magic + header + schemas + channels + messages + footer + magic)
+    inner = schemas + channels + messages
+    chunk = record(6, struct.pack("<QQQI", 0, 0, len(inner), 0) + string("") +
+                   struct.pack("<Q", len(inner)) + inner)
+    write("mcap", "chunked.mcap", magic + header + chunk + footer + magic)
+
+
 if __name__ == "__main__":
+    rosbag_seeds()
+    mcap_seeds()
+    depth_png_seeds()
+    tum_seeds()
     pcd_seeds()
     ply_seeds()
     manifest_seeds()

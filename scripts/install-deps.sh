@@ -8,7 +8,10 @@ core=(cmake g++ make pkg-config libeigen3-dev libtbb-dev libgtest-dev libbenchma
       libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libyaml-cpp-dev
       python3-matplotlib python3-scipy pybind11-dev python3-dev python3-numpy python3-pytest)
 # chromium: the test that renders `vantage view`'s page headless (skipped without it).
-edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev libnanoflann-dev npm chromium)
+edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev libnanoflann-dev npm chromium
+      libpng-dev libzstd-dev liblz4-dev)
+# The recordings tests' ROS 1 bag is written by Debian's python3-rosbag (issue 38).
+edge+=(python3-rosbag python3-sensor-msgs python3-tf2-msgs)
 
 # libclang-rt-dev: libFuzzer and the sanitizer runtimes; llvm: llvm-symbolizer for their reports.
 fuzz=(clang libclang-rt-dev llvm)

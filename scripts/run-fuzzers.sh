@@ -10,7 +10,7 @@ build=${1:?usage: run-fuzzers.sh BUILD_DIR SECONDS [READER...]}
 seconds=${2:?usage: run-fuzzers.sh BUILD_DIR SECONDS [READER...]}
 shift 2
 readers=("$@")
-[[ ${#readers[@]} -eq 0 ]] && readers=(pcd ply manifest scene octomap)
+[[ ${#readers[@]} -eq 0 ]] && readers=(pcd ply manifest scene octomap depth_png tum rosbag mcap)
 
 # Limits that make a finding of what the readers must never do: 10 s for one input, 2 GiB of
 # memory in all and 1 GiB in one allocation (a reader must refuse a count the file cannot hold

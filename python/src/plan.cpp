@@ -173,6 +173,11 @@ py::dict manifest_dict(const Manifest& manifest) {
     cloud["T_world_cloud"] = Eigen::Matrix4d(c.T_world_cloud.matrix());
     cloud["T_world_sensor"] = Eigen::Matrix4d(c.T_world_sensor.matrix());
     cloud["stamp"] = c.stamp;
+    // NOTE: where a cloud without a given pose gets one (issue 38): "table", "registration".
+    cloud["pose_from"] = c.pose_from_table          ? "table"
+                         : c.pose_from_registration ? "registration"
+                         : c.pose_from_viewpoint    ? "viewpoint"
+                                                    : "given";
     clouds.append(cloud);
   }
   py::dict out;
@@ -424,17 +429,22 @@ void bind_plan(py::module_& m) {
         "Returns (grid, plan).");
   m.def(
       "read_manifest",
-      [](const std::filesystem::path& path) {
-        return manifest_dict(with_file(path, false, [&] { return read_manifest(path); }));
+      [](const std::filesystem::path& path, std::optional<int> every,
+         std::optional<std::string> topic) {
+        return manifest_dict(with_file(
+            path, false, [&] { return read_manifest(path, {.every = every, .topic = topic}); }));
       },
-      py::arg("path"),
+      py::arg("path"), py::arg("every") = py::none(), py::arg("topic") = py::none(),
       "Reads a manifest (a YAML file or a folder holding manifest.yaml, docs/manifest.md) into a "
-      "dict: clouds (file, T_world_cloud, T_world_sensor, stamp), frame, fov, roi, grid and the "
-      "options.");
+      "dict: clouds (file, T_world_cloud, T_world_sensor, stamp, pose_from), frame, fov, roi, "
+      "grid and the options. `every` and `topic` choose the frames of its TUM folder or "
+      "recording, as `vantage plan --every --topic` do.");
   m.def(
       "map_recorded",
-      [](const std::filesystem::path& path, int num_threads) {
-        const Manifest manifest = with_file(path, false, [&] { return read_manifest(path); });
+      [](const std::filesystem::path& path, int num_threads, std::optional<int> every,
+         std::optional<std::string> topic) {
+        const Manifest manifest = with_file(
+            path, false, [&] { return read_manifest(path, {.every = every, .topic = topic}); });
         MapperConfig config = mapper_config_for(manifest);
         config.integration.num_threads = num_threads;
         check_grid_memory(manifest.grid, mapping_cost(num_threads),
@@ -444,8 +454,10 @@ void bind_plan(py::module_& m) {
         map_recorded(manifest, mapper);
         return mapper.grid();
       },
-      py::arg("path"), py::arg("num_threads") = 0,
-      "Maps a manifest's clouds from disk exactly as `vantage plan` does; returns the grid.");
+      py::arg("path"), py::arg("num_threads") = 0, py::arg("every") = py::none(),
+      py::arg("topic") = py::none(),
+      "Maps a manifest's clouds (files, a TUM folder or a recording) exactly as `vantage plan` "
+      "does, a cloud without a pose after the first by registration; returns the grid.");
   m.def(
       "read_point_cloud",
       [](const std::filesystem::path& path, bool skip_non_finite) {

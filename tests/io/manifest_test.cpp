@@ -251,12 +251,19 @@ TEST_F(ManifestTest, WriteThenReadGivesTheSameManifest) {
   EXPECT_EQ(back.options, m.options);
 }
 
+// Issue 38: only the first cloud needs a pose; a later one without is registered to the map.
 TEST_F(ManifestTest, MissingPoseForACloud) {
   expect_error(
       kSensor + kRegion +
-          replace(kClouds, "    pose: [0, -1, 0, 0,  1, 0, 0, 1,  0, 0, 1, 0.5,  0, 0, 0, 1]\n",
+          replace(kClouds, "    pose: [[1, 0, 0, 1], [0, 1, 0, 0], [0, 0, 1, 0.5], [0, 0, 0, 1]]\n",
                   ""),
-      "clouds[1].pose", "b.PLY has no pose");
+      "clouds[0].pose", "the first cloud a.pcd has no pose");
+  const Manifest m = read_manifest(write(
+      kSensor + kRegion +
+      replace(kClouds, "    pose: [0, -1, 0, 0,  1, 0, 0, 1,  0, 0, 1, 0.5,  0, 0, 0, 1]\n", "")));
+  EXPECT_FALSE(m.clouds[0].pose_from_registration);
+  EXPECT_TRUE(m.clouds[1].pose_from_registration);
+  EXPECT_TRUE(m.clouds[1].T_world_cloud.matrix().isIdentity());
 }
 
 TEST_F(ManifestTest, APcdViewpointIsTheCloudsPoseWhenTheManifestGivesNone) {
@@ -289,7 +296,8 @@ TEST_F(ManifestTest, APcdViewpointIsTheCloudsPoseWhenTheManifestGivesNone) {
 }
 
 // issue 27: a frame from a depth camera on no robot has no pose; with table segmentation on, the
-// pose comes from the table when the cloud is read. Only one cloud may lack one.
+// pose comes from the table when the cloud is read. Issue 38: every later cloud may lack one too,
+// and is then registered to the map so far.
 TEST_F(ManifestTest, ACloudWithoutAPoseTakesOneFromTheTable) {
   const std::string clouds = "clouds:\n  - file: scans/a.pcd\n";
   const std::string options = "options: {table_segmentation: true, table_height: 0.9}\n";
@@ -310,10 +318,25 @@ TEST_F(ManifestTest, ACloudWithoutAPoseTakesOneFromTheTable) {
   const Manifest back = read_manifest(dir_ / "back.yaml");
   EXPECT_TRUE(back.clouds[0].pose_from_table);
   EXPECT_EQ(back.options, m.options);
-  // Two clouds without poses: a table can place only one.
+  // Two clouds without poses: the table places the first, registration the second.
   test::write_file(dir_ / "scans/c.pcd", pcd_with_viewpoint());
-  expect_error(kSensor + kRegion + clouds + "  - file: scans/c.pcd\n" + options, "clouds[1].pose",
-               "a.pcd and c.pcd have no pose, and a pose from the table can place only one cloud");
+  const Manifest two =
+      read_manifest(write(kSensor + kRegion + clouds + "  - file: scans/c.pcd\n" + options));
+  ASSERT_EQ(two.clouds.size(), 2u);
+  EXPECT_TRUE(two.clouds[0].pose_from_table);
+  EXPECT_FALSE(two.clouds[0].pose_from_registration);
+  EXPECT_FALSE(two.clouds[1].pose_from_table);
+  EXPECT_TRUE(two.clouds[1].pose_from_registration);
+  // Written back, the second is still without a pose.
+  write_manifest(dir_ / "back2.yaml", two);
+  EXPECT_TRUE(read_manifest(dir_ / "back2.yaml").clouds[1].pose_from_registration);
+  // Without segmentation, the first cloud needs a pose; the second never does.
+  const std::string first_posed =
+      "clouds:\n  - file: scans/a.pcd\n    pose: [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]\n"
+      "  - file: scans/c.pcd\n";
+  const Manifest posed_first = read_manifest(write(kSensor + kRegion + first_posed));
+  EXPECT_FALSE(posed_first.clouds[0].pose_from_registration);
+  EXPECT_TRUE(posed_first.clouds[1].pose_from_registration);
   expect_error(kSensor + kRegion + clouds + "options: {table_height: .nan}\n",
                "options.table_height", "is NaN");
   // Without segmentation the error says how to get one.
@@ -327,8 +350,9 @@ TEST_F(ManifestTest, FolderWithoutPoses) {
     read_manifest(dir_ / "scans");
     ADD_FAILURE() << "no error for a folder without poses";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("clouds[0].pose: missing: cloud a.pcd has no pose"),
-              std::string::npos)
+    EXPECT_NE(
+        std::string(e.what()).find("clouds[0].pose: missing: the first cloud a.pcd has no pose"),
+        std::string::npos)
         << e.what();
   }
   write(kSensor + kRegion);  // beside it, no cloud at all
@@ -423,7 +447,7 @@ TEST_F(ManifestTest, OtherMistakesAreNamed) {
   expect_error(kSensor + kRegion + replace(kClouds, "scans/a.pcd", "scans/missing.pcd"),
                "clouds[0].file", "no such file");
   expect_error(kSensor + kRegion + replace(kClouds, "scans/a.pcd", "scans/a.xyz"), "clouds[0].file",
-               "not a .pcd or .ply file");
+               "not a .pcd, .ply or .png file");
   expect_error(kSensor + kRegion + "clouds: []\n", "clouds", "is empty");
   expect_error(kSensor + kRegion + kClouds + "trajectory: {file: poses.txt}\n", "clouds[0].pose",
                "not both");

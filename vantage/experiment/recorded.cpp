@@ -2,24 +2,61 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <numbers>
 #include <stdexcept>
 
 #include "vantage/io/cloud_io.hpp"
+#include "vantage/io/depth_image.hpp"
+#include "vantage/io/input_file.hpp"
 #include "vantage/io/trajectory.hpp"
 
 namespace vantage {
 
 MapperConfig mapper_config_for(const Manifest& manifest) {
   MapperConfig config;
-  config.register_scans = manifest.options.icp;
+  // NOTE: a cloud without a pose after the first is placed by registration, whatever `icp` says.
+  config.register_scans =
+      manifest.options.icp ||
+      std::any_of(manifest.clouds.begin(), manifest.clouds.end(),
+                  [](const ManifestCloud& c) { return c.pose_from_registration; });
   config.segment_table = manifest.options.table_segmentation;
   config.integration.mode = manifest.options.integration;
   return config;
 }
 
+namespace {
+
+/// A cloud's points in its cloud frame: a PCD or PLY file's, or a depth image's one per pixel.
+PointCloud read_frame(const Manifest& manifest, const ManifestCloud& cloud, CloudReadStats& stats) {
+  if (cloud.points) {
+    stats.non_finite_skipped = cloud.non_finite;
+    return *cloud.points;
+  }
+  if (lower_extension(cloud.file) != ".png") {
+    return read_point_cloud(cloud.file, {.skip_non_finite = manifest.options.skip_non_finite},
+                            &stats);
+  }
+  const DepthImage image = read_depth_png(cloud.file);
+  try {
+    // NOTE: read_manifest requires both with a depth image; a Manifest built in code may not.
+    if (!manifest.intrinsics || !manifest.depth) {
+      throw std::invalid_argument("a depth image needs the manifest's intrinsics and depth");
+    }
+    PointCloud points = depth_to_points(image, *manifest.intrinsics, *manifest.depth);
+    if (points.empty()) throw std::runtime_error("no pixel has depth");
+    return points;
+  } catch (const std::exception& e) {
+    throw std::runtime_error(fmt::format("{}: {}", cloud.file.string(), e.what()));
+  }
+}
+
+}  // namespace
+
 void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback& on_cloud) {
   const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(manifest.frame).transpose();
+  // The pose the last cloud was mapped at: the guess of the next one without a pose.
+  std::optional<Eigen::Isometry3d> last_pose;
   for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
     const ManifestCloud& cloud = manifest.clouds[i];
     RecordedCloud recorded;
@@ -27,8 +64,7 @@ void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback&
     CloudReadStats stats;
     PointCloud points;
     try {
-      points = read_point_cloud(cloud.file, {.skip_non_finite = manifest.options.skip_non_finite},
-                                &stats);
+      points = read_frame(manifest, cloud, stats);
     } catch (const NonFinitePointError& e) {
       throw std::runtime_error(fmt::format(
           "{} (an organized RGB-D cloud marks pixels without depth so: set "
@@ -53,10 +89,21 @@ void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback&
         }
         T_world_sensor = recorded.table_pose->T_world_sensor;
       }
-      recorded.update = mapper.add_scan(points, T_world_sensor, manifest.fov);
+      PoseGuess guess = PoseGuess::kOdometry;
+      if (cloud.pose_from_registration) {
+        guess = PoseGuess::kPreviousScan;
+        if (last_pose) T_world_sensor = *last_pose;
+      }
+      recorded.update = mapper.add_scan(points, T_world_sensor, manifest.fov, guess);
+    } catch (const RegistrationFailed& e) {
+      throw std::runtime_error(fmt::format(
+          "{}: {} (cloud {} of {}, registered to the map of {})", cloud.file.string(), e.what(),
+          i + 1, manifest.clouds.size(),
+          i == 1 ? manifest.clouds[0].file.filename().string() : fmt::format("clouds 1 to {}", i)));
     } catch (const std::exception& e) {
       throw std::runtime_error(fmt::format("{}: {}", cloud.file.string(), e.what()));
     }
+    last_pose = recorded.update.T_world_sensor;
     if (on_cloud) on_cloud(recorded);
   }
 }

@@ -32,10 +32,12 @@ using CloudCallback = std::function<void(const RecordedCloud&)>;
 /// Maps the manifest's clouds in order into `mapper` (which may already hold a map). Each cloud is
 /// read from disk (PCD or PLY), turned from the manifest's cloud frame into the sensor frame and
 /// added at its pose; a cloud without a pose gets one from the table it looks at, in the table
-/// frame with the table's top at options.table_height (perception::estimate_table_pose). Throws
-/// what reading or mapping throws, naming the file; std::runtime_error naming the file when a
-/// cloud without a pose shows no table, and when a cloud holds a non-finite point (pointing to
-/// options.skip_non_finite).
+/// frame with the table's top at options.table_height (perception::estimate_table_pose); a later
+/// cloud without a pose (ManifestCloud::pose_from_registration) is registered to the map so far,
+/// starting from the pose the cloud before it was mapped at (PoseGuess::kPreviousScan). Throws
+/// what reading or mapping throws, naming the file and the cloud's number; std::runtime_error so
+/// when a cloud without a pose shows no table or does not register, and when a cloud holds a
+/// non-finite point (pointing to options.skip_non_finite).
 void map_recorded(const Manifest& manifest, Mapper& mapper, const CloudCallback& on_cloud = {});
 
 /// Candidate poses from a TUM-format file (timestamp x y z qx qy qz qw; the stamp is ignored),

@@ -33,6 +33,10 @@ std::string_view to_string(InputKind kind) {
       return "pose file";
     case InputKind::kResults:
       return "results file";
+    case InputKind::kDepthImage:
+      return "depth image file";
+    case InputKind::kRecording:
+      return "recording file";
   }
   return "file";
 }
@@ -51,6 +55,10 @@ std::uintmax_t max_input_bytes(InputKind kind) {
       return kMaxPoseFileBytes;
     case InputKind::kResults:
       return kMaxResultsFileBytes;
+    case InputKind::kDepthImage:
+      return kMaxDepthImageFileBytes;
+    case InputKind::kRecording:
+      return kMaxRecordingFileBytes;
   }
   return 0;
 }

@@ -19,6 +19,8 @@ enum class InputKind {
   kSettings,    ///< a manifest, a scene: kMaxSettingsFileBytes
   kPoses,       ///< a trajectory, a candidates file: kMaxPoseFileBytes
   kResults,     ///< run.json, plan.json, sweep.json: kMaxResultsFileBytes
+  kDepthImage,  ///< a 16-bit PNG: kMaxDepthImageFileBytes
+  kRecording,   ///< a ROS 1 bag, an MCAP file: kMaxRecordingFileBytes
 };
 
 /// "point cloud", "OctoMap file", ...: the kind as a message says it.

@@ -15,6 +15,7 @@
 
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/cloud_io.hpp"
+#include "vantage/io/detail/manifest_sources.hpp"
 #include "vantage/io/format_parsing.hpp"
 #include "vantage/io/input_file.hpp"
 #include "vantage/io/trajectory.hpp"
@@ -35,6 +36,8 @@ bool is_cloud_file(const fs::path& path) {
   const std::string ext = lower(path.extension().string());
   return ext == ".pcd" || ext == ".ply";
 }
+
+bool is_depth_image(const fs::path& path) { return lower(path.extension().string()) == ".png"; }
 
 // 4 rows of 4 numbers, or 16 numbers row by row; then checked to be rigid.
 Eigen::Isometry3d rigid(const YamlField& f) {
@@ -160,7 +163,7 @@ GridSpec grid_for_roi(const Eigen::AlignedBox3d& roi, double resolution) {
   return spec;
 }
 
-Manifest read_manifest(const fs::path& path) {
+Manifest read_manifest(const fs::path& path, const ManifestReadOptions& read_options) {
   Manifest manifest;
   std::error_code error;
   manifest.file = fs::is_directory(path, error) ? path / "manifest.yaml" : path;
@@ -173,7 +176,8 @@ Manifest read_manifest(const fs::path& path) {
       read_yaml_file(manifest.file,
                      "a manifest: give the folder that holds it, or a manifest YAML that lists it "
                      "(docs/manifest.md)");
-  root.allow_keys({"version", "clouds", "trajectory", "sensor", "roi", "resolution", "options"});
+  root.allow_keys({"version", "clouds", "trajectory", "tum", "recording", "sensor", "roi",
+                   "resolution", "options"});
   if (const auto version = root.get("version")) {
     if (version->number() != 1.0) version->fail("only version 1 exists");
   }
@@ -181,7 +185,16 @@ Manifest read_manifest(const fs::path& path) {
   // Sensor.
   {
     const YamlField sensor = root.at("sensor");
-    sensor.allow_keys({"frame", "intrinsics", "fov_deg", "min_range", "max_range"});
+    sensor.allow_keys({"frame", "intrinsics", "fov_deg", "min_range", "max_range", "depth"});
+    if (const auto depth = sensor.get("depth")) {
+      depth->allow_keys({"scale", "invalid"});
+      DepthEncoding encoding;
+      encoding.units_per_metre = depth->at("scale").positive();
+      if (const auto invalid = depth->get("invalid")) {
+        encoding.invalid = static_cast<std::uint16_t>(invalid->integer(0, 65535));
+      }
+      manifest.depth = encoding;
+    }
     const YamlField frame = sensor.at("frame");
     try {
       manifest.frame = parse_cloud_frame(frame.text());
@@ -267,7 +280,30 @@ Manifest read_manifest(const fs::path& path) {
   const auto at_entry = [&](std::size_t i) -> const YamlField& {
     return entries[i] ? *entries[i] : root;
   };
-  if (const auto clouds = root.get("clouds")) {
+  // Clouds posed as they were read (a TUM folder's ground truth).
+  std::vector<bool> posed;
+  const auto tum = root.get("tum");
+  const auto recording = root.get("recording");
+  if (tum || recording) {
+    const YamlField& key = tum ? *tum : *recording;
+    if (tum && recording) key.fail("give a TUM folder or a recording, not both");
+    if (root.has("clouds")) key.fail("give clouds, a TUM folder or a recording, not two");
+    if (root.has("trajectory")) key.fail("its poses come with it: give no trajectory");
+    if (tum) {
+      detail::read_tum_key(*tum, folder, read_options, manifest);
+    } else {
+      detail::read_recording_key(*recording, folder, read_options, manifest);
+    }
+    posed.resize(manifest.clouds.size());
+    for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
+      posed[i] = !manifest.clouds[i].pose_from_registration;
+    }
+    entries.assign(manifest.clouds.size(), std::nullopt);
+  } else if (read_options.every || read_options.topic) {
+    root.fail_as("",
+                 "--every and --topic choose frames of a TUM folder or a recording, and the "
+                 "manifest names neither (tum, recording)");
+  } else if (const auto clouds = root.get("clouds")) {
     const std::vector<YamlField> items = clouds->items();
     if (items.empty()) clouds->fail("is empty");
     for (const YamlField& entry : items) {
@@ -275,10 +311,12 @@ Manifest read_manifest(const fs::path& path) {
       const YamlField file = entry.at("file");
       ManifestCloud cloud;
       cloud.file = (folder / file.text()).lexically_normal();
-      if (!is_cloud_file(cloud.file)) {
-        file.fail(cat("'", cloud.file.string(), "' is not a .pcd or .ply file"));
+      if (!is_cloud_file(cloud.file) && !is_depth_image(cloud.file)) {
+        file.fail(cat("'", cloud.file.string(), "' is not a .pcd, .ply or .png file"));
       }
-      if (const std::string why = input_file_problem(cloud.file, InputKind::kPointCloud);
+      if (const std::string why =
+              input_file_problem(cloud.file, is_depth_image(cloud.file) ? InputKind::kDepthImage
+                                                                        : InputKind::kPointCloud);
           !why.empty()) {
         file.fail(cat(cloud.file.string(), ": ", why));
       }
@@ -381,35 +419,35 @@ Manifest read_manifest(const fs::path& path) {
       }
     }
   } else {
-    std::optional<std::size_t> from_table;  // the cloud whose pose comes from the table
+    posed.resize(manifest.clouds.size());
     for (std::size_t i = 0; i < manifest.clouds.size(); ++i) {
       const std::string key = cat("clouds[", i, "].pose");
+      manifest.clouds[i].pose_from_registration = false;
+      if (posed[i]) continue;
       if (entries[i] && entries[i]->has("pose")) {
         manifest.clouds[i].T_world_cloud = rigid(entries[i]->at("pose"));
         continue;
       }
       // A PCD file may carry its own pose (VIEWPOINT), as PCL and strands' nbv_planning record it.
       const std::optional<Eigen::Isometry3d> viewpoint =
-          read_cloud_viewpoint(manifest.clouds[i].file);
+          is_depth_image(manifest.clouds[i].file) || manifest.clouds[i].points
+              ? std::nullopt
+              : read_cloud_viewpoint(manifest.clouds[i].file);
       const std::string name = manifest.clouds[i].file.filename().string();
+      // NOTE: only the first cloud defines the world (a pose from the table would define it
+      // again, and disagree); each later cloud without a pose is registered to the map so far.
+      if (!viewpoint && i > 0) {
+        manifest.clouds[i].pose_from_registration = true;
+        continue;
+      }
       if (!viewpoint && manifest.options.table_segmentation) {
-        // NOTE: a pose from the table places the cloud on its own; two such clouds would each
-        // define the world, and disagree.
-        if (from_table) {
-          at_entry(i).fail_as(
-              key, cat("missing: clouds ", manifest.clouds[*from_table].file.filename().string(),
-                       " and ", name,
-                       " have no pose, and a pose from the table can place only one cloud (give "
-                       "poses, or a trajectory)"));
-        }
-        from_table = i;
         manifest.clouds[i].pose_from_table = true;
         continue;
       }
       if (!viewpoint) {
         at_entry(i).fail_as(key,
-                            cat("missing: cloud ", name,
-                                " has no pose (give a pose per cloud, a trajectory, a "
+                            cat("missing: the first cloud ", name,
+                                " has no pose (give it a pose, a trajectory, a "
                                 "VIEWPOINT other than the identity in the PCD file, or "
                                 "options.table_segmentation: true for a pose from the table)"));
       }
@@ -418,6 +456,7 @@ Manifest read_manifest(const fs::path& path) {
     }
   }
 
+  detail::check_depth_images(root, manifest);
   Eigen::Isometry3d T_cloud_sensor = Eigen::Isometry3d::Identity();
   T_cloud_sensor.linear() = R_cloud_sensor(manifest.frame);
   for (ManifestCloud& cloud : manifest.clouds) {

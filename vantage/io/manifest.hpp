@@ -5,13 +5,16 @@
 /// This reads and checks the description only; the perception module reads the clouds.
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <vector>
 
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/map/integrate.hpp"
+#include "vantage/map/point_cloud.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
@@ -50,6 +53,16 @@ struct PinholeIntrinsics {
 SensorFov fov_from_intrinsics(const PinholeIntrinsics& intrinsics, double min_range,
                               double max_range);
 
+/// How a depth image's raw values map to metres.
+struct DepthEncoding {
+  double units_per_metre = 1000.0;  ///< [1/m] 1000: millimetres (ROS 16UC1); 5000: TUM RGB-D
+  std::uint16_t invalid = 0;        ///< the value of a pixel without depth
+
+  /// Throws std::invalid_argument naming the field: a finite, positive scale.
+  void validate() const;
+  bool operator==(const DepthEncoding&) const = default;
+};
+
 /// How trajectory poses are paired with clouds.
 enum class PoseMatch {
   kOrder,      ///< the i-th pose with the i-th cloud; the counts must be equal
@@ -58,7 +71,12 @@ enum class PoseMatch {
 
 /// One cloud of the data set.
 struct ManifestCloud {
-  std::filesystem::path file;  ///< PCD or PLY, resolved against the manifest's folder
+  /// PCD or PLY, or a 16-bit depth PNG (Manifest::depth), resolved against the manifest's folder;
+  /// for a recording's frame, the recording and the frame's stamp ("run.bag@1305031102.175304").
+  std::filesystem::path file;
+  /// A recording's frame: its points, read with the manifest (there is no file of its own).
+  std::shared_ptr<const PointCloud> points;
+  std::size_t non_finite = 0;  ///< points of a recording's frame dropped as non-finite
   /// Pose of the cloud's frame: points_world = T_world_cloud * points_cloud.
   Eigen::Isometry3d T_world_cloud = Eigen::Isometry3d::Identity();
   /// The same pose with Vantage's sensor axes, for Frustum: T_world_cloud * R_cloud_sensor.
@@ -68,6 +86,10 @@ struct ManifestCloud {
   /// No pose was given: with table segmentation on, the pose is estimated from the table when the
   /// cloud is read (perception::estimate_table_pose); the poses above are the identity till then.
   bool pose_from_table = false;
+  /// No pose was given for a cloud after the first: its pose is found by registering it to the
+  /// map of the clouds before it (frame to model), starting from the previous cloud's pose; the
+  /// poses above are the identity till then.
+  bool pose_from_registration = false;
 };
 
 /// Processing switches the manifest sets.
@@ -88,8 +110,13 @@ struct Manifest {
   std::filesystem::path file;  ///< the manifest that was read
   std::vector<ManifestCloud> clouds;
   CloudFrame frame = CloudFrame::kOptical;
-  SensorFov fov;                                    ///< from `fov_deg` or from `intrinsics`
-  std::optional<PinholeIntrinsics> intrinsics;      ///< when the manifest gives them
+  SensorFov fov;                                ///< from `fov_deg` or from `intrinsics`
+  std::optional<PinholeIntrinsics> intrinsics;  ///< when the manifest gives them
+  /// `sensor.depth`: how the depth images among the clouds encode depth; needed with any (a TUM
+  /// RGB-D folder's default: 5000 units a metre, 0 invalid).
+  std::optional<DepthEncoding> depth;
+  std::optional<std::filesystem::path> tum;         ///< the TUM RGB-D folder the clouds came from
+  std::optional<std::filesystem::path> recording;   ///< the bag or MCAP file they came from
   std::optional<std::filesystem::path> trajectory;  ///< the TUM file the poses came from, if any
   PoseMatch match = PoseMatch::kOrder;
   double max_time_difference = 0.02;  ///< [s], for PoseMatch::kTimestamp
@@ -104,14 +131,24 @@ struct Manifest {
 /// an empty or non-finite box, a non-positive resolution or a grid over kMaxGridCells.
 GridSpec grid_for_roi(const Eigen::AlignedBox3d& roi, double resolution);
 
+/// What the command line may change in how a manifest is read.
+struct ManifestReadOptions {
+  /// Of a TUM RGB-D folder (`tum`), take the first frame and every `every`-th after it, in place
+  /// of `tum.every`.
+  std::optional<int> every = std::nullopt;
+  std::optional<std::string> topic =
+      std::nullopt;  ///< of a recording (`recording`), in place of its topic
+};
+
 /// Reads and checks a manifest: a YAML file, or a folder holding `manifest.yaml`. When the
-/// manifest lists no clouds, every `.pcd` and `.ply` file beside it is taken, sorted by name.
+/// manifest lists no clouds, every `.pcd` and `.ply` file beside it is taken, sorted by name; with
+/// `tum`, the depth frames of a TUM RGB-D folder and their ground-truth poses (io/tum_rgbd.hpp).
 /// Every problem throws std::runtime_error with one line "file:line: key: what".
-Manifest read_manifest(const std::filesystem::path& path);
+Manifest read_manifest(const std::filesystem::path& path, const ManifestReadOptions& options = {});
 
 /// Writes a manifest that read_manifest reads back to the same clouds, poses (one 4x4 matrix per
 /// cloud, never a trajectory), sensor, ROI and options; cloud paths are written relative to the
-/// manifest's folder. Atomic.
+/// manifest's folder. Atomic. Throws std::invalid_argument for a recording's frame (no file).
 void write_manifest(const std::filesystem::path& path, const Manifest& manifest);
 
 }  // namespace vantage

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 
 #include "vantage/io/atomic_file.hpp"
@@ -17,6 +18,12 @@ namespace vantage {
 namespace fs = std::filesystem;
 
 void write_manifest(const fs::path& path, const Manifest& manifest) {
+  for (const ManifestCloud& cloud : manifest.clouds) {
+    if (cloud.points) {
+      throw std::invalid_argument(cat(path.string(), ": ", cloud.file.string(),
+                                      " is a recording's frame, which has no file to list"));
+    }
+  }
   const fs::path folder = fs::absolute(path).parent_path();
   YAML::Emitter out;
   out.SetDoublePrecision(std::numeric_limits<double>::max_digits10);
@@ -28,7 +35,8 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
     fs::path file = fs::absolute(cloud.file).lexically_relative(folder);
     if (file.empty()) file = fs::absolute(cloud.file);
     out << YAML::Key << "file" << YAML::Value << file.generic_string();
-    if (!cloud.pose_from_table) {  // no pose: read back, it is estimated from the table again
+    // NOTE: no pose: read back, it is estimated again (from the table, or by registration).
+    if (!cloud.pose_from_table && !cloud.pose_from_registration) {
       out << YAML::Key << "pose" << YAML::Value << YAML::BeginSeq;
       const Eigen::Matrix4d m = cloud.T_world_cloud.matrix();
       for (int r = 0; r < 4; ++r) {
@@ -62,6 +70,12 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
   }
   out << YAML::Key << "min_range" << YAML::Value << manifest.fov.min_range;
   out << YAML::Key << "max_range" << YAML::Value << manifest.fov.max_range;
+  if (manifest.depth) {  // NOTE: a TUM folder's clouds are written as the depth images they are
+    out << YAML::Key << "depth" << YAML::Value << YAML::Flow << YAML::BeginMap;
+    out << YAML::Key << "scale" << YAML::Value << manifest.depth->units_per_metre;
+    out << YAML::Key << "invalid" << YAML::Value << static_cast<int>(manifest.depth->invalid);
+    out << YAML::EndMap;
+  }
   out << YAML::EndMap;
 
   const auto vec = [&](const Eigen::Vector3d& v) {

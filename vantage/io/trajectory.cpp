@@ -1,5 +1,6 @@
 #include "vantage/io/trajectory.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -98,6 +99,31 @@ void write_tum_trajectory(const fs::path& path, const std::vector<StampedPose>& 
           << q.y() << ' ' << q.z() << ' ' << q.w() << '\n';
     }
   });
+}
+
+std::optional<Eigen::Isometry3d> interpolate_pose(const std::vector<StampedPose>& poses,
+                                                  double stamp, double max_time_difference) {
+  for (std::size_t i = 1; i < poses.size(); ++i) {
+    if (!(poses[i].stamp > poses[i - 1].stamp)) {
+      throw std::invalid_argument(cat("pose stamps must increase: pose ", i, " at ", poses[i].stamp,
+                                      " s follows ", poses[i - 1].stamp, " s"));
+    }
+  }
+  const auto after = std::lower_bound(poses.begin(), poses.end(), stamp,
+                                      [](const StampedPose& p, double t) { return p.stamp < t; });
+  if (after != poses.end() && after->stamp == stamp) return after->T_world_frame;
+  if (after == poses.begin() || after == poses.end()) return std::nullopt;
+  const StampedPose& a = *std::prev(after);
+  const StampedPose& b = *after;
+  if (stamp - a.stamp > max_time_difference || b.stamp - stamp > max_time_difference) {
+    return std::nullopt;
+  }
+  const double s = (stamp - a.stamp) / (b.stamp - a.stamp);
+  const Eigen::Quaterniond qa(a.T_world_frame.linear()), qb(b.T_world_frame.linear());
+  Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+  T.linear() = qa.slerp(s, qb).normalized().toRotationMatrix();
+  T.translation() = (1.0 - s) * a.T_world_frame.translation() + s * b.T_world_frame.translation();
+  return T;
 }
 
 }  // namespace vantage

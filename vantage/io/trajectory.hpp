@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,13 @@ std::string rigid_transform_problem(const Eigen::Matrix4d& m);
 /// file (a regular file of at most kMaxPoseFileBytes) and holds at most kMaxCandidateViews poses.
 /// Throws std::runtime_error as "file:line: what".
 std::vector<StampedPose> read_tum_trajectory(const std::filesystem::path& path);
+
+/// The pose at `stamp` from poses sorted by strictly increasing stamp: a pose of that very stamp
+/// as it is, else the interpolation (linear in position, spherical in rotation) between the two
+/// around it, each within `max_time_difference` [s] of it; nothing when there are no such two
+/// (no extrapolation). Throws std::invalid_argument when the stamps do not increase.
+std::optional<Eigen::Isometry3d> interpolate_pose(const std::vector<StampedPose>& poses,
+                                                  double stamp, double max_time_difference);
 
 /// Writes a TUM trajectory (17 significant digits) atomically.
 void write_tum_trajectory(const std::filesystem::path& path, const std::vector<StampedPose>& poses);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -84,6 +85,25 @@ class NetChange {
   std::vector<std::uint32_t> touched_;
 };
 
+/// Why a scan without a pose was refused, from its registration's check.
+std::string describe_failure(const perception::RegistrationResult& r) {
+  using perception::RegistrationOutcome;
+  const std::string pairs = cat(r.correspondences, " of its ", r.points, " points paired");
+  switch (r.outcome) {
+    case RegistrationOutcome::kTooFewMatches:
+      return cat("no pose given, and it does not overlap the map enough to register (", pairs, ")");
+    case RegistrationOutcome::kOutsidePrior:
+      return cat("no pose given, and registration moved it further than a frame's motion may (",
+                 "squared Mahalanobis distance ", r.mahalanobis2, "; ", pairs, ")");
+    case RegistrationOutcome::kUncertain:
+      return cat("no pose given, and registration does not pin its pose (position sigma ",
+                 r.position_sigma * 1000.0, " mm; ", pairs, ")");
+    default:
+      return cat("no pose given, and registration did not pass its check (",
+                 perception::to_string(r.outcome), "; ", pairs, ")");
+  }
+}
+
 }  // namespace
 
 void MapperConfig::validate() const {
@@ -92,6 +112,7 @@ void MapperConfig::validate() const {
   if (register_scans) {
     registration.validate();
     map.validate();
+    unposed_prior.validate();
   }
   if (segment_table) table.validate();
   if (reregister_window < 0) {
@@ -109,13 +130,21 @@ Mapper::Mapper(OccupancyGrid grid, const MapperConfig& config)
 }
 
 MapperUpdate Mapper::add_scan(const PointCloud& points_sensor,
-                              const Eigen::Isometry3d& T_world_sensor_guess, const SensorFov& fov) {
+                              const Eigen::Isometry3d& T_world_sensor_guess, const SensorFov& fov,
+                              PoseGuess guess) {
   const ScanPart part{points_sensor, Eigen::Isometry3d::Identity(), fov};
-  return add_scan(std::span<const ScanPart>(&part, 1), T_world_sensor_guess);
+  return add_scan(std::span<const ScanPart>(&part, 1), T_world_sensor_guess, guess);
 }
 
 MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
-                              const Eigen::Isometry3d& T_world_sensor_guess) {
+                              const Eigen::Isometry3d& T_world_sensor_guess, PoseGuess guess) {
+  const bool unposed = guess == PoseGuess::kPreviousScan;
+  if (unposed && !config_.register_scans) {
+    throw RegistrationFailed("no pose given, and registration is off (register_scans)");
+  }
+  if (unposed && scans_ == 0) {
+    throw RegistrationFailed("no pose given, and no scan before it to register it to");
+  }
   if (!T_world_sensor_guess.matrix().allFinite()) {
     throw std::invalid_argument("scan pose is not finite");
   }
@@ -167,8 +196,16 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
   auto start = std::chrono::steady_clock::now();
   scan.trusted = scans_ == 0;  // the first scan defines the map frame
   scan.T_world_sensor = T_world_sensor_guess;
+  if (unposed && reference_.empty()) {
+    throw RegistrationFailed(
+        "no pose given, and no map to register it to (the scans before it mapped no objects)");
+  }
   if (config_.register_scans && scans_ > 0 && !reference_.empty()) {
-    const perception::RegistrationResult r = register_held(scan, grid_);
+    const perception::RegistrationResult r =
+        register_held(scan, grid_, unposed ? config_.unposed_prior : config_.registration.prior);
+    // NOTE: the check is the same as for a guess from odometry: a pose it would not trust is
+    // no pose at all here, so the scan is refused before anything of it is mapped.
+    if (unposed && !r.accepted()) throw RegistrationFailed(describe_failure(r));
     update.registration = r.outcome;
     update.registered = r.accepted();
     update.registration_result = r;
@@ -221,11 +258,13 @@ PointCloud Mapper::world_points(const HeldScan& scan) const {
 }
 
 perception::RegistrationResult Mapper::register_held(const HeldScan& scan,
-                                                     const OccupancyGrid& known) const {
+                                                     const OccupancyGrid& known,
+                                                     const perception::PoseSigma& prior) const {
   PointCloud points = in_scan_frame(scan.parts);
   if (config_.register_overlap_only) points = known_part(points, scan.T_world_sensor_guess, known);
-  return perception::register_scan(points, scan.T_world_sensor_guess, reference_,
-                                   config_.registration);
+  perception::RegistrationConfig registration = config_.registration;
+  registration.prior = prior;
+  return perception::register_scan(points, scan.T_world_sensor_guess, reference_, registration);
 }
 
 IntegrationResult Mapper::integrate(const HeldScan& scan) {
@@ -253,7 +292,8 @@ std::vector<MapperUpdate::Reregistered> Mapper::retry_pending(double& seconds_re
   for (HeldScan& held : held_) {
     if (held.trusted) continue;
     // NOTE: the overlap is judged on the grid before the held scans, not on one they are in.
-    const perception::RegistrationResult r = register_held(held, *checkpoint_);
+    const perception::RegistrationResult r =
+        register_held(held, *checkpoint_, config_.registration.prior);
     if (!r.accepted()) continue;
     held.trusted = true;
     held.T_world_sensor = r.T_world_sensor;

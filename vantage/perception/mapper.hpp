@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <vector>
 
 #include "vantage/map/integrate.hpp"
@@ -56,9 +57,28 @@ struct MapperConfig {
   /// The checkpoint is a copy of the grid, held while a scan is pending; a retry that passes
   /// integrates again every scan since it. The default covers a table-top run (8 to 10 scans).
   int reregister_window = 8;
+  /// The prior of a scan without a pose of its own (PoseGuess::kPreviousScan), whose guess is
+  /// where the scan before it was: how far a hand-held sensor may have moved between two frames
+  /// of a sequence, in any direction. Its registration is weighed against this and checked by it
+  /// (RegistrationConfig's check, with this prior in place of registration.prior).
+  perception::PoseSigma unposed_prior{
+      .x = 0.05, .y = 0.05, .z = 0.05, .roll = 0.0873, .pitch = 0.0873, .yaw = 0.0873};
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;
+};
+
+/// Where a scan's pose guess comes from.
+enum class PoseGuess {
+  kOdometry,  ///< the robot's estimate: registration refines it, or the scan keeps it
+  /// No pose: the guess is the previous scan's pose. Registration (MapperConfig::unposed_prior)
+  /// must pass its check, or the scan is refused with RegistrationFailed and the map unchanged.
+  kPreviousScan,
+};
+
+/// A scan without a pose of its own did not register to the map: what the check found.
+struct RegistrationFailed : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 /// One view of a scan: a table-top scan has one, an office stop's sweep one per step.
@@ -115,14 +135,18 @@ class Mapper {
 
   /// Registers, segments and integrates one scan of points in the sensor frame, taken from the
   /// believed pose `T_world_sensor_guess` with field of view `fov`. Throws std::invalid_argument
-  /// for a non-finite point or pose; the map is unchanged then.
+  /// for a non-finite point or pose, and RegistrationFailed for a scan of PoseGuess::kPreviousScan
+  /// that does not register (or comes first, or with register_scans off); the map is unchanged
+  /// then.
   MapperUpdate add_scan(const PointCloud& points_sensor,
-                        const Eigen::Isometry3d& T_world_sensor_guess, const SensorFov& fov);
+                        const Eigen::Isometry3d& T_world_sensor_guess, const SensorFov& fov,
+                        PoseGuess guess = PoseGuess::kOdometry);
   /// The same for a scan of several views from one place (e.g. a 360° sweep), registered as a
   /// whole (all views at once, well constrained) and integrated view by view.
   /// `T_world_sensor_guess` is the believed pose of the scan's frame.
   MapperUpdate add_scan(std::span<const ScanPart> parts,
-                        const Eigen::Isometry3d& T_world_sensor_guess);
+                        const Eigen::Isometry3d& T_world_sensor_guess,
+                        PoseGuess guess = PoseGuess::kOdometry);
 
   const OccupancyGrid& grid() const { return grid_; }
   const MapperConfig& config() const { return config_; }
@@ -145,10 +169,10 @@ class Mapper {
     bool trusted = false;
   };
 
-  /// Registers `scan`'s objects to the reference, starting from its guess; with
+  /// Registers `scan`'s objects to the reference, starting from its guess under `prior`; with
   /// register_overlap_only, only those in cells `known` has observed.
-  perception::RegistrationResult register_held(const HeldScan& scan,
-                                               const OccupancyGrid& known) const;
+  perception::RegistrationResult register_held(const HeldScan& scan, const OccupancyGrid& known,
+                                               const perception::PoseSigma& prior) const;
   /// `scan`'s objects in the world, at its pose.
   PointCloud world_points(const HeldScan& scan) const;
   /// Integrates `scan`'s views at its pose; each cell's change counts once, by its net.

@@ -22,6 +22,13 @@ inline constexpr std::uintmax_t kMaxMeshFileBytes = 1 * kGiB;
 inline constexpr std::uintmax_t kMaxSettingsFileBytes = 16 * kMiB;
 /// Largest pose file: a manifest's trajectory, `plan --candidates FILE` [bytes].
 inline constexpr std::uintmax_t kMaxPoseFileBytes = 64 * kMiB;
+/// Largest depth image (16-bit PNG) read whole [bytes].
+inline constexpr std::uintmax_t kMaxDepthImageFileBytes = 64 * kMiB;
+/// Most pixels a depth image (a PNG, a bag's Image message) may have: its decoded depths are
+/// allocated [pixels].
+inline constexpr std::uint64_t kMaxDepthImagePixels = 1ull << 26;
+/// Largest recording (a ROS 1 bag, an MCAP file), read record by record [bytes].
+inline constexpr std::uintmax_t kMaxRecordingFileBytes = 64 * kGiB;
 /// Largest results file `vantage view` reads (run.json, plan.json) [bytes].
 inline constexpr std::uintmax_t kMaxResultsFileBytes = 1 * kGiB;
 
@@ -43,13 +50,16 @@ struct Limit {
 };
 
 /// Every limit above, in the docs' order.
-inline constexpr std::array<Limit, 9> kLimits = {{
+inline constexpr std::array<Limit, 12> kLimits = {{
     {"point cloud file", static_cast<double>(kMaxCloudFileBytes / kMiB), "MiB"},
     {"OctoMap file", static_cast<double>(kMaxMapFileBytes / kMiB), "MiB"},
     {"mesh file", static_cast<double>(kMaxMeshFileBytes / kMiB), "MiB"},
     {"manifest or scene file", static_cast<double>(kMaxSettingsFileBytes / kMiB), "MiB"},
     {"pose file", static_cast<double>(kMaxPoseFileBytes / kMiB), "MiB"},
     {"results file", static_cast<double>(kMaxResultsFileBytes / kMiB), "MiB"},
+    {"depth image file", static_cast<double>(kMaxDepthImageFileBytes / kMiB), "MiB"},
+    {"pixels of a depth image", static_cast<double>(kMaxDepthImagePixels >> 20), "Mi pixels"},
+    {"recording file", static_cast<double>(kMaxRecordingFileBytes / kMiB), "MiB"},
     {"candidate views of a decision", static_cast<double>(kMaxCandidateViews), "views"},
     {"objects of a scene", static_cast<double>(kMaxSceneObjects), "objects"},
     {"floor stops of an office's ground truth", static_cast<double>(kMaxFloorStops), "stops"},

@@ -49,7 +49,8 @@ fs::path out_dir(const PlanOptions& o) {
 }
 
 /// The ICP column of a cloud's line.
-std::string registration_note(const RecordedCloud& c, bool icp, bool first) {
+std::string registration_note(const RecordedCloud& c, bool icp, bool first, bool unposed) {
+  if (unposed) return "  (pose from registration to the map so far)";
   if (!icp) return "";
   if (c.update.registered) return "  (ICP corrected)";
   // NOTE: the first cloud of a map defines its frame; there is nothing to register it against.
@@ -146,7 +147,16 @@ void run(const PlanOptions& o) {
   }
   const auto start = std::chrono::steady_clock::now();
   std::optional<Manifest> manifest;
-  if (!o.input.empty()) manifest = read_manifest(o.input);
+  if ((o.every > 0 || !o.topic.empty()) && o.input.empty()) {
+    throw UsageError(
+        "--every and --topic choose frames of a TUM folder or a recording: give its manifest");
+  }
+  if (!o.input.empty()) {
+    ManifestReadOptions read;
+    if (o.every > 0) read.every = o.every;
+    if (!o.topic.empty()) read.topic = o.topic;
+    manifest = read_manifest(o.input, read);
+  }
   const SensorFov fov = manifest ? manifest->fov : fov_from_options(o);
   const CloudFrame frame = manifest ? manifest->frame : CloudFrame::kOptical;
   if (!manifest && !o.json_only) {
@@ -253,7 +263,8 @@ void run(const PlanOptions& o) {
                  cloud.pose_from_viewpoint ? "  (pose from its VIEWPOINT)" : "",
                  c.table_pose ? "  (pose from the table)" : "",
                  mapper_config.segment_table ? segmentation_note(c) : "",
-                 registration_note(c, mapper_config.register_scans, mapper->scans() == 1));
+                 registration_note(c, mapper_config.register_scans, mapper->scans() == 1,
+                                   cloud.pose_from_registration));
       if (c.table_pose) {
         const perception::TablePose& t = *c.table_pose;
         fmt::print(
@@ -300,6 +311,13 @@ void add_plan_command(CLI::App& app) {
       "plan", "Real scans in, next view out: map recorded clouds and choose the next best view");
   cmd->add_option("input", o->input, "manifest YAML, or a folder holding manifest.yaml");
   cmd->add_option("--map", o->map, "start from this OctoMap (.bt or .ot)");
+  cmd->add_option("--every", o->every,
+                  "of a TUM RGB-D folder's depth frames or a recording's (the manifest's tum or "
+                  "recording), the first and every n-th after it")
+      ->check(CLI::Range(1, 1'000'000));
+  cmd->add_option("--topic", o->topic,
+                  "the sensor_msgs/PointCloud2 topic of the manifest's recording (a ROS 1 bag or "
+                  "an MCAP file), in place of its recording.topic");
   cmd->add_option("--candidates,-c", o->candidates,
                   "ring, sphere, hemisphere (an arm's views: rings at several radii and elevations "
                   "looking at the ROI's centre), frontier (4 level views at each frontier "

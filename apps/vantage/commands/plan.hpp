@@ -25,6 +25,8 @@ namespace vantage::cli {
 struct PlanOptions {
   std::string input;  // manifest or folder
   std::string map;    // .bt / .ot to start from
+  int every = 0;      // of a TUM folder's or a recording's frames, every n-th (0: not given)
+  std::string topic;  // of a recording, in place of the manifest's
   std::string candidates = "ring";
   double radius = 0.0;  // 0: from the ROI
   double height = std::numeric_limits<double>::quiet_NaN();

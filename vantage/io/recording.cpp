@@ -1,0 +1,202 @@
+#include "vantage/io/recording.hpp"
+
+#include <algorithm>
+#include <map>
+#include <set>
+#include <stdexcept>
+
+#include "vantage/io/format_parsing.hpp"
+#include "vantage/io/input_file.hpp"
+#include "vantage/io/recording_formats.hpp"
+#include "vantage/io/trajectory.hpp"
+#include "vantage/util/memory.hpp"
+#include "vantage/util/text.hpp"
+
+namespace vantage {
+namespace {
+
+bool is_type(std::string_view type, std::string_view package, std::string_view name) {
+  return type == cat(package, "/", name) || type == cat(package, "/msg/", name);
+}
+
+/// tf's tree over the recording: per child frame its parent and its poses there.
+class TfTree {
+ public:
+  void add(const RosTransform& t, bool is_static) {
+    Edge& edge = edges_[t.child];
+    edge.parent = t.header.frame_id;
+    edge.is_static = edge.is_static || is_static;
+    edge.samples.push_back({t.header.stamp, t.T_parent_child});
+  }
+  /// Sorts each edge's samples by stamp, the last of equal stamps kept.
+  void finish() {
+    for (auto& [child, edge] : edges_) {
+      std::stable_sort(
+          edge.samples.begin(), edge.samples.end(),
+          [](const StampedPose& a, const StampedPose& b) { return a.stamp < b.stamp; });
+      std::vector<StampedPose> unique;
+      for (const StampedPose& s : edge.samples) {
+        if (!unique.empty() && unique.back().stamp == s.stamp) unique.pop_back();
+        unique.push_back(s);
+      }
+      edge.samples = std::move(unique);
+    }
+  }
+  /// The root of `frame`'s chain of parents.
+  std::string root(std::string frame) const {
+    for (int depth = 0; depth < kMaxDepth; ++depth) {
+      const auto it = edges_.find(frame);
+      if (it == edges_.end()) return frame;
+      frame = it->second.parent;
+    }
+    return frame;
+  }
+  /// T_fixed_frame at `stamp`, or nothing.
+  std::optional<Eigen::Isometry3d> lookup(std::string frame, const std::string& fixed, double stamp,
+                                          double max_dt) const {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    for (int depth = 0; depth < kMaxDepth && frame != fixed; ++depth) {
+      const auto it = edges_.find(frame);
+      if (it == edges_.end()) return std::nullopt;
+      const Edge& edge = it->second;
+      std::optional<Eigen::Isometry3d> step;
+      if (edge.is_static) {
+        step = edge.samples.back().T_world_frame;
+      } else {
+        step = interpolate_pose(edge.samples, stamp, max_dt);
+      }
+      if (!step) return std::nullopt;
+      T = *step * T;
+      frame = edge.parent;
+    }
+    if (frame != fixed) return std::nullopt;
+    return T;
+  }
+
+ private:
+  static constexpr int kMaxDepth = 64;  ///< a longer chain is a cycle
+  struct Edge {
+    std::string parent;
+    bool is_static = false;
+    std::vector<StampedPose> samples;
+  };
+  std::map<std::string, Edge, std::less<>> edges_;
+};
+
+}  // namespace
+
+std::vector<RecordingFrame> read_recording(const std::filesystem::path& path,
+                                           const RecordingOptions& options) {
+  if (options.topic.empty()) throw std::invalid_argument("give the recording's topic");
+  if (options.every < 1)
+    throw std::invalid_argument(cat("every must be >= 1, got ", options.every));
+  if (!(options.max_time_difference > 0.0)) {
+    throw std::invalid_argument(
+        cat("max_time_difference must be positive, got ", options.max_time_difference));
+  }
+  const std::string where = path.string();
+  try {
+    const std::string ext = lower_extension(path);
+    if (ext != ".bag" && ext != ".mcap") {
+      throw FormatError("not a recording: give a ROS 1 bag (.bag) or an MCAP file (.mcap)");
+    }
+    // NOTE: read whole: the file, then its frames' points (about twice its size), must fit.
+    const std::uintmax_t size = require_input_file(path, InputKind::kRecording);
+    if (const std::uint64_t available = available_memory();
+        available > 0 && 3.0 * static_cast<double>(size) > static_cast<double>(available)) {
+      throw FormatError(cat("is ", describe_bytes(static_cast<double>(size)),
+                            ", and reading it needs about three times that, more than the ",
+                            describe_bytes(static_cast<double>(available)),
+                            " this machine has available"));
+    }
+    const std::string bytes = read_input_file(path, InputKind::kRecording);
+    std::vector<RecordingFrame> frames;
+    std::map<std::string, std::string, std::less<>> topics;  // topic: type
+    TfTree tf;
+    std::size_t listed = 0, index = 0;
+    std::vector<RosDepthImage> images;
+    std::vector<RosCameraInfo> infos;
+    const std::string info_topic =
+        !options.camera_info.empty()
+            ? options.camera_info
+            : options.topic.substr(0, options.topic.rfind('/') + 1) + "camera_info";
+    const auto visit = [&](const RecordedMessage& m) {
+      ++index;
+      topics.emplace(m.topic, m.type);
+      try {
+        if (m.topic == options.topic) {
+          const bool image = is_type(m.type, "sensor_msgs", "Image");
+          if (!image && !is_type(m.type, "sensor_msgs", "PointCloud2")) {
+            throw FormatError(cat("topic ", options.topic, " holds ", printable(m.type, 60),
+                                  ", not sensor_msgs/PointCloud2 or sensor_msgs/Image"));
+          }
+          if (listed++ % static_cast<std::size_t>(options.every) != 0) return;
+          if (image) {
+            images.push_back(decode_depth_image(m.data, m.encoding));
+            frames.push_back(
+                {images.back().header.stamp, images.back().header.frame_id, {}, 0, std::nullopt});
+            return;
+          }
+          RosCloud cloud = decode_point_cloud2(m.data, m.encoding);
+          frames.push_back({cloud.header.stamp, std::move(cloud.header.frame_id),
+                            std::move(cloud.points), cloud.non_finite, std::nullopt});
+        } else if (m.topic == info_topic && is_type(m.type, "sensor_msgs", "CameraInfo")) {
+          infos.push_back(decode_camera_info(m.data, m.encoding));
+        } else if ((m.topic == "/tf" || m.topic == "/tf_static") &&
+                   is_type(m.type, "tf2_msgs", "TFMessage")) {
+          for (const RosTransform& t : decode_tf_message(m.data, m.encoding)) {
+            tf.add(t, m.topic == "/tf_static");
+          }
+        }
+      } catch (const FormatError& e) {
+        throw FormatError(cat("message ", index, " (", printable(m.topic, 60), " at ", m.log_time,
+                              " s): ", e.what()));
+      }
+    };
+    if (ext == ".bag") {
+      read_rosbag(bytes, visit);
+    } else {
+      read_mcap(bytes, visit);
+    }
+    if (frames.empty()) {
+      std::string names;
+      for (const auto& [topic, type] : topics) {
+        names +=
+            cat(names.empty() ? "" : ", ", printable(topic, 60), " (", printable(type, 60), ")");
+      }
+      throw FormatError(cat("no message on topic ", printable(options.topic, 60),
+                            " (its topics: ", names.empty() ? "none" : names, ")"));
+    }
+    if (!images.empty()) {
+      if (infos.empty()) {
+        throw FormatError(cat("no sensor_msgs/CameraInfo on ", printable(info_topic, 60),
+                              " for the depth images of ", printable(options.topic, 60)));
+      }
+      for (std::size_t i = 0; i < images.size(); ++i) {
+        const RosCameraInfo* info = &infos.front();
+        for (const RosCameraInfo& c : infos) {
+          if (c.header.stamp <= images[i].header.stamp) info = &c;
+        }
+        try {
+          frames[i].points = depth_to_points(images[i].image, info->intrinsics, options.depth);
+        } catch (const std::invalid_argument& e) {
+          throw FormatError(
+              cat("image ", i + 1, " of ", printable(options.topic, 60), ": ", e.what()));
+        }
+        images[i].image.depth = {};
+      }
+    }
+    tf.finish();
+    const std::string fixed =
+        options.fixed_frame.empty() ? tf.root(frames.front().frame_id) : options.fixed_frame;
+    for (RecordingFrame& frame : frames) {
+      frame.T_fixed_cloud =
+          tf.lookup(frame.frame_id, fixed, frame.stamp, options.max_time_difference);
+    }
+    return frames;
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error(cat(where, ": ", e.what()));
+  }
+}
+
+}  // namespace vantage
