@@ -50,4 +50,11 @@ std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frus
 std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                         const GainConfig& config);
 
+/// The reference the evaluation above is held to (tests/gain/metrics_test.cpp): the same rays,
+/// each walked cell by cell and every cell handed to the metric, where metric_view_gains crosses
+/// free cubes in one step where the metric allows (docs/model.md, "The metrics at speed").
+std::vector<ViewGain> metric_view_gains_reference(const GainMap& map,
+                                                  std::span<const Frustum> views,
+                                                  const GainConfig& config);
+
 }  // namespace vantage

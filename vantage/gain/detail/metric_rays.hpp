@@ -6,7 +6,17 @@
 ///   void cell(const RayCell&, Stamp& credit);   // every cell the ray crosses, in order
 ///   void end_ray(bool rear_side, Stamp& credit);
 ///   double value(double rays) const;            // once all of a view's rays are cast
-/// and lives in its own file under gain/metrics/; gain/methods.cpp registers it.
+/// and lives in its own file under gain/metrics/; gain/methods.cpp registers it. It may say what
+/// the jumping walk below may skip (both optional: by default it skips nothing):
+///   static constexpr bool kFreeInert;          // after one free cell, more free cells change
+///                                              // nothing (visibility aside, which it ignores)
+///   static constexpr double kVisibilityFloor;  // below this visibility it ignores the ray's cells
+///
+/// Two walks feed it. The reference (`cast_view`) hands the metric every cell of every ray. The
+/// jumping walk (`jump_view`, docs/model.md "The metrics at speed") crosses whole cubes of free
+/// cells (FreeSpace) in one step where the metric allows it: always for a free-inert metric, and
+/// for the others once the ray's visibility has fallen below their floor, past which it only
+/// needs to know how the ray ends and which unobserved cells it reaches (ViewGain::cells).
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -15,10 +25,12 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <span>
 #include <vector>
 
+#include "vantage/gain/free_space.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/types.hpp"
 #include "vantage/map/traversal.hpp"
@@ -40,16 +52,19 @@ struct RayCell {
   bool in_range;      ///< the cell's centre lies at least the sensor's min range away
 };
 
-/// Marks cells counted in the current view: one stamp array per thread, one id per view.
+/// Marks cells counted in the current view: one bit per cell (a 129 x 129 x 65 grid in 135 KB,
+/// which stays in cache where a word per cell would not), cleared for each view.
 struct Stamp {
-  std::vector<std::uint32_t>& marks;
-  std::uint32_t id;
+  std::vector<std::uint64_t>& bits;
   /// True the first time a cell is taken in this view.
   bool take(std::size_t i) {
-    if (marks[i] == id) return false;
-    marks[i] = id;
+    std::uint64_t& word = bits[i >> 6];
+    const std::uint64_t bit = std::uint64_t{1} << (i & 63);
+    if (word & bit) return false;
+    word |= bit;
     return true;
   }
+  void clear() { std::fill(bits.begin(), bits.end(), std::uint64_t{0}); }
 };
 
 inline bool unknown(const RayCell& c) { return c.value.state == CellState::kUnobserved; }
@@ -64,63 +79,150 @@ namespace detail {
 /// What the metrics of one evaluation share.
 struct MetricContext {
   const GainMap& map;
-  const std::vector<float>& near;  // empty when the metric needs no distances
-  double spacing;                  // ray pitch at the farthest cell in view [cells]
-  int subsample;                   // cast every subsample-th ray along each image axis
+  const std::vector<float>& near;   // empty when the metric needs no distances
+  double spacing;                   // ray pitch at the farthest cell in view [cells]
+  int subsample;                    // cast every subsample-th ray along each image axis
+  const FreeSpace* free = nullptr;  // the jumping walk's free cubes; nullptr: the reference walk
 };
 
-/// Casts one view's rays and feeds them to `metric`; returns the metric's value and the count of
-/// unobserved cells reached.
+/// Whether `Metric` is free-inert (the file's note); false unless it says so.
+template <typename Metric>
+constexpr bool free_inert() {
+  if constexpr (requires { Metric::kFreeInert; }) {
+    return Metric::kFreeInert;
+  } else {
+    return false;
+  }
+}
+
+/// The visibility below which `Metric` ignores a ray's cells; 0 unless it says otherwise.
+template <typename Metric>
+constexpr double visibility_floor() {
+  if constexpr (requires { Metric::kVisibilityFloor; }) {
+    return Metric::kVisibilityFloor;
+  } else {
+    return 0.0;
+  }
+}
+
+/// A view's pinhole image of rays: neighbouring rays `spacing` cells apart at the farthest corner
+/// of the grid, every subsample-th along each axis cast.
+struct RayImage {
+  Eigen::Vector3d origin;
+  Eigen::Matrix3d R;
+  double tan_h, tan_v, su, sv;
+  int rows, cols, first, step;
+  double max_range, min_r2;
+  bool all_in_range;  ///< every cell's centre lies at least the min range from the origin
+
+  RayImage(const MetricContext& ctx, const Frustum& view) {
+    const GridSpec& spec = ctx.map.spec();
+    const SensorFov& fov = view.fov();
+    origin = view.origin();
+    R = view.T_world_sensor().linear();
+    double depth = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d p((corner & 1) ? spec.max_corner().x() : spec.origin.x(),
+                              (corner & 2) ? spec.max_corner().y() : spec.origin.y(),
+                              (corner & 4) ? spec.max_corner().z() : spec.origin.z());
+      depth = std::max(depth, (p - origin).norm());
+    }
+    depth = std::clamp(depth, spec.resolution, fov.max_range);
+    const double du = ctx.spacing * spec.resolution / depth;
+    tan_h = std::tan(fov.h_fov / 2.0);
+    tan_v = std::tan(fov.v_fov / 2.0);
+    cols = std::max(1, static_cast<int>(std::ceil(2.0 * tan_h / du)));
+    rows = std::max(1, static_cast<int>(std::ceil(2.0 * tan_v / du)));
+    su = 2.0 * tan_h / cols;
+    sv = 2.0 * tan_v / rows;
+    first = ctx.subsample / 2;
+    step = ctx.subsample;
+    max_range = fov.max_range;
+    min_r2 = fov.min_range * fov.min_range;
+    // NOTE: cell centres lie in the grid's box, so none is nearer than the box itself.
+    const Eigen::Vector3d gap =
+        (spec.origin - origin).cwiseMax(origin - spec.max_corner()).cwiseMax(0.0);
+    all_in_range = gap.squaredNorm() >= min_r2;
+  }
+  /// The rays cast (every one, whether it meets the grid or not).
+  double count() const {
+    const auto along = [&](int n) { return n > first ? (n - first + step - 1) / step : 0; };
+    return static_cast<double>(along(rows)) * static_cast<double>(along(cols));
+  }
+  /// Narrows [row_lo, row_hi) x [col_lo, col_hi), rays of the image, to those whose image
+  /// coordinates fall in the bounding rectangle of the grid box's projection, with a ray to spare
+  /// on each side; every other ray misses the grid. Unchanged when the box reaches behind the
+  /// sensor's image plane.
+  void rays_on_grid(const GridSpec& spec, int& row_lo, int& row_hi, int& col_lo,
+                    int& col_hi) const {
+    row_lo = col_lo = first;
+    row_hi = rows;
+    col_hi = cols;
+    double u_lo = std::numeric_limits<double>::infinity(), u_hi = -u_lo, v_lo = u_lo, v_hi = -u_lo;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Eigen::Vector3d p((corner & 1) ? spec.max_corner().x() : spec.origin.x(),
+                              (corner & 2) ? spec.max_corner().y() : spec.origin.y(),
+                              (corner & 4) ? spec.max_corner().z() : spec.origin.z());
+      const Eigen::Vector3d q = R.transpose() * (p - origin);
+      if (!(q.x() > 0.0)) return;
+      u_lo = std::min(u_lo, q.y() / q.x());
+      u_hi = std::max(u_hi, q.y() / q.x());
+      v_lo = std::min(v_lo, q.z() / q.x());
+      v_hi = std::max(v_hi, q.z() / q.x());
+    }
+    // Ray k of an axis lies at -tan + (k + 0.5) pitch; the first ray of the lattice first + j step
+    // at or below k.
+    const auto index = [&](double at, double tan, double pitch) {
+      return static_cast<int>(std::floor((at + tan) / pitch - 0.5));
+    };
+    const auto lattice_up = [&](int k) {
+      return k <= first ? first : first + (k - first + step - 1) / step * step;
+    };
+    row_lo = lattice_up(std::max(0, index(v_lo, tan_v, sv) - 1));
+    row_hi = std::min(rows, index(v_hi, tan_v, sv) + 2);
+    col_lo = lattice_up(std::max(0, index(u_lo, tan_h, su) - 1));
+    col_hi = std::min(cols, index(u_hi, tan_h, su) + 2);
+  }
+  Eigen::Vector3d direction(int row, int col) const {
+    return (R * Eigen::Vector3d(1.0, -tan_h + (col + 0.5) * su, -tan_v + (row + 0.5) * sv))
+        .normalized();
+  }
+};
+
+/// Casts one view's rays and feeds them to `metric` cell by cell: the reference walk. Returns the
+/// metric's value and the count of unobserved cells reached.
 template <typename Metric>
 ViewGain cast_view(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
                    Stamp& seen) {
   const GridSpec& spec = ctx.map.spec();
-  const SensorFov& fov = view.fov();
-  const Eigen::Vector3d o = view.origin();
-  const Eigen::Matrix3d R = view.T_world_sensor().linear();
-  // The pitch: neighbouring rays `spacing` cells apart at the farthest corner of the grid.
-  double depth = 0.0;
-  for (int corner = 0; corner < 8; ++corner) {
-    const Eigen::Vector3d p((corner & 1) ? spec.max_corner().x() : spec.origin.x(),
-                            (corner & 2) ? spec.max_corner().y() : spec.origin.y(),
-                            (corner & 4) ? spec.max_corner().z() : spec.origin.z());
-    depth = std::max(depth, (p - o).norm());
-  }
-  depth = std::clamp(depth, spec.resolution, fov.max_range);
-  const double du = ctx.spacing * spec.resolution / depth;
-  const double tan_h = std::tan(fov.h_fov / 2.0), tan_v = std::tan(fov.v_fov / 2.0);
-  const int cols = std::max(1, static_cast<int>(std::ceil(2.0 * tan_h / du)));
-  const int rows = std::max(1, static_cast<int>(std::ceil(2.0 * tan_v / du)));
-  const double su = 2.0 * tan_h / cols, sv = 2.0 * tan_v / rows;
-  const double min_r2 = fov.min_range * fov.min_range;
+  const RayImage image(ctx, view);
+  const Eigen::Vector3d& o = image.origin;
   const float far = std::numeric_limits<float>::infinity();
-
   ViewGain result;
   double rays = 0.0;
-  const int first = ctx.subsample / 2;
-  for (int row = first; row < rows; row += ctx.subsample) {
-    for (int col = first; col < cols; col += ctx.subsample) {
+  for (int row = image.first; row < image.rows; row += image.step) {
+    for (int col = image.first; col < image.cols; col += image.step) {
       rays += 1.0;
-      const Eigen::Vector3d dir =
-          (R * Eigen::Vector3d(1.0, -tan_h + (col + 0.5) * su, -tan_v + (row + 0.5) * sv))
-              .normalized();
+      const Eigen::Vector3d dir = image.direction(row, col);
       metric.begin_ray();
       double visibility = 1.0;
       bool previous_unknown = false, rear_side = false;
-      traverse(spec, o, o + fov.max_range * dir, [&](const Index3& cell, std::size_t linear, int) {
-        const GainMap::Value& v = ctx.map.value(linear);
-        const bool in_range = (spec.center(cell) - o).squaredNorm() >= min_r2;
-        const RayCell c{linear, v, visibility, ctx.near.empty() ? far : ctx.near[linear], in_range};
-        metric.cell(c, credit);
-        if (in_range && unknown(c) && seen.take(linear)) result.cells += 1.0;
-        if (v.state == CellState::kOccupied) {
-          rear_side = previous_unknown;
-          return false;  // the ray ends on its first occupied cell
-        }
-        previous_unknown = unknown(c);
-        visibility *= 1.0 - v.p;  // eq. M1: P_v(x_{n+1}) = P_v(x_n) (1 - P_o(x_n))
-        return true;
-      });
+      traverse(spec, o, o + image.max_range * dir,
+               [&](const Index3& cell, std::size_t linear, int) {
+                 const GainMap::Value& v = ctx.map.value(linear);
+                 const bool in_range = (spec.center(cell) - o).squaredNorm() >= image.min_r2;
+                 const RayCell c{linear, v, visibility, ctx.near.empty() ? far : ctx.near[linear],
+                                 in_range};
+                 metric.cell(c, credit);
+                 if (in_range && unknown(c) && seen.take(linear)) result.cells += 1.0;
+                 if (v.state == CellState::kOccupied) {
+                   rear_side = previous_unknown;
+                   return false;  // the ray ends on its first occupied cell
+                 }
+                 previous_unknown = unknown(c);
+                 visibility *= 1.0 - v.p;  // eq. M1: P_v(x_{n+1}) = P_v(x_n) (1 - P_o(x_n))
+                 return true;
+               });
       metric.end_ray(rear_side, credit);
     }
   }
@@ -129,26 +231,137 @@ ViewGain cast_view(const MetricContext& ctx, const Frustum& view, Metric& metric
   return result;
 }
 
+/// Moves `walk`, in a free cube [lo, hi] of the grid, to the first cell past the cube on its way:
+/// per axis the steps it would take before it crosses the cube's face, as GridWalk::advance
+/// orders them (the lower axis first on a tie). False when the walk ends inside the cube.
+inline bool leave_cube(GridWalk& walk, const Index3& lo, const Index3& hi) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  const int s[3] = {walk.sx, walk.sy, walk.sz}, left[3] = {walk.rx, walk.ry, walk.rz};
+  const double t[3] = {walk.tx, walk.ty, walk.tz}, d[3] = {walk.dx, walk.dy, walk.dz};
+  int inside[3];  // steps along each axis that stay in the cube
+  double t_exit = kInf;
+  int exit = -1;
+  for (int a = 0; a < 3; ++a) {
+    inside[a] = s[a] > 0 ? hi[a] - walk.cell[a] : walk.cell[a] - lo[a];
+    if (left[a] <= inside[a] || t[a] == kInf) continue;  // the walk ends before this face
+    const double ta = t[a] + inside[a] * d[a];
+    if (ta < t_exit) {
+      t_exit = ta;
+      exit = a;
+    }
+  }
+  if (exit < 0) return false;
+  Index3 n;
+  for (int a = 0; a < 3; ++a) {
+    if (a == exit) {
+      n[a] = inside[a] + 1;
+    } else if (t[a] == kInf || t[a] > t_exit || (t[a] == t_exit && a > exit)) {
+      n[a] = 0;
+    } else {
+      // The boundaries t[a] + j d[a] before t_exit (at it too, for a lower axis).
+      const double q = (t_exit - t[a]) / d[a];
+      const int before =
+          a < exit ? static_cast<int>(std::floor(q)) + 1 : static_cast<int>(std::ceil(q));
+      n[a] = std::clamp(before, 0, std::min(inside[a], left[a]));
+    }
+  }
+  walk.skip(n);
+  return true;
+}
+
+/// Casts one view's rays as `cast_view` does, but crosses free cubes in one step where the metric
+/// allows it (the file's note): the jumping walk. The same value as the reference for a
+/// free-inert metric (up to the rounding of a jump's boundaries), and within the cells past the
+/// visibility floor for the others.
+template <typename Metric>
+ViewGain jump_view(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
+                   Stamp& seen) {
+  const GridSpec& spec = ctx.map.spec();
+  const FreeSpace& free = *ctx.free;
+  const RayImage image(ctx, view);
+  const Eigen::Vector3d& o = image.origin;
+  const float far = std::numeric_limits<float>::infinity();
+  const std::span<const GainMap::Value> values = ctx.map.values();
+  int row_lo, row_hi, col_lo, col_hi;
+  image.rays_on_grid(spec, row_lo, row_hi, col_lo, col_hi);
+  return with_codes(ctx.map, [&](const auto* codes) {
+    ViewGain result;
+    for (int row = row_lo; row < row_hi; row += image.step) {
+      for (int col = col_lo; col < col_hi; col += image.step) {
+        const Eigen::Vector3d dir = image.direction(row, col);
+        metric.begin_ray();
+        GridWalk walk;
+        TraversalResult entry;
+        if (!start_in_grid(spec, o, o + image.max_range * dir, walk, entry)) {
+          metric.end_ray(false, credit);
+          continue;
+        }
+        int octant = 0;  // FreeSpace's octant of the direction
+        for (int a = 0; a < 3; ++a) octant |= dir[a] > 0.0 ? 1 << a : 0;
+        double visibility = 1.0;
+        bool follow = true;  // the metric still sees each cell
+        bool previous_unknown = false, rear_side = false;
+        for (;;) {
+          const auto linear = static_cast<std::size_t>(walk.linear);
+          const GainMap::Value& v = values[codes[linear]];
+          const bool in_range =
+              image.all_in_range || (spec.center(walk.cell) - o).squaredNorm() >= image.min_r2;
+          if (follow) {
+            metric.cell(
+                RayCell{linear, v, visibility, ctx.near.empty() ? far : ctx.near[linear], in_range},
+                credit);
+          }
+          if (v.state == CellState::kOccupied) {
+            rear_side = previous_unknown;
+            break;
+          }
+          previous_unknown = v.state == CellState::kUnobserved;
+          if (previous_unknown && in_range && seen.take(linear)) result.cells += 1.0;
+          visibility *= 1.0 - v.p;  // eq. M1
+          if (follow && visibility < visibility_floor<Metric>()) follow = false;
+          if (v.state == CellState::kFree && (free_inert<Metric>() || !follow)) {
+            if (const int e = free.extent_at(octant, walk.cell); e > 0) {
+              Index3 lo, hi;
+              FreeSpace::cube(walk.cell, octant, e, spec.dims, lo, hi);
+              if (!leave_cube(walk, lo, hi) || !spec.contains(walk.cell)) break;
+              walk.relink(spec);
+              continue;
+            }
+          }
+          if (!walk.advance()) break;
+          if (entry.ends_outside && !spec.contains(walk.cell)) break;  // left the grid
+        }
+        metric.end_ray(rear_side, credit);
+      }
+    }
+    result.gain = metric.value(image.count());
+    result.targets = static_cast<std::size_t>(result.cells);
+    return result;
+  });
+}
+
 /// Every view's value under `Metric`; views in parallel, each view's rays in order on one thread,
-/// so the result does not depend on threads.
+/// so the result does not depend on threads. The jumping walk when the context has free cubes.
 template <typename Metric>
 std::vector<ViewGain> all_views(const MetricContext& ctx, std::span<const Frustum> views,
                                 int num_threads) {
   std::vector<ViewGain> gains(views.size());
   struct Marks {
-    std::vector<std::uint32_t> credit, seen;
+    std::vector<std::uint64_t> credit, seen;
   };
-  const std::size_t cells = ctx.map.size();
-  tbb::enumerable_thread_specific<Marks> marks([cells] {
-    return Marks{std::vector<std::uint32_t>(cells, 0), std::vector<std::uint32_t>(cells, 0)};
+  const std::size_t words = (ctx.map.size() + 63) / 64;
+  tbb::enumerable_thread_specific<Marks> marks([words] {
+    return Marks{std::vector<std::uint64_t>(words, 0), std::vector<std::uint64_t>(words, 0)};
   });
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
       Marks& m = marks.local();
-      const auto id = static_cast<std::uint32_t>(v + 1);
-      Stamp credit{m.credit, id}, seen{m.seen, id};
+      Stamp credit{m.credit}, seen{m.seen};
+      credit.clear();
+      seen.clear();
       Metric metric;
-      gains[v] = cast_view(ctx, views[v], metric, credit, seen);
+      gains[v] = ctx.free ? jump_view(ctx, views[v], metric, credit, seen)
+                          : cast_view(ctx, views[v], metric, credit, seen);
     });
   });
   return gains;

@@ -8,12 +8,15 @@
 #include <vector>
 
 #include "vantage/gain/detail/metric_rays.hpp"
+#include "vantage/gain/metrics/shared.hpp"
 
 namespace vantage {
 
 /// Rear side entropy: I_n(x) = P_v(x) I(x) for the unobserved cells on rays that end on a rear
 /// side, else 0 (eq. M4).
 struct RearSideEntropy {
+  static constexpr bool kFreeInert = false;
+  static constexpr double kVisibilityFloor = kMetricVisibilityFloor;
   double sum = 0.0;
   std::vector<std::pair<std::size_t, double>> pending;  // this ray's unobserved cells, P_v I
   void begin_ray() { pending.clear(); }
