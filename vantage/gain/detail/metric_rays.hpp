@@ -6,17 +6,15 @@
 ///   void cell(const RayCell&, Stamp& credit);   // every cell the ray crosses, in order
 ///   void end_ray(bool rear_side, Stamp& credit);
 ///   double value(double rays) const;            // once all of a view's rays are cast
-/// and lives in its own file under gain/metrics/; gain/methods.cpp registers it. It may say what
-/// the jumping walk below may skip (both optional: by default it skips nothing):
-///   static constexpr bool kFreeInert;          // after one free cell, more free cells change
-///                                              // nothing (visibility aside, which it ignores)
-///   static constexpr double kVisibilityFloor;  // below this visibility it ignores the ray's cells
+/// and lives in its own file under gain/metrics/; gain/methods.cpp registers it. It may say that
+/// the jumping walk below may cross free space (optional: by default it crosses nothing):
+///   static constexpr bool kFreeInert;  // after one free cell, more free cells change nothing
+///                                      // (visibility aside, which it ignores)
 ///
 /// Two walks feed it. The reference (`cast_view`) hands the metric every cell of every ray. The
-/// jumping walk (`jump_view`, docs/model.md "The metrics at speed") crosses whole cubes of free
-/// cells (FreeSpace) in one step where the metric allows it: always for a free-inert metric, and
-/// for the others once the ray's visibility has fallen below their floor, past which it only
-/// needs to know how the ray ends and which unobserved cells it reaches (ViewGain::cells).
+/// jumping walk (`jump_view`, docs/model.md "The metrics at speed") casts only the rays that meet
+/// the grid and, for a free-inert metric, crosses whole cubes of free cells (FreeSpace) in one
+/// step.
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -92,16 +90,6 @@ constexpr bool free_inert() {
     return Metric::kFreeInert;
   } else {
     return false;
-  }
-}
-
-/// The visibility below which `Metric` ignores a ray's cells; 0 unless it says otherwise.
-template <typename Metric>
-constexpr double visibility_floor() {
-  if constexpr (requires { Metric::kVisibilityFloor; }) {
-    return Metric::kVisibilityFloor;
-  } else {
-    return 0.0;
   }
 }
 
@@ -269,10 +257,9 @@ inline bool leave_cube(GridWalk& walk, const Index3& lo, const Index3& hi) {
   return true;
 }
 
-/// Casts one view's rays as `cast_view` does, but crosses free cubes in one step where the metric
-/// allows it (the file's note): the jumping walk. The same value as the reference for a
-/// free-inert metric (up to the rounding of a jump's boundaries), and within the cells past the
-/// visibility floor for the others.
+/// Casts one view's rays as `cast_view` does, but only those that meet the grid, and crosses free
+/// cubes in one step for a free-inert metric: the jumping walk. The same values as the reference
+/// but where a ray runs exactly through a cube's edge (docs/model.md, "The metrics at speed").
 template <typename Metric>
 ViewGain jump_view(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
                    Stamp& seen) {
@@ -299,18 +286,15 @@ ViewGain jump_view(const MetricContext& ctx, const Frustum& view, Metric& metric
         int octant = 0;  // FreeSpace's octant of the direction
         for (int a = 0; a < 3; ++a) octant |= dir[a] > 0.0 ? 1 << a : 0;
         double visibility = 1.0;
-        bool follow = true;  // the metric still sees each cell
         bool previous_unknown = false, rear_side = false;
         for (;;) {
           const auto linear = static_cast<std::size_t>(walk.linear);
           const GainMap::Value& v = values[codes[linear]];
           const bool in_range =
               image.all_in_range || (spec.center(walk.cell) - o).squaredNorm() >= image.min_r2;
-          if (follow) {
-            metric.cell(
-                RayCell{linear, v, visibility, ctx.near.empty() ? far : ctx.near[linear], in_range},
-                credit);
-          }
+          metric.cell(
+              RayCell{linear, v, visibility, ctx.near.empty() ? far : ctx.near[linear], in_range},
+              credit);
           if (v.state == CellState::kOccupied) {
             rear_side = previous_unknown;
             break;
@@ -318,8 +302,7 @@ ViewGain jump_view(const MetricContext& ctx, const Frustum& view, Metric& metric
           previous_unknown = v.state == CellState::kUnobserved;
           if (previous_unknown && in_range && seen.take(linear)) result.cells += 1.0;
           visibility *= 1.0 - v.p;  // eq. M1
-          if (follow && visibility < visibility_floor<Metric>()) follow = false;
-          if (v.state == CellState::kFree && (free_inert<Metric>() || !follow)) {
+          if (free_inert<Metric>() && v.state == CellState::kFree) {
             if (const int e = free.extent_at(octant, walk.cell); e > 0) {
               Index3 lo, hi;
               FreeSpace::cube(walk.cell, octant, e, spec.dims, lo, hi);

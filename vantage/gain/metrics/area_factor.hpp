@@ -15,7 +15,6 @@ namespace vantage {
 /// G = f(x_o; 0.2) + f(x_p; 0.8).
 struct AreaFactor {
   static constexpr bool kFreeInert = true;
-  static constexpr double kVisibilityFloor = 0.0;
   double occupied = 0.0, occplane = 0.0;
   bool previous_free = true, registered = false;
   void begin_ray() {

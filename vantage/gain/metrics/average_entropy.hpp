@@ -10,8 +10,6 @@ namespace vantage {
 /// Average entropy (Kriegel et al. 2015): G = sum_{x in X} I(x) / |X| over the set X of cells
 /// the rays traverse (eq. M6).
 struct AverageEntropy {
-  static constexpr bool kFreeInert = false;
-  static constexpr double kVisibilityFloor = 0.0;
   double sum = 0.0, count = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {

@@ -12,7 +12,6 @@ namespace vantage {
 /// occupied cell, else 0 (eq. M5): unobserved cells near a surface, the nearer the more.
 struct ProximityCount {
   static constexpr bool kFreeInert = true;
-  static constexpr double kVisibilityFloor = 0.0;
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {

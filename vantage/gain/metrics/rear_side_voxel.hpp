@@ -11,7 +11,6 @@ namespace vantage {
 /// unobserved cell, a rear side of a surface seen before (eq. M3), else 0.
 struct RearSideVoxel {
   static constexpr bool kFreeInert = true;
-  static constexpr double kVisibilityFloor = 0.0;
   double sum = 0.0;
   bool previous_unknown = false;
   void begin_ray() { previous_unknown = false; }

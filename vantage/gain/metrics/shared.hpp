@@ -13,11 +13,6 @@ namespace vantage {
 /// the proximity count's cut-off and the area factor's "occplane" test.
 inline constexpr double kProximityCells = 4.0;
 
-/// The visibility below which rear side entropy ignores the rest of a ray in the jumping walk
-/// (detail/metric_rays.hpp): what the ray's later cells could add is at most this times
-/// sum_k (1 - p_min)^k = floor / p_min bits (8.3e-6 bits at OctoMap's p_min = 0.12).
-inline constexpr double kMetricVisibilityFloor = 1e-6;
-
 /// The area factor's desired fractions of rays on occupied cells and on occplane cells
 /// (Vasquez-Gomez et al. 2014; rpg's defaults).
 inline constexpr double kAreaOccupied = 0.2;

@@ -11,7 +11,6 @@ namespace vantage {
 /// rays reach.
 struct UnobservedVoxel {
   static constexpr bool kFreeInert = true;
-  static constexpr double kVisibilityFloor = 0.0;
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {
