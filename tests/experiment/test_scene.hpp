@@ -1,6 +1,10 @@
 #pragma once
 // The small test scene and helpers shared by the experiment tests.
 
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -63,9 +67,15 @@ inline std::string without_timing(const std::string& csv) {
   return out;
 }
 
-/// A fresh, empty temporary folder.
+/// A fresh, empty temporary folder of its own for the running test: named by `name`, the test and
+/// the process, since ctest runs the cases of one fixture as processes at once (-j), and other
+/// sessions run the suite beside this one.
 inline std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("vantage-test-" + name);
+  const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string owner = test != nullptr ? std::string(test->name()) : std::string("setup");
+  std::replace(owner.begin(), owner.end(), '/', '_');  // a parameterised test's index
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("vantage-test-" + name + "-" + owner + "-" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

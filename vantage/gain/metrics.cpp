@@ -7,7 +7,9 @@
 #include <stdexcept>
 
 #include "vantage/gain/detail/metric_rays.hpp"
+#include "vantage/gain/free_space.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/map/block_census.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -69,8 +71,21 @@ std::vector<float> occupied_distance(const GainMap& map, double radius) {
   return near;
 }
 
-std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frustum> views,
-                                        const GainConfig& config) {
+namespace {
+
+/// The census of the snapshot's classes, for a map without its grid.
+BlockCensus census_of(const GainMap& map) {
+  BlockCensus census(map.spec().dims);
+  for (std::size_t i = 0; i < map.size(); ++i) {
+    const CellState state = map.value(i).state;
+    if (state != CellState::kUnobserved) census.move(i, CellState::kUnobserved, state);
+  }
+  return census;
+}
+
+/// The metric's evaluation: by the jumping walk over `free`, or the reference walk when null.
+std::vector<ViewGain> evaluate(const GainMap& map, const FreeSpace* free,
+                               std::span<const Frustum> views, const GainConfig& config) {
   config.validate();
   if (!is_volumetric_metric(config.method)) {
     throw std::invalid_argument(
@@ -80,14 +95,30 @@ std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frus
   const std::vector<float> near =
       method.needs_distances ? occupied_distance(map, kProximityCells) : std::vector<float>{};
   const detail::MetricContext ctx{map, near, config.ray_spacing,
-                                  config.evaluation == GainEvaluation::kExact ? 1 : kFastSubsample};
+                                  config.evaluation == GainEvaluation::kExact ? 1 : kFastSubsample,
+                                  free};
   return method.metric(ctx, views, config.num_threads);
+}
+
+}  // namespace
+
+std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frustum> views,
+                                        const GainConfig& config) {
+  const FreeSpace free = free_space(census_of(map));
+  return evaluate(map, &free, views, config);
 }
 
 std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                         const GainConfig& config) {
   config.validate();
-  return metric_view_gains(GainMap(grid, config.num_threads), views, config);
+  const FreeSpace free = free_space(grid.census());
+  return evaluate(GainMap(grid, config.num_threads), &free, views, config);
+}
+
+std::vector<ViewGain> metric_view_gains_reference(const GainMap& map,
+                                                  std::span<const Frustum> views,
+                                                  const GainConfig& config) {
+  return evaluate(map, nullptr, views, config);
 }
 
 }  // namespace vantage

@@ -42,12 +42,21 @@ inline constexpr int kFastSubsample = 3;
 /// in view is crossed by a ray), kFast and kAuto every kFastSubsample-th of those rays along each
 /// axis. `ViewGain::gain` is the metric's value; `ViewGain::cells` and `targets` the unobserved
 /// cells the rays reach before their first occupied cell, counted once (the unobserved-voxel
-/// count). Deterministic for any thread count. Throws std::invalid_argument for another method.
+/// count). The rays cross free space by the jumping walk of detail/metric_rays.hpp (docs/model.md,
+/// "The metrics at speed"). Deterministic for any thread count. Throws std::invalid_argument for
+/// another method.
 std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frustum> views,
                                         const GainConfig& config);
 
 /// The same on the grid, which is only read.
 std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                         const GainConfig& config);
+
+/// The reference the evaluation above is held to (tests/gain/metrics_test.cpp): the same rays,
+/// each walked cell by cell and every cell handed to the metric, where metric_view_gains crosses
+/// free cubes in one step where the metric allows (docs/model.md, "The metrics at speed").
+std::vector<ViewGain> metric_view_gains_reference(const GainMap& map,
+                                                  std::span<const Frustum> views,
+                                                  const GainConfig& config);
 
 }  // namespace vantage

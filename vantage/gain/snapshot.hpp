@@ -75,6 +75,20 @@ class GainMap {
   std::vector<std::uint32_t> codes32_;
 };
 
+/// Calls `f(codes)` with the snapshot's codes as a pointer of their width (std::uint8_t,
+/// std::uint16_t or std::uint32_t); returns what `f` returns.
+template <typename F>
+decltype(auto) with_codes(const GainMap& map, F&& f) {
+  switch (map.code_width()) {
+    case 1:
+      return f(map.codes<std::uint8_t>());
+    case 2:
+      return f(map.codes<std::uint16_t>());
+    default:
+      return f(map.codes<std::uint32_t>());
+  }
+}
+
 /// Inclusive index box of the grid cells that may lie inside a frustum (its bounding box, cut to
 /// the grid); empty when the frustum misses the grid.
 struct CellBox {

@@ -14,6 +14,7 @@ namespace vantage {
 /// fractions of all the view's rays registered occupied and occplane,
 /// G = f(x_o; 0.2) + f(x_p; 0.8).
 struct AreaFactor {
+  static constexpr bool kFreeInert = true;
   double occupied = 0.0, occplane = 0.0;
   bool previous_free = true, registered = false;
   void begin_ray() {

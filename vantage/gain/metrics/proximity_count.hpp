@@ -11,6 +11,7 @@ namespace vantage {
 /// Proximity count: I_p(x) = D - d(x) for an unobserved cell x within distance d(x) <= D of an
 /// occupied cell, else 0 (eq. M5): unobserved cells near a surface, the nearer the more.
 struct ProximityCount {
+  static constexpr bool kFreeInert = true;
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {

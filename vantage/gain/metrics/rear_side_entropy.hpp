@@ -14,6 +14,8 @@ namespace vantage {
 /// Rear side entropy: I_n(x) = P_v(x) I(x) for the unobserved cells on rays that end on a rear
 /// side, else 0 (eq. M4).
 struct RearSideEntropy {
+  // NOTE: no visibility floor past which a ray's cells are ignored: its values fall to 1e-5 bits
+  // and below as a table top is explored, where a floor of 1e-6 changed tabletop-4's decision.
   double sum = 0.0;
   std::vector<std::pair<std::size_t, double>> pending;  // this ray's unobserved cells, P_v I
   void begin_ray() { pending.clear(); }

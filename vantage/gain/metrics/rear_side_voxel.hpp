@@ -10,6 +10,7 @@ namespace vantage {
 /// Rear side voxel: I_b(x) = 1 if x is an occupied cell that its ray reaches straight from an
 /// unobserved cell, a rear side of a surface seen before (eq. M3), else 0.
 struct RearSideVoxel {
+  static constexpr bool kFreeInert = true;
   double sum = 0.0;
   bool previous_unknown = false;
   void begin_ray() { previous_unknown = false; }

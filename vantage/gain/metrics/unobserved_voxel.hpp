@@ -10,6 +10,7 @@ namespace vantage {
 /// Unobserved voxel: I_u(x) = 1 if x is unobserved, else 0 (eq. M2): the unobserved cells the
 /// rays reach.
 struct UnobservedVoxel {
+  static constexpr bool kFreeInert = true;
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {

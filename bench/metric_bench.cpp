@@ -1,0 +1,91 @@
+// The field's seven metrics (issue 36, item 4): one metric's decision among the 187 hemisphere
+// views of the issue-26 sweeps (radii 0.9, 1.1 and 1.3 m, 0.3 m apart, tabletop-4's target) on
+// tabletop-4 after 1, 3 and 6 paper-mode scans, every view evaluated by the metric's own rays
+// (`--evaluation auto`, as `vantage explore --method <metric>` runs it) and the best taken. Wall
+// time on 2 threads (BENCHMARK.md, "The seven metrics at speed").
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "vantage/gain/methods.hpp"
+#include "vantage/gain/metrics.hpp"
+#include "vantage/map/integrate.hpp"
+#include "vantage/sim/world.hpp"
+#include "vantage/views/hemisphere.hpp"
+#include "vantage/views/ring.hpp"
+
+namespace vantage::bench {
+namespace {
+
+/// Scans from these start poses, in this order (as in the oracle tests).
+constexpr int kScanOrder[] = {0, 5, 2, 7, 3, 8};
+
+constexpr GainMethod kMetrics[] = {GainMethod::kOcclusionAware, GainMethod::kUnobservedVoxel,
+                                   GainMethod::kRearSideVoxel,  GainMethod::kRearSideEntropy,
+                                   GainMethod::kProximityCount, GainMethod::kAverageEntropy,
+                                   GainMethod::kAreaFactor};
+
+struct HemisphereState {
+  OccupancyGrid grid;
+  std::vector<Frustum> views;
+};
+
+/// tabletop-4 after `scans` scans and its 187 hemisphere views; built once per process.
+const HemisphereState& hemisphere_state(int scans) {
+  static std::map<int, HemisphereState> states;
+  if (const auto it = states.find(scans); it != states.end()) return it->second;
+  const sim::World world(sim::load_scene("tabletop-4"));
+  const sim::Scene& scene = world.scene();
+  HemisphereConfig hemisphere;
+  hemisphere.center = scene.mount.target;
+  hemisphere.radii = {0.9, 1.1, 1.3};
+  hemisphere.spacing = 0.3;
+  HemisphereState state{OccupancyGrid(scene.grid),
+                        make_views(hemisphere_poses(hemisphere), scene.fov())};
+  for (int k = 0; k < scans; ++k) {
+    const sim::SimulatedScan scan =
+        world.scan(scene.start_poses[static_cast<std::size_t>(kScanOrder[k])], 1000 + k);
+    integrate_scan(state.grid, Scan{scan.points_world(), scan.view()}, IntegrationConfig{});
+  }
+  return states.emplace(scans, std::move(state)).first->second;
+}
+
+/// Arguments: metric (0-6 in the order of docs/model.md, M1-M7), scans (1, 3 or 6), walk (0 the
+/// reference, cell by cell; 1 the jumping walk metric_view_gains takes).
+void BM_MetricDecision187(benchmark::State& bench) {
+  const GainMethod method = kMetrics[bench.range(0)];
+  const HemisphereState& s = hemisphere_state(static_cast<int>(bench.range(1)));
+  const bool reference = bench.range(2) == 0;
+  GainConfig config;
+  config.method = method;
+  config.num_threads = 2;
+  std::size_t best = 0;
+  double gain = 0.0;
+  for (auto _ : bench) {
+    const std::vector<ViewGain> gains =
+        reference
+            ? metric_view_gains_reference(GainMap(s.grid, config.num_threads), s.views, config)
+            : metric_view_gains(s.grid, s.views, config);
+    const auto it = std::max_element(gains.begin(), gains.end(),
+                                     [](const auto& a, const auto& b) { return a.gain < b.gain; });
+    best = static_cast<std::size_t>(it - gains.begin());
+    gain = it->gain;
+  }
+  bench.SetLabel(std::string(to_string(method)));
+  bench.counters["views"] = static_cast<double>(s.views.size());
+  bench.counters["chosen"] = static_cast<double>(best);
+  bench.counters["gain"] = gain;
+}
+BENCHMARK(BM_MetricDecision187)
+    ->ArgsProduct({{0, 1, 2, 3, 4, 5, 6}, {1, 3, 6}, {0, 1}})
+    ->ArgNames({"metric", "scans", "walk"})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace vantage::bench
