@@ -103,15 +103,15 @@ TEST(FreeSpace, RaysThatCrossFreeCubesSeeWhatCellByCellRaysSee) {
     const int longest = max_ray_cells(spec, origin);
     const SurvivalModel model(0.9, grid.params().p_min, longest);
     for (const Index3& t : targets) {
-      const TargetPrediction cells = detail::survival_visibility(map, 0.9, origin, t, 1e-6);
+      const TargetPrediction cells = detail::SurvivalVisibilityPredictor{0.9, 1e-6}(map, origin, t);
       const TargetPrediction cubes =
-          detail::survival_visibility(map, 0.9, origin, t, 1e-6, &map.free_space());
+          detail::SurvivalVisibilityPredictor{0.9, 1e-6, &map.free_space()}(map, origin, t);
       ASSERT_EQ(cubes.seen, cells.seen) << t.transpose();
       // The survival reading's own v_M, bit for bit.
-      ASSERT_EQ(cells.seen, detail::survival_ray_gain(snapshot, model, origin, t, 1e-6).seen)
+      ASSERT_EQ(cells.seen, (detail::SurvivalPredictor{model, 1e-6}(snapshot, origin, t).seen))
           << t.transpose();
-      ASSERT_EQ(detail::greedy_gain(map, origin, t, &map.free_space()).seen,
-                detail::greedy_gain(map, origin, t).seen)
+      ASSERT_EQ(detail::UnblockedPredictor{&map.free_space()}(map, origin, t).seen,
+                detail::UnblockedPredictor{}(map, origin, t).seen)
           << t.transpose();
       seen += cells.seen > 0.0;
     }

@@ -173,7 +173,7 @@ RayCount count_ray(const GridSpec& spec, const Classes& class_of, const ClassBlo
   return r;
 }
 
-/// The survival reading's v_M from a count (exact.cpp's survival_ray_gain, step for step): a^n
+/// The survival reading's v_M from a count (SurvivalPredictor's, step for step): a^n
 /// by repeated products, 0 when occluded, never reached, or stopped at c_{M-1} by `epsilon`.
 double survival_seen(const RayCount& r, std::span<const double> powers, double epsilon) {
   if (!r.reached || r.occluded) return 0.0;

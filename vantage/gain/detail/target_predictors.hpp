@@ -50,98 +50,10 @@ inline bool cross_free(const FreeSpace& free, const GridSpec& spec, GridWalk& wa
   return true;
 }
 
-/// Gain and visibility of the target cell on its ray from `origin` under `Model`; 0 when the ray
-/// stops early (visibility below `epsilon`) before it. `Cells` is GainMap or GridCells.
+/// The paper's model (or `Model`, model.hpp) on the target's ray: its gain and visibility, 0 when
+/// the ray stops early (visibility below `epsilon`) before it.
 /// NOTE: the walk written out, not through traverse's visitor: through the visitor the paper's
 /// race took about twice the time (BM_Gain30_Decision/1, 2026-11-26).
-template <typename Model, typename Cells>
-TargetPrediction ray_gain(const Cells& map, const RayTables<Model>& tables,
-                          const Eigen::Vector3d& origin, const Index3& target, double epsilon) {
-  GridWalk walk(map.spec(), origin, target);
-  if (!walk.entered()) return {};
-  double p_prev = map.value(walk.linear()).p;
-  RayOdds state = tables.enter(walk.m(), p_prev);
-  while (!walk.at_end()) {
-    if (state.hidden(epsilon)) return {};  // the early stop: a ray stops once it is hidden
-    walk.advance();
-    const double p = map.value(walk.linear()).p;
-    tables.step(state, walk.m(), p_prev, p);
-    p_prev = p;
-  }
-  // eq. (4); v_M: c_M's own occupancy does not update it
-  return {map.value(walk.linear()).entropy - entropy_bits(state.posterior()), state.visibility()};
-}
-
-/// Gain and visibility of the target under the survival reading (survival.hpp); 0 once the ray
-/// is stopped (visibility below `epsilon`) before it. Walks the cells GridWalk takes, as
-/// count_view_gains does (hierarchy.hpp), so the two agree bit for bit.
-template <typename Cells>
-TargetPrediction survival_ray_gain(const Cells& map, const SurvivalModel& model,
-                                   const Eigen::Vector3d& origin, const Index3& target,
-                                   double epsilon) {
-  const GridSpec& spec = map.spec();
-  GridWalk walk(spec, origin, target);
-  if (!walk.entered()) return {};
-  GainMap::Value cell = map.value(walk.linear());
-  SurvivalModel::State state = model.enter(walk.m(), cell);
-  while (!walk.at_end()) {
-    if (!(state.visibility >= epsilon && state.visibility > 0.0)) return {};
-    walk.advance();
-    const GainMap::Value next = map.value(walk.linear());
-    model.step(state, cell, next);
-    cell = next;
-  }
-  return SurvivalModel::predict(state, cell);
-}
-
-/// The survival reading's v_M alone (TargetPrediction::seen; gain left 0): the walk and the
-/// products of survival_ray_gain without the occupancy filter, so the same v_M bit for bit at a
-/// fraction of the cost, for what keeps visibilities only (view_cells.hpp).
-template <typename Cells>
-TargetPrediction survival_visibility(const Cells& map, double alpha, const Eigen::Vector3d& origin,
-                                     const Index3& target, double epsilon,
-                                     const FreeSpace* free = nullptr) {
-  GridWalk walk(map.spec(), origin, target);
-  if (!walk.entered()) return {};
-  CellState prev = map.value(walk.linear()).state;
-  double visibility = 1.0;
-  while (!walk.at_end()) {
-    if (!(visibility >= epsilon && visibility > 0.0)) return {};
-    if (free != nullptr && prev == CellState::kFree && cross_free(*free, map.spec(), walk)) {
-      prev = map.value(walk.linear()).state;
-      continue;
-    }
-    walk.advance();
-    if (prev == CellState::kOccupied) {
-      visibility = 0.0;
-    } else if (prev == CellState::kUnobserved) {
-      visibility *= alpha;
-    }
-    prev = map.value(walk.linear()).state;
-  }
-  return {0.0, visibility};
-}
-
-/// Whether nothing occludes the target (the simple greedy gain): 1 or 0, in bits and in cells.
-/// Walks the cells GridWalk takes, as count_view_gains does (hierarchy.hpp).
-template <typename Cells>
-TargetPrediction greedy_gain(const Cells& map, const Eigen::Vector3d& origin, const Index3& target,
-                             const FreeSpace* free = nullptr) {
-  const GridSpec& spec = map.spec();
-  GridWalk walk(spec, origin, target);
-  if (walk.entered()) {
-    while (!walk.at_end()) {
-      const CellState state = map.value(walk.linear()).state;
-      if (occludes(state)) return {0.0, 0.0};
-      if (free == nullptr || state != CellState::kFree || !cross_free(*free, spec, walk)) {
-        walk.advance();
-      }
-    }
-  }
-  return {1.0, 1.0};
-}
-
-/// The paper's model (or `Model`, model.hpp) on the target's ray.
 template <typename Model>
 struct PaperPredictor {
   RayTables<Model> tables;
@@ -149,22 +61,49 @@ struct PaperPredictor {
   template <typename Cells>
   TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
                               const Index3& target) const {
-    return ray_gain(map, tables, origin, target, epsilon);
+    GridWalk walk(map.spec(), origin, target);
+    if (!walk.entered()) return {};
+    double p_prev = map.value(walk.linear()).p;
+    RayOdds state = tables.enter(walk.m(), p_prev);
+    while (!walk.at_end()) {
+      if (state.hidden(epsilon)) return {};  // the early stop: a ray stops once it is hidden
+      walk.advance();
+      const double p = map.value(walk.linear()).p;
+      tables.step(state, walk.m(), p_prev, p);
+      p_prev = p;
+    }
+    // eq. (4); v_M: c_M's own occupancy does not update it
+    return {map.value(walk.linear()).entropy - entropy_bits(state.posterior()), state.visibility()};
   }
 };
 
-/// The survival reading on the target's ray.
+/// The survival reading (survival.hpp) on the target's ray: its gain and visibility, 0 once the
+/// ray is stopped (visibility below `epsilon`) before it. Walks the cells count_view_gains walks
+/// (hierarchy.hpp), so the two agree bit for bit.
 struct SurvivalPredictor {
   SurvivalModel model;
   double epsilon;
   template <typename Cells>
   TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
                               const Index3& target) const {
-    return survival_ray_gain(map, model, origin, target, epsilon);
+    GridWalk walk(map.spec(), origin, target);
+    if (!walk.entered()) return {};
+    GainMap::Value cell = map.value(walk.linear());
+    SurvivalModel::State state = model.enter(walk.m(), cell);
+    while (!walk.at_end()) {
+      if (!(state.visibility >= epsilon && state.visibility > 0.0)) return {};
+      walk.advance();
+      const GainMap::Value next = map.value(walk.linear());
+      model.step(state, cell, next);
+      cell = next;
+    }
+    return SurvivalModel::predict(state, cell);
   }
 };
 
-/// The survival reading's visibility alone on the target's ray.
+/// The survival reading's v_M alone (TargetPrediction::seen; gain left 0): SurvivalPredictor's
+/// walk and products without the occupancy filter, so the same v_M bit for bit at a fraction of
+/// the cost, for what keeps visibilities only (view_cells.hpp).
 struct SurvivalVisibilityPredictor {
   double alpha;
   double epsilon;
@@ -172,17 +111,46 @@ struct SurvivalVisibilityPredictor {
   template <typename Cells>
   TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
                               const Index3& target) const {
-    return survival_visibility(map, alpha, origin, target, epsilon, free);
+    GridWalk walk(map.spec(), origin, target);
+    if (!walk.entered()) return {};
+    CellState prev = map.value(walk.linear()).state;
+    double visibility = 1.0;
+    while (!walk.at_end()) {
+      if (!(visibility >= epsilon && visibility > 0.0)) return {};
+      if (free != nullptr && prev == CellState::kFree && cross_free(*free, map.spec(), walk)) {
+        prev = map.value(walk.linear()).state;
+        continue;
+      }
+      walk.advance();
+      if (prev == CellState::kOccupied) {
+        visibility = 0.0;
+      } else if (prev == CellState::kUnobserved) {
+        visibility *= alpha;
+      }
+      prev = map.value(walk.linear()).state;
+    }
+    return {0.0, visibility};
   }
 };
 
-/// Simple greedy: whether the target's ray is unblocked.
+/// Simple greedy: whether nothing occludes the target, 1 or 0, in bits and in cells. Walks the
+/// cells count_view_gains walks (hierarchy.hpp).
 struct UnblockedPredictor {
   const FreeSpace* free = nullptr;  ///< free cubes to cross in one step, if any
   template <typename Cells>
   TargetPrediction operator()(const Cells& map, const Eigen::Vector3d& origin,
                               const Index3& target) const {
-    return greedy_gain(map, origin, target, free);
+    GridWalk walk(map.spec(), origin, target);
+    if (walk.entered()) {
+      while (!walk.at_end()) {
+        const CellState state = map.value(walk.linear()).state;
+        if (occludes(state)) return {0.0, 0.0};
+        if (free == nullptr || state != CellState::kFree || !cross_free(*free, map.spec(), walk)) {
+          walk.advance();
+        }
+      }
+    }
+    return {1.0, 1.0};
   }
 };
 
