@@ -24,26 +24,21 @@ void add_target(const Map& map, std::span<const Frustum> views,
                 std::span<const std::size_t> members, std::span<const CellBox> boxes,
                 const Eigen::Vector3d& origin, const Index3& cell, std::size_t linear,
                 const Predictor& predict, std::vector<ViewCells>& out) {
-  const Eigen::Vector3d center = map.spec().center(cell);
   bool evaluated = false;
   double seen = 0.0;
-  for (std::size_t m = 0; m < members.size(); ++m) {
-    const CellBox& b = boxes[m];
-    if ((cell.array() < b.lo.array()).any() || (cell.array() > b.hi.array()).any() ||
-        !views[members[m]].contains(center)) {
-      continue;
-    }
-    if (!evaluated) {
-      seen = predict(map, origin, cell).seen;
-      evaluated = true;
-    }
-    ViewCells& list = out[members[m]];
-    ++list.targets;
-    if (seen > 0.0) {
-      list.cells.push_back(static_cast<std::uint32_t>(linear));
-      list.seen.push_back(seen);
-    }
-  }
+  detail::for_members_holding(views, members, boxes, cell, map.spec().center(cell),
+                              [&](std::size_t m) {
+                                if (!evaluated) {
+                                  seen = predict(map, origin, cell).seen;
+                                  evaluated = true;
+                                }
+                                ViewCells& list = out[members[m]];
+                                ++list.targets;
+                                if (seen > 0.0) {
+                                  list.cells.push_back(static_cast<std::uint32_t>(linear));
+                                  list.seen.push_back(seen);
+                                }
+                              });
 }
 
 /// The lists of every view, each target's visibility from `predict` (target_predictors.hpp).

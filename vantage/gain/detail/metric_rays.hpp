@@ -11,10 +11,10 @@
 ///   static constexpr bool kFreeInert;  // after one free cell, more free cells change nothing
 ///                                      // (visibility aside, which it ignores)
 ///
-/// Two walks feed it. The reference (`cast_view`) hands the metric every cell of every ray. The
-/// jumping walk (`jump_view`, docs/model.md "The metrics at speed") casts only the rays that meet
-/// the grid and, for a free-inert metric, crosses whole cubes of free cells (FreeSpace) in one
-/// step.
+/// One walk feeds it (`view_rays`), in two ways: the reference hands the metric every cell of
+/// every ray; the jumping walk (docs/model.md "The metrics at speed") casts only the rays that
+/// meet the grid and, for a free-inert metric, crosses whole cubes of free cells (FreeSpace) in
+/// one step.
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
@@ -179,62 +179,22 @@ struct RayImage {
   }
 };
 
-/// Casts one view's rays and feeds them to `metric` cell by cell: the reference walk. Returns the
-/// metric's value and the count of unobserved cells reached.
+/// Casts one view's rays and feeds them to `metric`; returns the metric's value and the count of
+/// unobserved cells reached. With the context's free cubes, the jumping walk: only the rays that
+/// meet the grid, and a free-inert metric's rays cross free cubes in one step (GridWalk::leave_box,
+/// which lands where stepping lands), the reference's values to the last bit (docs/model.md, "The
+/// metrics at speed"). Without, the reference: every ray, cell by cell.
 template <typename Metric>
-ViewGain cast_view(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
+ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
                    Stamp& seen) {
   const GridSpec& spec = ctx.map.spec();
-  const RayImage image(ctx, view);
-  const Eigen::Vector3d& o = image.origin;
-  const float far = std::numeric_limits<float>::infinity();
-  ViewGain result;
-  double rays = 0.0;
-  for (int row = image.first; row < image.rows; row += image.step) {
-    for (int col = image.first; col < image.cols; col += image.step) {
-      rays += 1.0;
-      const Eigen::Vector3d dir = image.direction(row, col);
-      metric.begin_ray();
-      double visibility = 1.0;
-      bool previous_unknown = false, rear_side = false;
-      traverse(spec, o, o + image.max_range * dir,
-               [&](const Index3& cell, std::size_t linear, int) {
-                 const GainMap::Value& v = ctx.map.value(linear);
-                 const bool in_range = (spec.center(cell) - o).squaredNorm() >= image.min_r2;
-                 const RayCell c{linear, v, visibility, ctx.near.empty() ? far : ctx.near[linear],
-                                 in_range};
-                 metric.cell(c, credit);
-                 if (in_range && unknown(c) && seen.take(linear)) result.cells += 1.0;
-                 if (v.state == CellState::kOccupied) {
-                   rear_side = previous_unknown;
-                   return false;  // the ray ends on its first occupied cell
-                 }
-                 previous_unknown = unknown(c);
-                 visibility *= 1.0 - v.p;  // eq. M1: P_v(x_{n+1}) = P_v(x_n) (1 - P_o(x_n))
-                 return true;
-               });
-      metric.end_ray(rear_side, credit);
-    }
-  }
-  result.gain = metric.value(rays);
-  result.targets = static_cast<std::size_t>(result.cells);
-  return result;
-}
-
-/// Casts one view's rays as `cast_view` does, but only those that meet the grid, and crosses free
-/// cubes in one step for a free-inert metric (GridWalk::leave_box): the jumping walk. The same
-/// values as the reference to the last bit (docs/model.md, "The metrics at speed").
-template <typename Metric>
-ViewGain jump_view(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
-                   Stamp& seen) {
-  const GridSpec& spec = ctx.map.spec();
-  const FreeSpace& free = *ctx.free;
+  const FreeSpace* free = ctx.free;
   const RayImage image(ctx, view);
   const Eigen::Vector3d& o = image.origin;
   const float far = std::numeric_limits<float>::infinity();
   const std::span<const GainMap::Value> values = ctx.map.values();
-  int row_lo, row_hi, col_lo, col_hi;
-  image.rays_on_grid(spec, row_lo, row_hi, col_lo, col_hi);
+  int row_lo = image.first, row_hi = image.rows, col_lo = image.first, col_hi = image.cols;
+  if (free != nullptr) image.rays_on_grid(spec, row_lo, row_hi, col_lo, col_hi);
   return with_codes(ctx.map, [&](const auto* codes) {
     ViewGain result;
     for (int row = row_lo; row < row_hi; row += image.step) {
@@ -269,8 +229,8 @@ ViewGain jump_view(const MetricContext& ctx, const Frustum& view, Metric& metric
           previous_unknown = unobserved;
           if (previous_unknown && in_range && seen.take(linear)) result.cells += 1.0;
           visibility *= 1.0 - v.p;  // eq. M1
-          if (free_inert<Metric>() && v.state == CellState::kFree) {
-            if (const int e = free.extent_at(walk.octant(), walk.cell()); e > 0) {
+          if (free_inert<Metric>() && free != nullptr && v.state == CellState::kFree) {
+            if (const int e = free->extent_at(walk.octant(), walk.cell()); e > 0) {
               Index3 lo, hi;
               FreeSpace::cube(walk.cell(), walk.octant(), e, spec.dims, lo, hi);
               // The ray ends in the cube: the free cells left change nothing.
@@ -313,8 +273,7 @@ std::vector<ViewGain> all_views(const MetricContext& ctx, std::span<const Frustu
       credit.clear();
       seen.clear();
       Metric metric;
-      gains[v] = ctx.free ? jump_view(ctx, views[v], metric, credit, seen)
-                          : cast_view(ctx, views[v], metric, credit, seen);
+      gains[v] = view_rays(ctx, views[v], metric, credit, seen);
     });
   });
   return gains;

@@ -36,6 +36,21 @@ inline CellBox boxes_under(const GridSpec& spec, std::span<const Frustum> views,
   return box;
 }
 
+/// Calls `take(m)` for each member m (in order) whose frustum holds `cell`, whose centre is
+/// `center`: its cell box first, then the frustum.
+template <typename Take>
+void for_members_holding(std::span<const Frustum> views, std::span<const std::size_t> members,
+                         std::span<const CellBox> boxes, const Index3& cell,
+                         const Eigen::Vector3d& center, Take&& take) {
+  for (std::size_t m = 0; m < members.size(); ++m) {
+    const CellBox& b = boxes[m];
+    if ((cell.array() >= b.lo.array()).all() && (cell.array() <= b.hi.array()).all() &&
+        views[members[m]].contains(center)) {
+      take(m);
+    }
+  }
+}
+
 /// Sums a per-target gain over the unobserved cells inside each frustum, for views that share
 /// one origin (`members`, indices into `views`): each unobserved cell in any member's frustum is
 /// evaluated once and added to every member whose frustum holds it. The frustum and the cell's
@@ -64,15 +79,9 @@ void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
       for (cell.x() = box.lo.x(); cell.x() <= box.hi.x(); ++cell.x()) {
         const std::size_t linear = spec.linear(cell);
         if (map.value(linear).state != CellState::kUnobserved) continue;
-        const Eigen::Vector3d center = spec.center(cell);
         bool evaluated = false;
         TargetPrediction prediction;
-        for (std::size_t m = 0; m < k; ++m) {
-          const CellBox& b = boxes[m];
-          if ((cell.array() < b.lo.array()).any() || (cell.array() > b.hi.array()).any() ||
-              !views[members[m]].contains(center)) {
-            continue;
-          }
+        for_members_holding(views, members, boxes, cell, spec.center(cell), [&](std::size_t m) {
           if (!evaluated) {
             prediction = cell_gain(cell);
             evaluated = true;
@@ -80,7 +89,7 @@ void sum_over_shared_targets(const GainMap& map, std::span<const Frustum> views,
           sums[m].gain += prediction.gain;
           sums[m].cells += prediction.seen;
           ++sums[m].targets;
-        }
+        });
       }
     }
   });
