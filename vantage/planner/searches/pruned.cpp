@@ -19,14 +19,6 @@
 namespace vantage {
 namespace {
 
-/// What a pruned search scores by.
-enum class PrunedScore {
-  kSurvivalCells,  ///< the survival reading's expected cells seen [cells]
-  kGreedy,         ///< greedy's count [cells], times the candidate's factor (Latombe)
-  kBits,           ///< eq. (4)'s gain under config.method (probabilistic or survival) [bits]
-  kModelCells,     ///< the paper's model's expected cells seen, sum of v_M [cells]
-};
-
 /// What the pruned search found.
 struct Pruning {
   /// Per candidate: its exact prediction where `estimated` is false, else its upper bound in
@@ -38,24 +30,23 @@ struct Pruning {
   std::size_t evaluated = 0;    ///< candidates evaluated exactly
 };
 
+/// Whether the score `kind` bounds is in bits (ViewGain::gain), not cells.
+bool in_bits(BoundKind kind) {
+  return kind == BoundKind::kSurvivalBits || kind == BoundKind::kEntropy;
+}
+
 /// Chooses among the candidates whose views are `frusta[first[c] .. first[c + 1])`; candidate c's
-/// score is the sum over its views of the view's value times `factor[c]`, in view order, exactly
-/// as the exhaustive search sums it.
+/// score, what `kind` bounds, is the sum over its views of the view's value times `factor[c]`, in
+/// view order, exactly as the exhaustive search sums it.
 Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> frusta,
                          std::span<const std::size_t> first, std::span<const double> factor,
-                         const GainConfig& config, PrunedScore score) {
+                         const GainConfig& config, BoundKind kind) {
   config.validate();
   const std::size_t n = first.size() - 1;
   const auto factor_of = [&](std::size_t c) { return factor.empty() ? 1.0 : factor[c]; };
   Pruning out;
   const GainMap map(grid, config.num_threads);
   const ClassBlocks blocks = summarize_classes(map, frusta, config.num_threads);
-  const BoundKind kind = score == PrunedScore::kSurvivalCells ? BoundKind::kSurvivalCells
-                         : score == PrunedScore::kGreedy      ? BoundKind::kCount
-                         : score == PrunedScore::kModelCells  ? BoundKind::kAllCells
-                         : method_traits(config.method).ray == TargetRay::kSurvival
-                             ? BoundKind::kSurvivalBits
-                             : BoundKind::kEntropy;
   const std::vector<double> view_bounds =
       view_upper_bounds(blocks, map.spec(), map, frusta, kind, config.alpha);
   out.gains.assign(n, ViewGain{});
@@ -68,8 +59,8 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
       bound += view_bounds[v] * factor_of(c);
     }
     out.scores[c] = bound;
-    (score == PrunedScore::kBits ? out.gains[c].gain : out.gains[c].cells) = raw;
-    if (score == PrunedScore::kGreedy) out.gains[c].gain = raw;
+    (in_bits(kind) ? out.gains[c].gain : out.gains[c].cells) = raw;
+    if (kind == BoundKind::kCount) out.gains[c].gain = raw;
   }
 
   // Best first: the highest bound, ties to the lower index, as choose_best breaks them.
@@ -107,19 +98,12 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
       views.insert(views.end(), frusta.begin() + static_cast<std::ptrdiff_t>(first[b]),
                    frusta.begin() + static_cast<std::ptrdiff_t>(first[b + 1]));
     }
-    std::vector<ViewGain> gains;
-    switch (score) {
-      case PrunedScore::kSurvivalCells:
-        gains = count_view_gains(map, &blocks, views, CountRule::kSurvivalCells, config);
-        break;
-      case PrunedScore::kGreedy:
-        gains = count_view_gains(map, &blocks, views, CountRule::kGreedy, config);
-        break;
-      case PrunedScore::kBits:
-      case PrunedScore::kModelCells:
-        gains = exact_view_gains(map, views, config);
-        break;
-    }
+    const std::vector<ViewGain> gains =
+        kind == BoundKind::kSurvivalCells
+            ? count_view_gains(map, &blocks, views, CountRule::kSurvivalCells, config)
+        : kind == BoundKind::kCount
+            ? count_view_gains(map, &blocks, views, CountRule::kGreedy, config)
+            : exact_view_gains(map, views, config);
     std::size_t v = 0;
     for (const std::size_t b : batch) {
       ViewGain sum;
@@ -127,7 +111,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
       for (std::size_t k = first[b]; k < first[b + 1]; ++k, ++v) {
         const ViewGain& g = gains[v];
         sum += g;
-        value += (score == PrunedScore::kBits ? g.gain : g.cells) * factor_of(b);
+        value += (in_bits(kind) ? g.gain : g.cells) * factor_of(b);
       }
       out.gains[b] = sum;
       out.estimated[b] = false;
@@ -149,18 +133,17 @@ bool serves(const PlannerConfig& config) {
 }
 
 Plan run(const SearchInput& in) {
-  const bool counts = method_traits(in.gain.method).counts;
   // NOTE: what the method ranks by decides the score; the paper's model's cells have no
   // reachability to prune by (its visibility never reaches 0).
-  PrunedScore score = PrunedScore::kBits;
-  if (counts) {
-    score = PrunedScore::kGreedy;
+  const bool survival = uses_survival_reading(in.config.method);
+  BoundKind kind = survival ? BoundKind::kSurvivalBits : BoundKind::kEntropy;
+  if (method_traits(in.gain.method).counts) {
+    kind = BoundKind::kCount;
   } else if (in.config.objective == GainObjective::kCells) {
-    score = uses_survival_reading(in.config.method) ? PrunedScore::kSurvivalCells
-                                                    : PrunedScore::kModelCells;
+    kind = survival ? BoundKind::kSurvivalCells : BoundKind::kAllCells;
   }
   Pruning pruning = prune_candidates(in.grid, in.views.frusta, in.views.first, in.travel_factors(),
-                                     in.gain, score);
+                                     in.gain, kind);
   Plan plan;
   plan.search = DecisionSearch::kPruned;
   plan.best = pruning.best;
@@ -168,7 +151,7 @@ Plan run(const SearchInput& in) {
   plan.estimated = std::move(pruning.estimated);
   plan.scores = std::move(pruning.scores);
   plan.evaluated = pruning.evaluated;
-  plan.bits_of_chosen_only = score == PrunedScore::kSurvivalCells;
+  plan.bits_of_chosen_only = kind == BoundKind::kSurvivalCells;
   plan.seconds = in.seconds();
   report_choice(in, plan);
   return plan;
