@@ -124,13 +124,16 @@ RayCount count_ray(const GridSpec& spec, const Classes& class_of, const ClassBlo
   const Index3 target_block(target.x() >> kShift, target.y() >> kShift, target.z() >> kShift);
   const Index3 target_coarse(target.x() >> kCoarseShift, target.y() >> kCoarseShift,
                              target.z() >> kCoarseShift);
-  // The crossing of a box of one class (or, for greedy, none occupied): how its cells count.
-  const auto cross = [&](std::uint8_t cls, const Index3& lo, const Index3& size) {
-    const Index3 hi = (lo.array() + size.array() - 1).min(spec.dims.array() - 1);
-    const int cells = walk.leave_box(lo, hi);
-    const bool unobserved = cls == ClassBlocks::kHasUnobserved;
-    r.unobserved += unobserved ? cells : 0;
-    r.last_unobserved = unobserved;
+  // Crosses box `box` (of `size` cells a side, its cells' classes `cls`) in one step when it may
+  // be crossed and does not hold the target, counting its cells; an occupied one ends the ray.
+  const auto cross = [&](std::uint8_t cls, const Index3& box, const Index3& target_box, int size) {
+    if (box == target_box || !crossable(cls, rule)) return false;
+    if (cls == ClassBlocks::kHasOccupied) return r.occluded = true;
+    const Index3 lo = box * size;
+    const int cells = walk.leave_box(lo, (lo.array() + size - 1).min(spec.dims.array() - 1));
+    r.last_unobserved = cls == ClassBlocks::kHasUnobserved;
+    r.unobserved += r.last_unobserved ? cells : 0;
+    return true;
   };
   Index3 last_block(-1, -1, -1);  // the block whose cells are being walked one by one
   while (!walk.at_end()) {
@@ -139,22 +142,10 @@ RayCount count_ray(const GridSpec& spec, const Classes& class_of, const ClassBlo
       const Index3 b(c.x() >> kShift, c.y() >> kShift, c.z() >> kShift);
       if (b != last_block) {
         const Index3 cb(c.x() >> kCoarseShift, c.y() >> kCoarseShift, c.z() >> kCoarseShift);
-        const std::uint8_t coarse = blocks->coarse_classes[blocks->coarse_at(cb)];
-        if (cb != target_coarse && crossable(coarse, rule)) {
-          if (coarse == ClassBlocks::kHasOccupied) {
-            r.occluded = true;
-            return r;
-          }
-          cross(coarse, cb * ClassBlocks::kCoarse, Index3::Constant(ClassBlocks::kCoarse));
-          continue;
-        }
-        const std::uint8_t cls = blocks->classes[blocks->at(b)];
-        if (b != target_block && crossable(cls, rule)) {
-          if (cls == ClassBlocks::kHasOccupied) {
-            r.occluded = true;
-            return r;
-          }
-          cross(cls, b * kBlock, Index3::Constant(kBlock));
+        if (cross(blocks->coarse_classes[blocks->coarse_at(cb)], cb, target_coarse,
+                  ClassBlocks::kCoarse) ||
+            cross(blocks->classes[blocks->at(b)], b, target_block, kBlock)) {
+          if (r.occluded) return r;
           continue;
         }
         last_block = b;
