@@ -13,8 +13,6 @@
 #include "vantage/gain/detail/target_sums.hpp"
 #include "vantage/gain/metrics.hpp"
 #include "vantage/gain/ray_model.hpp"
-#include "vantage/gain/survival.hpp"
-#include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/hash.hpp"
 #include "vantage/util/parallel.hpp"

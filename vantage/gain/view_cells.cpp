@@ -10,7 +10,6 @@
 #include "vantage/gain/detail/target_sums.hpp"
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/methods.hpp"
-#include "vantage/map/line_of_sight.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "vantage/util/hash.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -36,11 +37,7 @@ std::size_t choose_random(std::size_t n, std::uint64_t seed) {
   if (n == 0) throw std::invalid_argument("no candidate views to choose from");
   // NOTE: SplitMix64 rather than a std distribution, whose output differs between standard
   // libraries; the modulo bias is below 1e-17 for any realistic n.
-  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL;
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  z ^= z >> 31;
-  return static_cast<std::size_t>(z % n);
+  return static_cast<std::size_t>(mix64(seed) % n);
 }
 
 }  // namespace vantage

@@ -159,14 +159,10 @@ struct UnblockedPredictor {
 /// target models.
 template <typename Model = PaperModel, typename F>
 decltype(auto) with_predictor(const GainConfig& config, double p_min, int longest, F&& f) {
-  switch (method_traits(config.method).ray) {
-    case TargetRay::kUnblocked:
-      return f(UnblockedPredictor{});
-    case TargetRay::kSurvival:
-      return f(SurvivalPredictor{SurvivalModel(config.alpha, p_min, longest), config.epsilon});
-    case TargetRay::kPaper:
-    case TargetRay::kNone:
-      break;
+  const TargetRay ray = method_traits(config.method).ray;
+  if (ray == TargetRay::kUnblocked) return f(UnblockedPredictor{});
+  if (ray == TargetRay::kSurvival) {
+    return f(SurvivalPredictor{SurvivalModel(config.alpha, p_min, longest), config.epsilon});
   }
   return f(PaperPredictor<Model>{RayTables<Model>(config.alpha, p_min, longest), config.epsilon});
 }

@@ -24,16 +24,11 @@ namespace {
 /// What the swept rays estimate for the method, if they serve it: the survival reading's expected
 /// cells seen (when it ranks by cells) or greedy's count (greedy, Latombe).
 std::optional<CountRule> swept_rule(const PlannerConfig& config) {
+  const TargetRay ray = method_traits(config.method.gain).ray;
   if (!ranks_by_gain(config.method)) return std::nullopt;
-  switch (method_traits(config.method.gain).ray) {
-    case TargetRay::kUnblocked:
-      return CountRule::kGreedy;
-    case TargetRay::kSurvival:
-      if (config.objective == GainObjective::kCells) return CountRule::kSurvivalCells;
-      break;
-    case TargetRay::kPaper:
-    case TargetRay::kNone:
-      break;
+  if (ray == TargetRay::kUnblocked) return CountRule::kGreedy;
+  if (ray == TargetRay::kSurvival && config.objective == GainObjective::kCells) {
+    return CountRule::kSurvivalCells;
   }
   return std::nullopt;
 }
