@@ -77,6 +77,13 @@ vantage_cli_usage(explore_sequence_shortlist_memory "more than --max-memory 1 Gi
 vantage_cli_usage(bench_sequence_shortlist_memory "more than --max-memory 1 GiB: decide among fewer views (or a smaller shortlist"
                   bench tabletop --scenes tabletop-1 --methods sequence --candidates hemisphere --view-spacing 0.003
                   --shortlist 100000 --max-memory 1G --trials 1 --scans 2 --out ${hard}/out_bench_seq)
+# The yardstick's scans of 13 164 hemisphere views, refused before the world is built (they ran
+# for minutes before the first decision's check).
+add_test(NAME cli.explore_yardstick_budget
+         COMMAND ${expect} --code 2 --absent ${hard}/out_explore_truth
+                 "the surface yardstick's noise-free scans of 13164 candidate views"
+                 $<TARGET_FILE:vantage> explore --scene tabletop-4 --candidates hemisphere
+                 --view-spacing 0.003 --scans 1 --no-plots --quiet --out ${hard}/out_explore_truth)
 add_test(NAME cli.explore_work_budget
          COMMAND ${expect} --code 2 --absent ${hard}/out_explore_work "the pruned search over 29 views"
                  $<TARGET_FILE:vantage> explore --method probabilistic --max-work 1 --scans 2 --no-plots --quiet

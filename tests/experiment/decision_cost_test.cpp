@@ -174,5 +174,33 @@ TEST(DecisionCost, SecondsAreStepsAtTheMeasuredRate) {
   EXPECT_EQ(describe_seconds(36000.0), "10 h");
 }
 
+// The yardstick's set-up: one scan of every candidate and start, each of the sensor's rays at the
+// measured rate; refused past the budget before any is cast, with the estimate and the option.
+TEST(DecisionCost, TheYardsticksScansAreWeighedBeforeTheyAreCast) {
+  sim::Scene scene;
+  scene.sensor.type = sim::SensorType::kRgbd;
+  scene.sensor.width = 640;
+  scene.sensor.height = 480;
+  scene.start_poses.assign(10, Eigen::Isometry3d::Identity());
+  EXPECT_EQ(simulated_rays_per_scan(scene.sensor), 307200.0);
+  WorkBudget budget;
+  budget.max_seconds = 60.0;
+  // 1 000 views and 10 starts: 1 010 x 307 200 rays at 100 ns, 31 s.
+  EXPECT_NO_THROW(check_surface_truth(scene, 1000, budget));
+  // 5 000 views: 154 s.
+  try {
+    check_surface_truth(scene, 5000, budget);
+    ADD_FAILURE() << "5 000 views' scans were allowed";
+  } catch (const WorkBudgetError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("5000 candidate views"), std::string::npos) << what;
+    EXPECT_NE(what.find("154 s"), std::string::npos) << what;
+    EXPECT_NE(what.find("--max-work"), std::string::npos) << what;
+    EXPECT_FALSE(e.memory);
+  }
+  budget.max_seconds = 200.0;
+  EXPECT_NO_THROW(check_surface_truth(scene, 5000, budget));
+}
+
 }  // namespace
 }  // namespace vantage

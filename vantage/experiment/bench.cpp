@@ -15,6 +15,7 @@
 #include <string_view>
 #include <thread>
 
+#include "vantage/experiment/decision_cost.hpp"
 #include "vantage/experiment/results.hpp"
 #include "vantage/experiment/yardstick.hpp"
 #include "vantage/io/atomic_file.hpp"
@@ -245,12 +246,13 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
       }
       continue;
     }
+    const std::vector<Eigen::Isometry3d> candidates = run_candidates(scene, config.exploration);
+    check_surface_truth(scene, candidates.size(), config.exploration.budget);
     const sim::World world(scene, sim::WorldConfig{config.exploration.planner.gain.num_threads});
     const SurfaceTruth& truth =
         truths
-            .emplace(spec.scene,
-                     compute_surface_truth(world, run_candidates(scene, config.exploration),
-                                           config.exploration.planner.gain.num_threads))
+            .emplace(spec.scene, compute_surface_truth(world, candidates,
+                                                       config.exploration.planner.gain.num_threads))
             .first->second;
     const fs::path file = dir / kYardstickFolder / (spec.scene + ".json");
     if (!fs::exists(file)) {

@@ -250,4 +250,27 @@ void check_decision_on(const OccupancyGrid& grid, std::span<const Candidate> can
                  mapping_grid_bytes(grid.spec(), config.gain.num_threads));
 }
 
+double simulated_rays_per_scan(const sim::SensorConfig& sensor) {
+  if (sensor.type == sim::SensorType::kRgbd) {
+    return static_cast<double>(sensor.width) * static_cast<double>(sensor.height);
+  }
+  return std::ceil(sensor.fov.h_fov / sensor.angular_resolution) *
+         std::ceil(sensor.fov.v_fov / sensor.tilt_resolution);
+}
+
+void check_surface_truth(const sim::Scene& scene, std::size_t candidates,
+                         const WorkBudget& budget) {
+  const double scans = static_cast<double>(candidates + scene.start_poses.size());
+  const double rays = scans * simulated_rays_per_scan(scene.sensor);
+  const double seconds = rays * kNanosecondsPerSimulatedRay * 1e-9;
+  if (seconds <= budget.max_seconds) return;
+  throw WorkBudgetError(
+      cat("the surface yardstick's noise-free scans of ", candidates, " candidate views and ",
+          scene.start_poses.size(), " starts (", significant(rays), " simulated rays at ",
+          kNanosecondsPerSimulatedRay, " ns) are estimated at ", describe_seconds(seconds),
+          " of work, more than ", budget.work_option, " ", describe_seconds(budget.max_seconds),
+          " allows: raise it, or explore among fewer views (a wider --view-spacing)"),
+      /*past_memory=*/false);
+}
+
 }  // namespace vantage

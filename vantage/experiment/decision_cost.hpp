@@ -75,6 +75,20 @@ double unobserved_share(const OccupancyGrid& grid);
 std::optional<DecisionCost> estimate_run_decision(const sim::Scene& scene,
                                                   const ExplorationConfig& config);
 
+/// Wall time of one simulated ray of the surface yardstick's set-up (compute_surface_truth:
+/// Embree's hit, and the scan's points to the surface cells they cover) on this project's 2-core
+/// test machine [ns]; see check_surface_truth.
+inline constexpr double kNanosecondsPerSimulatedRay = 100.0;
+
+/// Rays one simulated scan of `sensor` casts: a depth camera's pixels, a line scanner's beams.
+double simulated_rays_per_scan(const sim::SensorConfig& sensor);
+
+/// Throws WorkBudgetError, one line naming the estimate and --max-work, when a table-top run's
+/// surface yardstick (one noise-free scan of each of `candidates` views and of the scene's starts,
+/// compute_surface_truth) is estimated past `budget`'s time: the set-up before a run's first
+/// decision, which that decision's check comes too late for.
+void check_surface_truth(const sim::Scene& scene, std::size_t candidates, const WorkBudget& budget);
+
 /// The grid's bytes as a run that maps into it and plans holds them (mapping_bytes_per_cell).
 double mapping_grid_bytes(const GridSpec& spec, int threads);
 

@@ -63,6 +63,7 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
   result_.observable_cells = truth_.observable.size();
   if (!office_) {
     if (surface_truth == nullptr) {
+      check_surface_truth(scene, result_.candidates.size(), config.budget);
       own_surface_ =
           compute_surface_truth(world_, result_.candidates, config.planner.gain.num_threads);
       surface_truth = &*own_surface_;

@@ -130,6 +130,8 @@ void run(const ExploreOptions& o) {
   config.budget = work_budget(o.max_work, o.max_memory);
   if (const auto cost = estimate_run_decision(scene, config)) {
     check_decision_budget(*cost, config.budget, scene.grid.num_cells(), o.planning.threads);
+    // NOTE: a table top's run scans every candidate for the yardstick before its first decision.
+    check_surface_truth(scene, run_candidates(scene, config).size(), config.budget);
   }
   if (!o.quiet) {
     fmt::print(
