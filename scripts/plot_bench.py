@@ -324,7 +324,8 @@ def summary(out, scenes, g, paired=()):
             scans = sorted(by_scan)
             means = {k: mean_std([float(r["unobserved"]) for r in by_scan[k]])[0] for k in scans}
             cells = [f"{means[k]:.0f}" if k in means else "-" for k in marks]
-            ratio = f"{aucs[key] / greedy_auc[0]:.3f}" if greedy_auc else "-"
+            # NOTE: a run of one scan has no area under its curve (0): no ratio to greedy.
+            ratio = f"{aucs[key] / greedy_auc[0]:.3f}" if greedy_auc and greedy_auc[0] else "-"
             coverage = mean_std([float(r["coverage"]) for r in by_scan[scans[-1]]])[0]
             errs = prediction_errors(by_scan)
             own = [e for k in errs for e in errs[k][0]]
