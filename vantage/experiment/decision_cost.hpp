@@ -75,11 +75,6 @@ double unobserved_share(const OccupancyGrid& grid);
 std::optional<DecisionCost> estimate_run_decision(const sim::Scene& scene,
                                                   const ExplorationConfig& config);
 
-/// Wall time of one simulated ray of the surface yardstick's set-up (compute_surface_truth:
-/// Embree's hit, and the scan's points to the surface cells they cover) on this project's 2-core
-/// test machine [ns]; see check_surface_truth.
-inline constexpr double kNanosecondsPerSimulatedRay = 100.0;
-
 /// Rays one simulated scan of `sensor` casts: a depth camera's pixels, a line scanner's beams.
 double simulated_rays_per_scan(const sim::SensorConfig& sensor);
 

@@ -14,6 +14,7 @@
 
 #include "vantage/map/block_census.hpp"
 #include "vantage/map/grid_spec.hpp"
+#include "vantage/map/traversal.hpp"
 
 namespace vantage {
 
@@ -55,6 +56,21 @@ struct FreeSpace {
         hi[a] = std::min(cell_dims[a] - 1, ((b + 1) << kShift) - 1);
       }
     }
+  }
+
+  /// The jump across free space: leaves the free cube ahead of the walk's cell in one step
+  /// (GridWalk::leave_box), into the first cell past it, which may lie outside the grid. False,
+  /// and no step, when the cell's block is in no cube or the cube holds the walk's end.
+  bool cross(GridWalk& walk, const GridSpec& spec) const {
+    const int e = extent_at(walk.octant(), walk.cell());
+    if (e == 0) return false;
+    Index3 lo, hi;
+    cube(walk.cell(), walk.octant(), e, spec.dims, lo, hi);
+    if ((walk.end().array() >= lo.array()).all() && (walk.end().array() <= hi.array()).all()) {
+      return false;
+    }
+    walk.leave_box(lo, hi);
+    return true;
   }
 };
 

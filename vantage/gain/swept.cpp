@@ -27,23 +27,14 @@ double ray_credit(const ClassMap& map, const FreeSpace& free, const Eigen::Vecto
   const Eigen::Vector3d to = o + r_max * d;
   GridWalk walk(spec, o, to);
   if (!walk.entered()) return 0.0;
-  const Index3 end = spec.lattice_index(to);
   const double lo_t = r_min / r_max;
   double v = 1.0, credit = 0.0;
   for (;;) {
     const CellState state = map.state(walk.linear());
     if (state == CellState::kOccupied) break;
-    if (state == CellState::kFree && !free.empty() && !walk.at_end()) {
-      if (const int e = free.extent_at(walk.octant(), walk.cell()); e > 0) {
-        // Out of the free cube in one step, unless the segment's end lies in it.
-        Index3 lo, hi;
-        FreeSpace::cube(walk.cell(), walk.octant(), e, spec.dims, lo, hi);
-        if ((end.array() < lo.array()).any() || (end.array() > hi.array()).any()) {
-          walk.leave_box(lo, hi);
-          if (!spec.contains(walk.cell())) break;
-          continue;
-        }
-      }
+    if (state == CellState::kFree && !free.empty() && free.cross(walk, spec)) {
+      if (!spec.contains(walk.cell())) break;
+      continue;
     }
     const double t_leave = std::min(walk.t_exit(), 1.0);
     if (state == CellState::kUnobserved) {
@@ -52,7 +43,7 @@ double ray_credit(const ClassMap& map, const FreeSpace& free, const Eigen::Vecto
       v *= alpha;
       if (v < epsilon) break;
     }
-    if (walk.at_end() || t_leave >= 1.0) break;
+    if (walk.at_end()) break;
     walk.advance();
     if (!spec.contains(walk.cell())) break;
   }

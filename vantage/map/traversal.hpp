@@ -70,6 +70,7 @@ class GridWalk {
     const Index3 last = spec.lattice_index(to);
     const Eigen::Vector3d dir = to - from;
     skipped_ = lattice_cells_between(first, last);
+    end_ = last;
     end_linear_ = spec.contains(last) ? static_cast<std::ptrdiff_t>(spec.linear(last)) : -1;
     double t_enter = 0.0, t_exit = 1.0;
     if (!clip_to_grid(spec, from, dir, t_enter, t_exit) || t_enter > t_exit) return;
@@ -128,6 +129,8 @@ class GridWalk {
   std::size_t linear() const { return static_cast<std::size_t>(linear_); }
   /// Its position along the segment from the cell of `from`: c_m of docs/model.md.
   int m() const { return m_; }
+  /// The cell of `to`, where the walk ends (on the lattice extended past the grid).
+  const Index3& end() const { return end_; }
   /// In the cell of `to` (never, when that lies outside the grid).
   /// NOTE: by linear index: the walk stays in the grid, where it names the cell.
   bool at_end() const { return linear_ == end_linear_; }
@@ -234,6 +237,7 @@ class GridWalk {
   double next_[3] = {0.0, 0.0, 0.0};      ///< refresh(): the next boundary per axis
   std::ptrdiff_t stride_[3] = {0, 0, 0};  ///< linear step per axis, signed
   std::ptrdiff_t linear_ = 0;
+  Index3 end_ = Index3::Zero();
   std::ptrdiff_t end_linear_ = -1;
   double t_ = 0.0;
   int m_ = 0;
@@ -290,7 +294,6 @@ TraversalResult traverse(const GridSpec& spec, const Eigen::Vector3d& from,
       result.reached_end = true;
       return result;
     }
-    if (walk.t_exit() == std::numeric_limits<double>::infinity()) return result;
     walk.advance();
     if (result.ends_outside && !spec.contains(walk.cell())) return result;  // left the grid
   }

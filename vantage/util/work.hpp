@@ -20,6 +20,11 @@ namespace vantage {
 /// the unobserved grid); 10 holds a margin of 50 % over the first, of 3 over the second.
 inline constexpr double kNanosecondsPerStep = 10.0;
 
+/// Wall time of one simulated ray of the surface yardstick's set-up (compute_surface_truth:
+/// Embree's hit, and the scan's points to the surface cells they cover) on the same machine [ns]:
+/// at most 79 ns measured (docs/robustness.md, "The yardstick's set-up").
+inline constexpr double kNanosecondsPerSimulatedRay = 100.0;
+
 /// The default of --max-work and of Python's set_budget(max_work=) [s of estimated work].
 inline constexpr double kDefaultMaxWorkSeconds = 60.0;
 

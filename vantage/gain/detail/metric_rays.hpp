@@ -207,7 +207,6 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
           metric.end_ray(false, credit);
           continue;
         }
-        const Index3 end = spec.lattice_index(to);
         double visibility = 1.0;
         bool previous_unknown = false, rear_side = false;
         for (;;) {
@@ -229,18 +228,12 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
           previous_unknown = unobserved;
           if (previous_unknown && in_range && seen.take(linear)) result.cells += 1.0;
           visibility *= 1.0 - v.p;  // eq. M1
-          if (free_inert<Metric>() && free != nullptr && v.state == CellState::kFree) {
-            if (const int e = free->extent_at(walk.octant(), walk.cell()); e > 0) {
-              Index3 lo, hi;
-              FreeSpace::cube(walk.cell(), walk.octant(), e, spec.dims, lo, hi);
-              // The ray ends in the cube: the free cells left change nothing.
-              if ((end.array() >= lo.array()).all() && (end.array() <= hi.array()).all()) break;
-              walk.leave_box(lo, hi);
-              if (!spec.contains(walk.cell())) break;  // left the grid
-              continue;
-            }
+          if (free_inert<Metric>() && free != nullptr && v.state == CellState::kFree &&
+              free->cross(walk, spec)) {
+            if (!spec.contains(walk.cell())) break;  // left the grid
+            continue;
           }
-          if (walk.at_end() || walk.t_exit() == std::numeric_limits<double>::infinity()) break;
+          if (walk.at_end()) break;
           walk.advance();
           if (walk.ends_outside() && !spec.contains(walk.cell())) break;  // left the grid
         }

@@ -38,18 +38,6 @@ struct GridCells {
   }
 };
 
-/// Leaves the free cube around the walk's cell in one step (the cells it crosses change nothing
-/// on the rays of the survival reading and greedy); false, and no step, when the cell's block is
-/// not in one.
-inline bool cross_free(const FreeSpace& free, const GridSpec& spec, GridWalk& walk) {
-  const int e = free.extent_at(walk.octant(), walk.cell());
-  if (e == 0) return false;
-  Index3 lo, hi;
-  FreeSpace::cube(walk.cell(), walk.octant(), e, spec.dims, lo, hi);
-  walk.leave_box(lo, hi);
-  return true;
-}
-
 /// The paper's model (or `Model`, model.hpp) on the target's ray: its gain and visibility, 0 when
 /// the ray stops early (visibility below `epsilon`) before it.
 /// NOTE: the walk written out, not through traverse's visitor: through the visitor the paper's
@@ -117,7 +105,7 @@ struct SurvivalVisibilityPredictor {
     double visibility = 1.0;
     while (!walk.at_end()) {
       if (!(visibility >= epsilon && visibility > 0.0)) return {};
-      if (free != nullptr && prev == CellState::kFree && cross_free(*free, map.spec(), walk)) {
+      if (free != nullptr && prev == CellState::kFree && free->cross(walk, map.spec())) {
         prev = map.value(walk.linear()).state;
         continue;
       }
@@ -145,7 +133,7 @@ struct UnblockedPredictor {
       while (!walk.at_end()) {
         const CellState state = map.value(walk.linear()).state;
         if (occludes(state)) return {0.0, 0.0};
-        if (free == nullptr || state != CellState::kFree || !cross_free(*free, map.spec(), walk)) {
+        if (free == nullptr || state != CellState::kFree || !free->cross(walk, map.spec())) {
           walk.advance();
         }
       }
