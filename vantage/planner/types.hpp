@@ -147,8 +147,10 @@ struct Plan {
   /// The search that decided (for a sequence: kExhaustive, its exact evaluation).
   DecisionSearch search = DecisionSearch::kExhaustive;
   std::vector<ViewGain> gains;  ///< each candidate's predicted gain under the method's model
-  /// Per candidate: true where `gains` and `scores` are the search's estimate (swept) or upper
-  /// bound (pruned), not a full evaluation; empty when every candidate was evaluated in full.
+  /// Per candidate: true where `gains` and `scores` are the search's estimate (swept), upper
+  /// bound (pruned) or, for the rankings that do not rank by a gain (random, Yamauchi's nearest),
+  /// 0 for a candidate they could not choose; not a full evaluation. Empty when every candidate
+  /// was evaluated in full.
   std::vector<bool> estimated;
   std::vector<double> greedy_gains;  ///< each candidate's greedy gain (when requested or used)
   std::vector<double> scores;        ///< what was maximised

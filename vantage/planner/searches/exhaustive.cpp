@@ -2,6 +2,8 @@
 // gain façade (evaluate_views, GainConfig::evaluation), then ranked. The reference every other
 // search is held to, and the one search that serves every method.
 
+#include <algorithm>
+
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/planner/choose.hpp"
@@ -12,7 +14,49 @@ namespace {
 
 bool serves(const PlannerConfig&) { return true; }
 
+// Random and Yamauchi's nearest do not rank by a gain: only the candidates they can choose are
+// evaluated (random's one; the nearest ones, whose counts break their tie), and the others are
+// left as estimates of 0, so that the decision costs one evaluation instead of every candidate's.
+Plan run_without_gain(const SearchInput& in) {
+  const std::size_t n = in.candidates.size();
+  Plan plan;
+  plan.search = DecisionSearch::kExhaustive;
+  plan.gains.assign(n, ViewGain{});
+  plan.scores.assign(n, 0.0);
+  plan.estimated.assign(n, true);
+  std::vector<std::size_t> among;
+  if (in.config.method.ranking == Ranking::kRandom) {
+    // NOTE: a uniformly random view, so a candidate of several views is as likely as its views.
+    among.push_back(in.views.candidate_of(choose_random(in.views.frusta.size(), in.seed)));
+  } else {
+    double nearest = in.candidates[0].travel;
+    for (const Candidate& c : in.candidates) nearest = std::min(nearest, c.travel);
+    for (std::size_t c = 0; c < n; ++c) {
+      plan.scores[c] = -in.candidates[c].travel;
+      if (in.candidates[c].travel == nearest) among.push_back(c);
+    }
+  }
+  const CandidateViews chosen = in.views.subset(among);
+  const std::vector<ViewGain> gains =
+      chosen.sums(evaluate_views(in.grid, chosen.frusta, in.gain));
+  std::vector<double> counts;
+  for (std::size_t i = 0; i < among.size(); ++i) {
+    plan.gains[among[i]] = gains[i];
+    plan.estimated[among[i]] = false;
+    counts.push_back(gains[i].gain);
+  }
+  // NOTE: of the views at the nearest place, the one that sees the most (issue 27); ties go to
+  // the lower index, as `among` is in index order.
+  plan.best = among[choose_best(counts)];
+  if (in.config.method.ranking == Ranking::kRandom) plan.scores[plan.best] = gains[0].gain;
+  plan.evaluated = among.size();
+  plan.seconds = in.seconds();
+  report_choice(in, plan);
+  return plan;
+}
+
 Plan run(const SearchInput& in) {
+  if (!ranks_by_gain(in.config.method)) return run_without_gain(in);
   const PlannerConfig& config = in.config;
   Plan plan;
   plan.search = DecisionSearch::kExhaustive;
@@ -31,24 +75,7 @@ Plan run(const SearchInput& in) {
   plan.gains = in.views.sums(per_view);
   plan.scores = in.views.sums(values);
   plan.evaluated = in.candidates.size();
-  switch (config.method.ranking) {
-    case Ranking::kRandom:
-      // NOTE: a uniformly random view, so a candidate of several views is as likely as its views.
-      plan.best = in.views.candidate_of(choose_random(in.views.frusta.size(), in.seed));
-      break;
-    case Ranking::kNearest: {
-      std::vector<double> counts;
-      for (const ViewGain& g : plan.gains) counts.push_back(g.gain);
-      plan.scores.clear();
-      for (const Candidate& c : in.candidates) plan.scores.push_back(-c.travel);
-      // NOTE: of the views at the nearest place, the one that sees the most (issue 27).
-      plan.best = choose_best(plan.scores, counts);
-      break;
-    }
-    default:
-      plan.best = choose_best(plan.scores);
-      break;
-  }
+  plan.best = choose_best(plan.scores);
   plan.seconds = in.seconds();
   report_choice(in, plan);
   return plan;
