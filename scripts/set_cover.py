@@ -14,21 +14,25 @@ DIR/scans.csv for the starts the sweep's trials used (else every start). Writes 
   views it takes until the start's and its hits reach the level; empty when no set of views does.
 - set_cover_views: the fewest views (an integer program, below); never more than greedy_views,
   which it starts from as its upper bound.
-- lower_bound, gap: the solver's proven lower bound on the number of views and the relative gap
+- lower_bound, gap: the proven lower bound on the number of views and the relative gap
   (set_cover_views - lower_bound) / set_cover_views; 0 when the cover is proven optimal.
 - tour_m: the shortest path from the start through the chosen views (no return): exact (Held-Karp
   dynamic programme) up to 12 views, else nearest neighbour improved by 2-opt (tour_method says
   which); in the sweep's travel rule [m].
 - views: the chosen candidate indices, space-separated.
 
-The integer program (SciPy's `milp`, HiGHS): a binary x_v per view and a continuous y_g in [0, 1]
-per group g of cells of V not hit by the start that the same set of views hits (merged: weight
-w_g = their number); minimise sum x_v subject to y_g <= sum of the x_v that hit g, sum w_g y_g >=
-the cells still needed, and sum x_v <= greedy_views (the greedy oracle's cover as the incumbent's
-bound). Time limit per level: --time-limit seconds; relative gap tolerance 0 (proof of optimality
-asked for; the reported gap says what the limit left). The lower bound is the larger of the
-solver's and a counting bound (k views hit at most the sum of the k largest new-cell counts);
-when the counting bound meets the greedy cover, that cover is optimal and the solver is not run.
+The fewest views are found exactly, by a branch and bound on the integer program "fewest views
+x_v in {0, 1} whose hits reach the cells still needed": the cells the start does not hit are
+merged into groups hit by the same views (weighted by their number), a counting bound (k views
+hit at most the sum of the k largest new-cell counts) gives the first k, and for k = that bound,
++1, ... a depth-first search proves that no k views reach the level, or finds k that do (the
+fewest). A node's children are its views by the new cells each adds, most first, the t-th
+excluding the t - 1 before it, and are cut where the k best counts left fall short (new cells only
+shrink as views are added). Time limit per level: --time-limit seconds; at the limit the greedy
+cover stands, with the k proven so far as its lower bound (status says so). SciPy's `milp`
+(HiGHS) on the same program, with a continuous share per group, was tried first: its linear
+relaxation is weak (its bound stayed at 1 view within 10 s on a 270-view hemisphere, RESULTS.md
+issue 36), so it proved few covers at 95-99 %.
 """
 import csv
 import glob
@@ -103,56 +107,124 @@ def size_bound(truth, start, remaining):
     return len(sizes) + 1
 
 
-def set_cover(truth, start, need, incumbent, time_limit):
-    """(views, lower bound, solver status) of the fewest views whose hits with the start's reach
-    `need` cells, bounded by the incumbent (a feasible cover)."""
-    import numpy as np
-    from scipy.optimize import Bounds, LinearConstraint, milp
-    from scipy.sparse import lil_matrix
+class _Groups:
+    """The cells of V the start does not hit, merged by the set of views that hit them: a 0/1
+    matrix of views by groups and each group's weight (its number of cells)."""
 
+    def __init__(self, truth, start):
+        import numpy as np
+        covering = {}  # cell -> views that hit it
+        start_hits = truth["starts"][start]
+        for v, cells in enumerate(truth["views"]):
+            for c in cells - start_hits:
+                covering.setdefault(c, []).append(v)
+        weights = {}
+        for views in covering.values():
+            weights[tuple(views)] = weights.get(tuple(views), 0) + 1
+        keys = list(weights)
+        self.hits = np.zeros((len(truth["views"]), len(keys)), dtype=np.float64)
+        for g, views in enumerate(keys):
+            self.hits[list(views), g] = 1.0
+        self.weight = np.array([weights[k] for k in keys], dtype=np.float64)
+        # A view whose groups all lie in another's is never needed: the other does as well.
+        inside = self.hits @ self.hits.T  # groups two views share
+        size = np.diag(inside)
+        self.useful = np.ones(len(truth["views"]), dtype=bool)
+        for v in range(len(size)):
+            within = np.flatnonzero(inside[v] == size[v])
+            # NOTE: of views with the same groups, the lowest index stays.
+            if any(size[u] > size[v] or u < v for u in within if u != v and self.useful[u]):
+                self.useful[v] = False
+
+
+class _OutOfTime(Exception):
+    pass
+
+
+def _cover_of(groups, k, remaining, deadline):
+    """Views, at most k, whose hits reach `remaining` cells, or None when no such set exists:
+    a depth-first branch and bound. A node's children are its allowed views by their new cells,
+    most first; the t-th child excludes the t - 1 before it (so each set is visited once). New
+    cells only shrink as views are added, so a child t is skipped when its cells and the k - 1
+    views after it that add the most once t is in fall short, and the children stop where the k
+    best counts left do; the last two views are found among every pair at once. Raises
+    _OutOfTime."""
+    import numpy as np
+
+    def search(allowed, open_weight, covered, k):
+        if covered >= remaining:
+            return []
+        if k == 0:
+            return None
+        if time.monotonic() > deadline:
+            raise _OutOfTime()
+        index = np.flatnonzero(allowed)
+        gain = groups.hits[index] @ open_weight
+        order = np.argsort(-gain, kind="stable")
+        index, gain = index[order], gain[order]
+        keep = gain > 0
+        index, gain = index[keep], gain[keep]
+        if len(index) and covered + gain[0] >= remaining:
+            return [int(index[0])]
+        if k == 1 or len(index) < 2:
+            return None
+        # What view u adds after view t: what it adds now less the open cells both hit.
+        hits = groups.hits[index]
+        after = gain[None, :] - (hits * open_weight) @ hits.T
+        after[np.tril_indices(len(index))] = -np.inf  # child t's sets take views after t only
+        if k == 2:
+            pair = gain[:, None] + after
+            t, u = np.unravel_index(np.argmax(pair), pair.shape)
+            if covered + pair[t, u] >= remaining:
+                return [int(index[t]), int(index[u])]
+            return None
+        # Child t's bound: t's cells and the k - 1 views after it that add the most once t is in.
+        best_after = -np.partition(-after, k - 2, axis=1)[:, :k - 1]
+        reach = covered + gain + np.where(np.isfinite(best_after), best_after, 0.0).sum(axis=1)
+        window = np.concatenate([[0.0], np.cumsum(gain)])
+        allowed = allowed.copy()
+        for t in range(len(index)):
+            # The k best counts from t on bound every child from t on: stop.
+            if covered + window[min(t + k, len(index))] - window[t] < remaining - 1e-9:
+                return None
+            allowed[index[t]] = False
+            if reach[t] < remaining - 1e-9:
+                continue
+            view = index[t]
+            found = search(allowed, open_weight * (1.0 - groups.hits[view]),
+                           covered + gain[t], k - 1)
+            if found is not None:
+                return [int(view)] + found
+        return None
+
+    return search(groups.useful.copy(), groups.weight.copy(), 0.0, k)
+
+
+def set_cover(truth, start, need, incumbent, time_limit):
+    """(views, lower bound, status) of the fewest views whose hits with the start's reach `need`
+    cells, never more than the incumbent (a feasible cover). Exact: a branch and bound proves
+    that no k views reach the level for k = the counting bound, +1, ... until one does (the
+    fewest) or the incumbent's size is reached (the incumbent is the fewest); at the time limit
+    the incumbent stands and the lower bound is the k proven so far."""
     start_hits = truth["starts"][start]
     remaining = need - len(start_hits)
     if remaining <= 0:
-        return [], 0.0, "start alone"
+        return [], 0, "start alone"
     counting = size_bound(truth, start, remaining)
     if counting >= len(incumbent):
-        return list(incumbent), float(counting), "optimal (counting bound)"
-    n = len(truth["views"])
-    covering = {}  # cell -> views that hit it
-    for v, cells in enumerate(truth["views"]):
-        for c in cells - start_hits:
-            covering.setdefault(c, []).append(v)
-    groups = {}  # the set of views -> weight
-    for views in covering.values():
-        key = tuple(views)
-        groups[key] = groups.get(key, 0) + 1
-    keys = list(groups)
-    m = len(keys)
-    # Variables: x_0 .. x_{n-1}, y_0 .. y_{m-1}.
-    c = np.concatenate([np.ones(n), np.zeros(m)])
-    a = lil_matrix((m + 2, n + m))
-    for g, views in enumerate(keys):
-        a[g, n + g] = 1.0
-        for v in views:
-            a[g, v] = -1.0
-    for g, key in enumerate(keys):
-        a[m, n + g] = groups[key]
-    for v in range(n):
-        a[m + 1, v] = 1.0
-    lower = np.concatenate([np.full(m, -np.inf), [remaining, 0]])
-    upper = np.concatenate([np.zeros(m), [np.inf, len(incumbent)]])
-    result = milp(c, constraints=LinearConstraint(a.tocsr(), lower, upper),
-                  integrality=np.concatenate([np.ones(n), np.zeros(m)]), bounds=Bounds(0, 1),
-                  options={"time_limit": time_limit, "mip_rel_gap": 0.0})
-    bound = result.mip_dual_bound if getattr(result, "mip_dual_bound", None) is not None else 0.0
-    bound = max(bound, float(counting))
-    if result.x is None:
-        return list(incumbent), bound, f"incumbent kept ({result.message.strip()})"
-    chosen = [v for v in range(n) if result.x[v] > 0.5]
-    if len(chosen) >= len(incumbent):
-        chosen = list(incumbent)
-    status = "optimal" if result.status == 0 else result.message.strip()
-    return chosen, bound, status
+        return list(incumbent), counting, "optimal (counting bound)"
+    groups = _Groups(truth, start)
+    deadline = time.monotonic() + time_limit
+    k = counting
+    try:
+        while k < len(incumbent):
+            found = _cover_of(groups, k, remaining, deadline)
+            if found is not None:
+                return sorted(found), k, "optimal (branch and bound)"
+            k += 1
+    except _OutOfTime:
+        return list(incumbent), k, f"time limit: no cover of fewer than {k} views"
+    return list(incumbent), k, "optimal (branch and bound)"
 
 
 def tour(truth, start, views):
@@ -235,7 +307,7 @@ def rows_for(truth, start, levels, time_limit):
         views, bound, status = set_cover(truth, start, need, greedy, time_limit)
         seconds = time.monotonic() - began
         length, method = tour(truth, start, views)
-        bound = min(math.ceil(bound - 1e-6), len(views)) if views else 0
+        bound = min(bound, len(views))
         gap = (len(views) - bound) / len(views) if views else 0.0
         rows.append(dict(base, greedy_views=len(greedy), set_cover_views=len(views),
                          lower_bound=bound, gap=f"{gap:.3g}", status=status,

@@ -3,6 +3,7 @@ oracle takes one view too many, the tour through the chosen views worked out by 
 cases in which the cover reaches its level and never uses more views than the greedy oracle."""
 
 import csv
+import itertools
 import json
 import random
 import sys
@@ -60,8 +61,8 @@ def test_the_cover_beats_the_greedy_oracle_where_greedy_overlaps(tmp_path, set_c
     # (the counting bound proves it without the solver).
     assert got["50"]["set_cover_views"] == "1"
     assert got["50"]["status"] == "optimal (counting bound)"
-    # For all 8, two views hit at most 4 + 4 new cells: at least 2; the solver proves 2.
-    assert got["100"]["status"] == "optimal"
+    # For all 8, two views hit at most 4 + 4 new cells: at least 2, and views 1 and 2 do it.
+    assert got["100"]["status"] == "optimal (branch and bound)"
     truth = set_cover.load_truth(tmp_path / "yardstick" / "toy.json")
     assert set_cover.size_bound(truth, 0, 7) == 2
     assert set_cover.size_bound(truth, 0, 9) == 3
@@ -99,3 +100,25 @@ def test_random_covers_reach_their_level_with_no_more_views_than_greedy(tmp_path
         assert int(r["set_cover_views"]) == len(chosen)
         assert int(r["set_cover_views"]) <= int(r["greedy_views"]), r
         assert int(r["lower_bound"]) <= int(r["set_cover_views"])
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_the_cover_is_the_fewest_views_every_subset_finds(tmp_path, set_cover, seed):
+    # Overlapping views, so that greedy is often one view over: the branch and bound's cover
+    # against the smallest subset of the 16 views, found by trying them all.
+    rng = random.Random(100 + seed)
+    cells = 80
+    views = [set(rng.sample(range(cells), rng.randint(8, 30))) for _ in range(16)]
+    starts = [set(rng.sample(range(cells), 4))]
+    hit = set().union(*views, *starts)
+    write_truth(tmp_path, "rand", views, starts, [float(v) for v in range(16)],
+                start_positions=[0.0])
+    set_cover.main(["set_cover.py", str(tmp_path), "--levels", "80,90,95,99,100"])
+    for r in rows(tmp_path):
+        need = -(-float(r["level"]) * len(hit) // 100)
+        fewest = next(k for k in range(len(views) + 1)
+                      if any(len(starts[0].union(*(views[v] for v in subset))) >= need
+                             for subset in itertools.combinations(range(len(views)), k)))
+        assert int(r["set_cover_views"]) == fewest, r
+        assert int(r["lower_bound"]) == fewest, r
+        assert float(r["gap"]) == 0.0
