@@ -79,6 +79,38 @@ TEST(Planner, TheDefaultSearchIsTheFastestThatServesTheMethod) {
   }
 }
 
+// Without the chosen view's full prediction (PlannerConfig::predict_chosen false) the decision
+// is the same, nothing is predicted after it, and the chosen candidate has no gain in bits; with
+// it, the chosen candidate's gain and cells are its full evaluation.
+TEST(Planner, TheChosenViewsPredictionCanBeLeftOutOfTheDecision) {
+  HalfKnownBlock s;
+  for (const DecisionSearch search : {DecisionSearch::kSwept, DecisionSearch::kPruned}) {
+    PlannerConfig config;
+    config.method = PlannerMethod::kSurvival;
+    config.objective = GainObjective::kCells;
+    config.gain.alpha = 0.99;
+    config.search = search;
+    const Plan full = plan_next_view(s.grid, s.candidates, config);
+    config.predict_chosen = false;
+    const Plan decided = plan_next_view(s.grid, s.candidates, config);
+    const std::string what = std::string(to_string(search));
+    EXPECT_EQ(decided.best, full.best) << what;
+    EXPECT_TRUE(full.bits_predicted) << what;
+    EXPECT_GT(full.gains[full.best].gain, 0.0) << what;
+    EXPECT_GT(full.prediction_seconds, 0.0) << what;
+    EXPECT_FALSE(decided.bits_predicted) << what;
+    EXPECT_EQ(decided.gains[decided.best].gain, 0.0) << what;
+    EXPECT_EQ(decided.prediction_seconds, 0.0) << what;
+    // What full_prediction gives after the decision is the full plan's prediction.
+    const CandidateViews views(s.candidates);
+    GainConfig gain = config.gain;
+    gain.method = config.method.gain;
+    const ViewGain later = full_prediction(s.grid, views, decided.best, gain);
+    EXPECT_EQ(later.gain, full.gains[full.best].gain) << what;
+    EXPECT_EQ(later.cells, full.gains[full.best].cells) << what;
+  }
+}
+
 // A search named for a method it does not serve is refused, naming those that do; nothing falls
 // back to another search without saying so.
 TEST(Planner, ASearchThatDoesNotServeTheMethodIsRefused) {

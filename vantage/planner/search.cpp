@@ -147,7 +147,9 @@ void add_greedy_reference(const SearchInput& input, Plan& plan) {
 }
 
 void report_choice(const SearchInput& input, Plan& plan) {
-  if (plan.bits_of_chosen_only || plan.is_estimate(plan.best)) {
+  if (!input.config.predict_chosen) {
+    plan.bits_predicted = !plan.bits_of_chosen_only;
+  } else if (plan.bits_of_chosen_only || plan.is_estimate(plan.best)) {
     // NOTE: the search decided on estimates, bounds or cells; the bits of eq. (4) and the exact
     // cells are the chosen view's report, not the choice.
     const auto predict_start = std::chrono::steady_clock::now();

@@ -122,6 +122,14 @@ struct PlannerConfig {
   /// Also predict every candidate's greedy gain when the method uses another, so predictions can
   /// be compared on the same poses (the paper's Fig. 11).
   bool greedy_reference = false;
+  /// After a decision on estimates, bounds or cells, evaluate the chosen candidate in full: its
+  /// gain in bits beside its exact cells (Plan::prediction_seconds). That walks every target of
+  /// the view with the occupancy filter, and on a large grid takes longer than the decision (at
+  /// 1.85 M cells 1.5-2.5 s against ~1 s: BENCHMARK.md, issue 38). False leaves it out of the
+  /// decision's path: the chosen candidate keeps the search's own figures (its exact cells when
+  /// the search reached them, Plan::is_estimate otherwise) and no gain in bits
+  /// (Plan::bits_predicted); full_prediction (search.hpp) gives them after, off the robot's loop.
+  bool predict_chosen = true;
   /// Plan a sequence of views and take its tour's first (sequence.hpp) when active (horizon > 1
   /// or a travel weight); survival (ranking by cells) and greedy only. It evaluates every
   /// candidate exactly (or on its own sample, SequenceConfig::sample_bits): no search serves it.
@@ -166,6 +174,9 @@ struct Plan {
   /// expected cells seen (the survival reading's pruned search, the swept search but for
   /// greedy's counts) computes no gain in bits for the others and leaves it 0.
   bool bits_of_chosen_only = false;
+  /// False when not even the chosen candidate's gain in bits was predicted
+  /// (PlannerConfig::predict_chosen false after a decision by cells): every ViewGain::gain is 0.
+  bool bits_predicted = true;
   /// PlannerConfig::sequence: the planned views in the tour's order (`best` first), its length
   /// from the current pose [m] and the views' joint expected cells seen [cells]; else empty, 0.
   std::vector<std::size_t> sequence;

@@ -78,6 +78,7 @@ void run(const PlanOptions& o) {
         "--alpha auto fits a over an exploration's scans (explore, bench); plan takes a number");
   }
   PlannerConfig planner = o.planning.planner_config();
+  planner.predict_chosen = o.predict;
   request_plan_reference(planner);
   const GainUnits units = gain_units(planner);
   if (!o.sensor_height.empty() && o.candidates != "frontier") {
@@ -345,6 +346,10 @@ void add_plan_command(CLI::App& app) {
                   "latombe and yamauchi (default: the manifest's last cloud's pose)");
   cmd->add_option("--out,-o", o->out, "results folder (default: a fresh folder under results/)");
   cmd->add_flag("--json", o->json_only, "print only plan.json, for other programs");
+  cmd->add_flag("!--no-prediction", o->predict,
+                "decide only: skip the chosen view's full prediction in bits, which follows the "
+                "decision (plan.json: seconds.prediction) and on a large grid takes longer than "
+                "it; its predicted_gain is then null, its cells the search's own");
   cmd->add_flag("!--no-plots", o->plots, "skip the picture (map.png)");
   add_memory_option(*cmd, o->max_memory);
   add_work_option(*cmd, o->max_work);

@@ -43,6 +43,7 @@ struct PlanOptions {
   int top = 10;
   std::uint64_t max_memory = 0;              // 0: what the machine has available
   double max_work = kDefaultMaxWorkSeconds;  // [s] of a decision's estimated work
+  bool predict = true;  // the chosen view's full prediction in bits after the decision
 };
 
 /// --fov-deg and --range as the sensor without a manifest; throws UsageError.

@@ -73,7 +73,7 @@ void report_plan(const PlanReport& report) {
               {"sensor", pose_json(poses[i])},
               {"yaw", unsigned_zero(yaw_deg(poses[i]), 9)},
               {"cloud_frame", pose_json(T_world_cloud)},
-              {"predicted_gain", plan.gains[i].gain},
+              {"predicted_gain", plan.bits_predicted ? json(plan.gains[i].gain) : json()},
               {"predicted_cells", plan.gains[i].cells},
               {"greedy_gain", plan.greedy_gains.empty() ? json() : json(plan.greedy_gains[i])},
               {"score", plan.scores[i]}};
@@ -150,7 +150,7 @@ void report_plan(const PlanReport& report) {
     const std::string greedy =
         plan.greedy_gains.empty() ? "-" : fmt::format("{:.1f}", plan.greedy_gains[i]);
     // NOTE: a decision by cells predicts no gain in bits for the views it did not choose ("-").
-    const bool no_bits = plan.bits_of_chosen_only && i != plan.best;
+    const bool no_bits = (plan.bits_of_chosen_only && i != plan.best) || !plan.bits_predicted;
     const std::string bits = no_bits ? "-" : fmt::format("{:.1f}", plan.gains[i].gain);
     fmt::print("{:>4} {:>5} {:>26} {:>9.1f} {}{:>{}}{} {:>19}{} {:>{}.3f}\n", r + 1, i,
                fmt::format("({:.3f}, {:.3f}, {:.3f})", unsigned_zero(p.x(), 3),

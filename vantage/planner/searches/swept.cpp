@@ -104,6 +104,10 @@ Plan finish(const SearchInput& in, const std::vector<std::size_t>& raced,
     plan.gains[c].gain = counts ? plan.gains[c].cells : 0.0;
   }
   plan.best = raced[race.winner];
+  // NOTE: a race that reached the full lists has the winner's exact cells (a counting method's
+  // exact gain, up to the rounding of the travel factor), which stand when the chosen candidate
+  // is not predicted in full after.
+  if (race.exact && !in.config.predict_chosen) plan.estimated[plan.best] = false;
   plan.evaluated = raced.size();
   plan.bits_of_chosen_only = !counts;
   plan.seconds = in.seconds();
