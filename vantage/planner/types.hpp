@@ -76,6 +76,11 @@ GainObjective parse_gain_objective(std::string_view name);
 /// a is fitted to), the paper's method the information gain of eq. (1).
 GainObjective natural_objective(PlannerMethod method);
 
+/// The swept search's tolerance: its choice is within this share of the best candidate's exact
+/// score (at three standard errors of its race's samples; docs/decision.md, "The swept search").
+/// The exact argmax, proven, is the pruned search's.
+inline constexpr double kSweptTolerance = 0.005;
+
 /// How the candidates are searched for the best (vantage/planner/searches/, docs/decision.md): a
 /// search by the name its file registers (search.hpp), so that adding one takes its file and one
 /// registry row. The three built in are named here.

@@ -67,7 +67,8 @@ Targets united(const Targets& a, const Targets& b) {
 
 Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
                      std::span<const Frustum> frusta, std::span<const std::size_t> first,
-                     std::span<const double> factor, const TargetLister& list) {
+                     std::span<const double> factor, const TargetLister& list,
+                     double tolerance) {
   constexpr double kStandardErrors = 3.0;
   const std::size_t n = first.size() - 1;
   std::vector<std::size_t> alive(n);
@@ -111,7 +112,8 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
         const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]],
                                           targets[alive[a]], factor[alive[a]]);
         const double gap = rate * sum, error = std::sqrt(rate * (rate - 1.0) * sq);
-        if (gap > kStandardErrors * error && gap > 0.0) continue;
+        const double slack = tolerance * scores[lead];
+        if (gap + slack > kStandardErrors * error && gap + slack > 0.0) continue;
       }
       next.push_back(alive[a]);
     }
@@ -125,11 +127,13 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
 
 Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
                      std::span<const std::size_t> first, std::span<const double> factor,
-                     const GainConfig& config, std::size_t max_sample) {
-  return race_candidates(unobserved_by_sample(map, max_sample), frusta, first, factor,
-                         [&](std::span<const Frustum> views, std::span<const std::uint32_t> cells) {
-                           return exact_view_cells(map, views, config, cells);
-                         });
+                     const GainConfig& config, std::size_t max_sample, double tolerance) {
+  return race_candidates(
+      unobserved_by_sample(map, max_sample), frusta, first, factor,
+      [&](std::span<const Frustum> views, std::span<const std::uint32_t> cells) {
+        return exact_view_cells(map, views, config, cells);
+      },
+      tolerance);
 }
 
 }  // namespace vantage::detail
