@@ -16,7 +16,7 @@ struct ProximityCount {
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {
     if (c.in_range && unknown(c) && c.near <= kProximityCells && s.take(c.linear)) {
-      sum += kProximityCells - c.near;
+      sum += c.weight * (kProximityCells - c.near);
     }
   }
   void end_ray(bool, Stamp&) {}

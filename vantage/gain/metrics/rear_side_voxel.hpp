@@ -17,7 +17,7 @@ struct RearSideVoxel {
   void cell(const RayCell& c, Stamp& s) {
     if (c.value.state == CellState::kOccupied && previous_unknown && c.in_range &&
         s.take(c.linear)) {
-      sum += 1.0;
+      sum += c.weight;
     }
     previous_unknown = unknown(c);
   }
