@@ -83,45 +83,44 @@ BlockCensus census_of(const GainMap& map) {
   return census;
 }
 
-/// The cubes of free cells of one value (detail::MetricContext::uniform): a block is in one when
-/// its cells are free and share one code, and the cube's blocks all share that code; built as
-/// free_space builds its cubes (one more than the least of the seven neighbours ahead, here those
-/// of the same code).
-FreeSpace uniform_free_space(const GainMap& map) {
-  const GridSpec& spec = map.spec();
-  constexpr int kShift = FreeSpace::kShift;
-  FreeSpace uniform;
-  uniform.dims = (spec.dims.array() + (FreeSpace::kBlock - 1)).matrix() / FreeSpace::kBlock;
-  const Index3 d = uniform.dims;
+/// The blocks of `spec`'s grid, kShift cells a side.
+Index3 block_dims(const GridSpec& spec) {
+  return (spec.dims.array() + (FreeSpace::kBlock - 1)).matrix() / FreeSpace::kBlock;
+}
+
+/// Per block, a label over its cells: `label(i)` (>= 0) when every cell i of the block has the
+/// same one, -1 when they differ or one has -1.
+template <typename Label>
+std::vector<std::int64_t> block_labels(const GridSpec& spec, Label&& label) {
+  const Index3 d = block_dims(spec);
+  std::vector<std::int64_t> out(static_cast<std::size_t>(d.prod()), -2);
+  Index3 c;
+  for (c.z() = 0; c.z() < spec.dims.z(); ++c.z()) {
+    for (c.y() = 0; c.y() < spec.dims.y(); ++c.y()) {
+      for (c.x() = 0; c.x() < spec.dims.x(); ++c.x()) {
+        const std::int64_t l = label(spec.linear(c));
+        std::int64_t& b = out[static_cast<std::size_t>(
+            (c.x() >> FreeSpace::kShift) +
+            d.x() * ((c.y() >> FreeSpace::kShift) + d.y() * (c.z() >> FreeSpace::kShift)))];
+        b = (b == -2 || b == l) && l >= 0 ? l : -1;
+      }
+    }
+  }
+  return out;
+}
+
+/// The cubes of blocks of one label (>= 0), built as free_space builds its cubes of free blocks:
+/// one more than the least of the seven neighbours ahead, here those of the same label.
+FreeSpace cubes_of(const Index3& d, const std::vector<std::int64_t>& label) {
+  FreeSpace cubes;
+  cubes.dims = d;
   const auto block = [&](int x, int y, int z) {
     return static_cast<std::size_t>(x) +
            static_cast<std::size_t>(d.x()) *
                (static_cast<std::size_t>(y) + static_cast<std::size_t>(d.y()) * z);
   };
-  // The code every cell of a block shares, when they are free; -1 otherwise.
-  std::vector<std::int64_t> label(static_cast<std::size_t>(d.prod()), -2);
-  with_codes(map, [&](const auto* codes) {
-    Index3 c;
-    for (c.z() = 0; c.z() < spec.dims.z(); ++c.z()) {
-      for (c.y() = 0; c.y() < spec.dims.y(); ++c.y()) {
-        for (c.x() = 0; c.x() < spec.dims.x(); ++c.x()) {
-          const std::size_t i = spec.linear(c);
-          std::int64_t& l = label[block(c.x() >> kShift, c.y() >> kShift, c.z() >> kShift)];
-          const auto code = static_cast<std::int64_t>(codes[i]);
-          if (map.value(i).state != CellState::kFree) {
-            l = -1;
-          } else if (l == -2) {
-            l = code;
-          } else if (l != code) {
-            l = -1;
-          }
-        }
-      }
-    }
-    return 0;
-  });
   for (int o = 0; o < 8; ++o) {
-    std::vector<std::uint8_t>& e = uniform.extent[static_cast<std::size_t>(o)];
+    std::vector<std::uint8_t>& e = cubes.extent[static_cast<std::size_t>(o)];
     e.assign(label.size(), 0);
     const int sx = (o & 1) ? 1 : -1, sy = (o & 2) ? 1 : -1, sz = (o & 4) ? 1 : -1;
     for (int kz = 0; kz < d.z(); ++kz) {
@@ -145,7 +144,38 @@ FreeSpace uniform_free_space(const GainMap& map) {
       }
     }
   }
-  return uniform;
+  return cubes;
+}
+
+/// The cubes of free cells of one value (detail::MetricContext::uniform): the label of a free
+/// cell is its code.
+FreeSpace uniform_free_space(const GainMap& map) {
+  return with_codes(map, [&](const auto* codes) {
+    return cubes_of(block_dims(map.spec()),
+                    block_labels(map.spec(), [&](std::size_t i) -> std::int64_t {
+                      return map.value(i).state == CellState::kFree
+                                 ? static_cast<std::int64_t>(codes[i])
+                                 : -1;
+                    }));
+  });
+}
+
+/// The cubes of unobserved cells, and (with distances) of free cells and unobserved ones beyond
+/// D of every occupied cell (detail::QuietCells).
+FreeSpace unobserved_space(const GainMap& map) {
+  return cubes_of(block_dims(map.spec()), block_labels(map.spec(), [&](std::size_t i) {
+                    return map.value(i).state == CellState::kUnobserved ? 0 : -1;
+                  }));
+}
+FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
+  if (near.empty()) return FreeSpace{};
+  return cubes_of(block_dims(map.spec()), block_labels(map.spec(), [&](std::size_t i) {
+                    const CellState state = map.value(i).state;
+                    return state == CellState::kFree ||
+                                   (state == CellState::kUnobserved && near[i] > kProximityCells)
+                               ? 0
+                               : -1;
+                  }));
 }
 
 /// Throws when `config` names no metric.
@@ -163,34 +193,31 @@ std::vector<float> distances_for(const GainMap& map, const GainConfig& config) {
                                                       : std::vector<float>{};
 }
 
-/// The metric's rays at `coarseness` times the pitch `config` asks for: by the jumping walk over
-/// `free`, or the reference walk when null.
-std::vector<ViewGain> evaluate(const GainMap& map, const std::vector<float>& near,
-                               const FreeSpace* free, const FreeSpace* uniform,
-                               std::span<const Frustum> views, const GainConfig& config,
-                               int coarseness) {
-  const int subsample = config.evaluation == GainEvaluation::kExact ? 1 : kFastSubsample;
-  const detail::MetricContext ctx{map,  near,    config.ray_spacing, subsample,
-                                  free, uniform, coarseness};
-  return method_traits(config.method).metric(ctx, views, config.num_threads);
-}
+/// The cubes the jumping walk crosses (detail::MetricContext); all null: the reference walk.
+struct Spaces {
+  const FreeSpace *free = nullptr, *uniform = nullptr, *unobserved = nullptr, *far = nullptr;
+};
 
-std::vector<ViewGain> evaluate(const GainMap& map, const FreeSpace* free,
-                               std::span<const Frustum> views, const GainConfig& config) {
-  require_metric(config);
-  if (free == nullptr) {
-    return evaluate(map, distances_for(map, config), nullptr, nullptr, views, config, 1);
-  }
-  const FreeSpace uniform = uniform_free_space(map);
-  return evaluate(map, distances_for(map, config), free, &uniform, views, config, 1);
+/// The metric's rays at `coarseness` times the pitch `config` asks for, by the jumping walk over
+/// `spaces` (the reference walk when they are null).
+std::vector<ViewGain> evaluate(const GainMap& map, const std::vector<float>& near,
+                               const Spaces& spaces, std::span<const Frustum> views,
+                               const GainConfig& config, int coarseness, bool count_cells) {
+  const int subsample = config.evaluation == GainEvaluation::kExact ? 1 : kFastSubsample;
+  const detail::MetricContext ctx{map,           near,          config.ray_spacing,
+                                  subsample,     spaces.free,   spaces.uniform,
+                                  spaces.unobserved, spaces.far, count_cells,
+                                  coarseness};
+  return method_traits(config.method).metric(ctx, views, config.num_threads);
 }
 
 }  // namespace
 
 std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frustum> views,
                                         const GainConfig& config) {
-  const FreeSpace free = free_space(census_of(map));
-  return evaluate(map, &free, views, config);
+  require_metric(config);
+  const FreeSpace free = free_space(census_of(map)), uniform = uniform_free_space(map);
+  return evaluate(map, distances_for(map, config), Spaces{&free, &uniform}, views, config, 1, true);
 }
 
 std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
@@ -203,14 +230,17 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       map_(grid, config.num_threads),
       free_(free_space(grid.census())),
       uniform_(uniform_free_space(map_)),
-      near_(distances_for(map_, config)) {}
+      unobserved_(unobserved_space(map_)),
+      near_(distances_for(map_, config)),
+      far_(far_space(map_, near_)) {}
 
-std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views,
-                                             int coarseness) const {
+std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int coarseness,
+                                             bool count_cells) const {
   if (coarseness < 1) {
     throw std::invalid_argument(cat("MetricEvaluator: coarseness ", coarseness, " is not >= 1"));
   }
-  return evaluate(map_, near_, &free_, &uniform_, views, config_, coarseness);
+  return evaluate(map_, near_, Spaces{&free_, &uniform_, &unobserved_, far_.empty() ? nullptr : &far_},
+                  views, config_, coarseness, count_cells);
 }
 
 std::span<const MetricRound> metric_race_rounds(GainMethod method) {
@@ -239,7 +269,8 @@ std::span<const MetricRound> metric_race_rounds(GainMethod method) {
 std::vector<ViewGain> metric_view_gains_reference(const GainMap& map,
                                                   std::span<const Frustum> views,
                                                   const GainConfig& config) {
-  return evaluate(map, nullptr, views, config);
+  require_metric(config);
+  return evaluate(map, distances_for(map, config), Spaces{}, views, config, 1, true);
 }
 
 }  // namespace vantage

@@ -13,6 +13,9 @@
 /// or that free cells change only the visibility of the cells after them (the jumping walk then
 /// crosses cubes of free cells of one value, multiplying the visibility by each cell's 1 - p):
 ///   static constexpr bool kFreeDims;
+/// A free-inert metric may also say which other cells change nothing after the first of them
+/// (the jumping walk crosses cubes of those too when it need not count the unobserved cells):
+///   static constexpr QuietCells kQuiet;
 ///
 /// One walk feeds it (`view_rays`), in two ways: the reference hands the metric every cell of
 /// every ray; the jumping walk (docs/model.md "The metrics at speed") casts only the rays that
@@ -32,6 +35,7 @@
 #include <vector>
 
 #include "vantage/gain/free_space.hpp"
+#include "vantage/gain/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/types.hpp"
 #include "vantage/map/traversal.hpp"
@@ -94,6 +98,13 @@ struct MetricContext {
   /// The cubes of free cells of one value, for a metric that free cells only dim (free_dims);
   /// nullptr: it is walked cell by cell.
   const FreeSpace* uniform = nullptr;
+  /// The cubes of unobserved cells, and of free cells and unobserved ones beyond D of every
+  /// occupied cell (QuietCells), crossed only when the unobserved cells need not be counted.
+  const FreeSpace* unobserved = nullptr;
+  const FreeSpace* far = nullptr;
+  /// Whether ViewGain::cells counts the unobserved cells reached; false: 0, and a metric whose
+  /// quiet cells include unobserved ones crosses their cubes in one step.
+  bool count_cells = true;
   /// 1: the metric's own rays (every subsample-th); k > 1: every k-th of those along each axis,
   /// an estimate whose cells carry RayCell::weight.
   int coarseness = 1;
@@ -103,6 +114,22 @@ struct MetricContext {
 /// Cauchy) [cells^2]: a lattice of parallel rays `a` cells apart crosses about min(1, kCellShadow
 /// / a^2) of the cells it passes.
 inline constexpr double kCellShadow = 1.5;
+
+/// Which cells besides free ones change nothing for a metric after the first of them on a ray.
+enum class QuietCells {
+  kFree,        ///< none besides free cells
+  kUnobserved,  ///< unobserved cells too (the cubes of MetricContext::unobserved)
+  kFar,         ///< unobserved cells beyond D of every occupied cell (MetricContext::far)
+};
+
+template <typename Metric>
+constexpr QuietCells quiet_cells() {
+  if constexpr (requires { Metric::kQuiet; }) {
+    return Metric::kQuiet;
+  } else {
+    return QuietCells::kFree;
+  }
+}
 
 /// Whether free cells only dim `Metric`'s later cells (the file's note); false unless it says so.
 template <typename Metric>
@@ -274,8 +301,22 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
             break;
           }
           previous_unknown = unobserved;
-          if (previous_unknown && in_range && seen.take(linear)) result.cells += weight;
+          if (ctx.count_cells && previous_unknown && in_range && seen.take(linear)) {
+            result.cells += weight;
+          }
           visibility *= 1.0 - v.p;  // eq. M1
+          if constexpr (quiet_cells<Metric>() != QuietCells::kFree) {
+            const bool quiet_far = quiet_cells<Metric>() == QuietCells::kFar;
+            const FreeSpace* quiet = quiet_far ? ctx.far : ctx.unobserved;
+            const bool in_quiet =
+                quiet_far ? v.state == CellState::kFree ||
+                                (unobserved && ctx.near[linear] > kProximityCells)
+                          : unobserved;
+            if (!ctx.count_cells && quiet != nullptr && in_quiet && quiet->cross(walk, spec)) {
+              if (!spec.contains(walk.cell())) break;  // left the grid
+              continue;
+            }
+          }
           if (free_inert<Metric>() && free != nullptr && v.state == CellState::kFree &&
               free->cross(walk, spec)) {
             if (!spec.contains(walk.cell())) break;  // left the grid

@@ -12,6 +12,7 @@ namespace vantage {
 /// occupied cell, else 0 (eq. M5): unobserved cells near a surface, the nearer the more.
 struct ProximityCount {
   static constexpr bool kFreeInert = true;
+  static constexpr detail::QuietCells kQuiet = detail::QuietCells::kFar;  // they credit nothing
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {

@@ -148,7 +148,10 @@ Plan run_metric(const SearchInput& in) {
   for (std::size_t c = 0; c < among.size(); ++c) among[c] = c;
   const auto evaluate = [&](int coarseness) {
     const CandidateViews subset = in.views.subset(among);
-    const std::vector<ViewGain> sums = subset.sums(metric.gains(subset.frusta, coarseness));
+    // NOTE: no cell counts in the rounds, so that the rays may cross the cells the metric
+    // leaves unchanged; the chosen view's are counted after.
+    const std::vector<ViewGain> sums =
+        subset.sums(metric.gains(subset.frusta, coarseness, /*count_cells=*/false));
     for (std::size_t k = 0; k < among.size(); ++k) {
       const std::size_t c = among[k];
       plan.gains[c] = sums[k];
@@ -170,6 +173,8 @@ Plan run_metric(const SearchInput& in) {
   }
   plan.best = among[choose_best(exact)];
   plan.evaluated = among.size();
+  const CandidateViews chosen = in.views.subset({plan.best});
+  plan.gains[plan.best] = chosen.sums(metric.gains(chosen.frusta)).front();
   plan.seconds = in.seconds();
   report_choice(in, plan);
   return plan;
