@@ -38,8 +38,8 @@ TEST(MetricsScenes, TheJumpingWalkDecidesAsTheReferenceOnTheHemisphere) {
           const std::string what = cat(state, ", hemisphere, ", method.name);
           const std::vector<ViewGain> reference = metric_view_gains_reference(map, views, config);
           test::expect_like_reference(metric_view_gains(grid, views, config), reference, what);
-          // Without the cells counted (the swept search's race), the rear side voxel and the
-          // proximity count cross cubes of the unobserved cells they leave unchanged too.
+          // Without the cells counted (the swept search's race), the proximity count crosses
+          // cubes of the unobserved cells it leaves unchanged too.
           const std::vector<ViewGain> uncounted =
               MetricEvaluator(grid, config).gains(views, 1, /*count_cells=*/false);
           for (std::size_t v = 0; v < views.size(); ++v) {

@@ -275,7 +275,8 @@ struct SceneLike {
 // the metric (metric_oracle.hpp): the same decision, every value to the last bit, for both ray
 // pitches.
 // With one free value, rear side entropy crosses whole cubes of it; without counting the cells,
-// the rear side voxel and the proximity count cross unobserved cubes too (MetricEvaluator).
+// the proximity count crosses cubes of the unobserved cells it leaves unchanged too
+// (MetricEvaluator).
 TEST(Metrics, TheJumpingWalkDecidesAsTheReferenceDoes) {
   for (const int free_values : {3, 1}) {
     const SceneLike s(free_values);

@@ -160,13 +160,8 @@ FreeSpace uniform_free_space(const GainMap& map) {
   });
 }
 
-/// The cubes of unobserved cells, and (with distances) of free cells and unobserved ones beyond
-/// D of every occupied cell (detail::QuietCells).
-FreeSpace unobserved_space(const GainMap& map) {
-  return cubes_of(block_dims(map.spec()), block_labels(map.spec(), [&](std::size_t i) {
-                    return map.value(i).state == CellState::kUnobserved ? 0 : -1;
-                  }));
-}
+/// With distances, the cubes of free cells and unobserved ones beyond D of every occupied cell
+/// (detail::QuietCells); empty without.
 FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
   if (near.empty()) return FreeSpace{};
   return cubes_of(block_dims(map.spec()), block_labels(map.spec(), [&](std::size_t i) {
@@ -195,7 +190,7 @@ std::vector<float> distances_for(const GainMap& map, const GainConfig& config) {
 
 /// The cubes the jumping walk crosses (detail::MetricContext); all null: the reference walk.
 struct Spaces {
-  const FreeSpace *free = nullptr, *uniform = nullptr, *unobserved = nullptr, *far = nullptr;
+  const FreeSpace *free = nullptr, *uniform = nullptr, *far = nullptr;
 };
 
 /// The metric's rays at `coarseness` times the pitch `config` asks for, by the jumping walk over
@@ -204,9 +199,8 @@ std::vector<ViewGain> evaluate(const GainMap& map, const std::vector<float>& nea
                                const Spaces& spaces, std::span<const Frustum> views,
                                const GainConfig& config, int coarseness, bool count_cells) {
   const int subsample = config.evaluation == GainEvaluation::kExact ? 1 : kFastSubsample;
-  const detail::MetricContext ctx{map,           near,          config.ray_spacing,
-                                  subsample,     spaces.free,   spaces.uniform,
-                                  spaces.unobserved, spaces.far, count_cells,
+  const detail::MetricContext ctx{map,         near,        config.ray_spacing, subsample,
+                                  spaces.free, spaces.uniform, spaces.far,   count_cells,
                                   coarseness};
   return method_traits(config.method).metric(ctx, views, config.num_threads);
 }
@@ -230,7 +224,6 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       map_(grid, config.num_threads),
       free_(free_space(grid.census())),
       uniform_(uniform_free_space(map_)),
-      unobserved_(unobserved_space(map_)),
       near_(distances_for(map_, config)),
       far_(far_space(map_, near_)) {}
 
@@ -239,7 +232,7 @@ std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int
   if (coarseness < 1) {
     throw std::invalid_argument(cat("MetricEvaluator: coarseness ", coarseness, " is not >= 1"));
   }
-  return evaluate(map_, near_, Spaces{&free_, &uniform_, &unobserved_, far_.empty() ? nullptr : &far_},
+  return evaluate(map_, near_, Spaces{&free_, &uniform_, far_.empty() ? nullptr : &far_},
                   views, config_, coarseness, count_cells);
 }
 

@@ -79,16 +79,16 @@ class MetricEvaluator {
   /// it by every coarseness-th of its rays along each image axis, each cell weighed by about how
   /// many cells the metric's own rays cross for each the coarser rays cross at its distance
   /// (detail::RayCell::weight).
-  /// With `count_cells` false, ViewGain::cells is 0 and the rear side voxel and the proximity
-  /// count cross cubes of unobserved cells (or of those beyond D of every occupied cell) in one
-  /// step too, the same values to the last bit.
+  /// With `count_cells` false, ViewGain::cells is 0 and the proximity count crosses cubes of
+  /// free cells and unobserved ones beyond D of every occupied cell in one step too, the same
+  /// values to the last bit.
   std::vector<ViewGain> gains(std::span<const Frustum> views, int coarseness = 1,
                               bool count_cells = true) const;
 
  private:
   GainConfig config_;
   GainMap map_;
-  FreeSpace free_, uniform_, unobserved_;
+  FreeSpace free_, uniform_;
   std::vector<float> near_;
   FreeSpace far_;  // empty when the metric reads no distances
 };

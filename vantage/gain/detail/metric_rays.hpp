@@ -98,9 +98,8 @@ struct MetricContext {
   /// The cubes of free cells of one value, for a metric that free cells only dim (free_dims);
   /// nullptr: it is walked cell by cell.
   const FreeSpace* uniform = nullptr;
-  /// The cubes of unobserved cells, and of free cells and unobserved ones beyond D of every
-  /// occupied cell (QuietCells), crossed only when the unobserved cells need not be counted.
-  const FreeSpace* unobserved = nullptr;
+  /// The cubes of free cells and unobserved ones beyond D of every occupied cell (QuietCells),
+  /// crossed only when the unobserved cells need not be counted.
   const FreeSpace* far = nullptr;
   /// Whether ViewGain::cells counts the unobserved cells reached; false: 0, and a metric whose
   /// quiet cells include unobserved ones crosses their cubes in one step.
@@ -117,9 +116,8 @@ inline constexpr double kCellShadow = 1.5;
 
 /// Which cells besides free ones change nothing for a metric after the first of them on a ray.
 enum class QuietCells {
-  kFree,        ///< none besides free cells
-  kUnobserved,  ///< unobserved cells too (the cubes of MetricContext::unobserved)
-  kFar,         ///< unobserved cells beyond D of every occupied cell (MetricContext::far)
+  kFree,  ///< none besides free cells
+  kFar,   ///< unobserved cells beyond D of every occupied cell (MetricContext::far)
 };
 
 template <typename Metric>
@@ -305,14 +303,10 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
             result.cells += weight;
           }
           visibility *= 1.0 - v.p;  // eq. M1
-          if constexpr (quiet_cells<Metric>() != QuietCells::kFree) {
-            const bool quiet_far = quiet_cells<Metric>() == QuietCells::kFar;
-            const FreeSpace* quiet = quiet_far ? ctx.far : ctx.unobserved;
-            const bool in_quiet =
-                quiet_far ? v.state == CellState::kFree ||
-                                (unobserved && ctx.near[linear] > kProximityCells)
-                          : unobserved;
-            if (!ctx.count_cells && quiet != nullptr && in_quiet && quiet->cross(walk, spec)) {
+          if constexpr (quiet_cells<Metric>() == QuietCells::kFar) {
+            const bool quiet = v.state == CellState::kFree ||
+                               (unobserved && ctx.near[linear] > kProximityCells);
+            if (!ctx.count_cells && ctx.far != nullptr && quiet && ctx.far->cross(walk, spec)) {
               if (!spec.contains(walk.cell())) break;  // left the grid
               continue;
             }
