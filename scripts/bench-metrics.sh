@@ -4,9 +4,10 @@
 # tabletop-4, --candidates hemisphere --hemisphere-radii 0.9,1.1,1.3 --view-spacing 0.3 (the
 # issue-26 sweeps' candidates), 7 scans on 2 threads, per metric and per build. Prints each
 # decision's seconds.plan [ms] (less greedy's reference, which the decision does not need) after
-# 1, 3 and 6 scans, the median of the six, and the views chosen; the machine, its load and the
-# yardstick (`vantage_bench --benchmark_filter=BM_Gain30_OctoMap/2`, of the first build) before
-# and after.
+# 1, 3 and 6 scans, the median of the six, the search that decided (with no --search, the swept
+# search's race since issue 36 item 4; before, the exhaustive one) and the views chosen; the
+# machine, its load and the yardstick (`vantage_bench --benchmark_filter=BM_Gain30_OctoMap/2`, of
+# the first build) before and after.
 #
 #   scripts/bench-metrics.sh [BUILD_DIR...]      # default build/release
 set -euo pipefail
@@ -35,7 +36,8 @@ run = json.load(open(sys.argv[1]))
 # NOTE: scan k's record holds the decision that chose it; the first scan's had none.
 decided = [s for s in run["scans"] if s["scan"] > 1]
 ms = [1e3 * (s["seconds"]["plan"] - s["seconds"]["reference"]) for s in decided]
-print(f"{sys.argv[2]:<18} {sys.argv[3]:<24} {decided[0]['candidates']} views; after 1, 3, 6 "
+print(f"{sys.argv[2]:<18} {sys.argv[3]:<24} {decided[0]['candidates']} views, "
+      f"{decided[0].get('search', '?')} search; after 1, 3, 6 "
       f"scans: {ms[0]:6.0f} {ms[2]:6.0f} {ms[5]:6.0f} ms; median of 6: "
       f"{statistics.median(ms):6.0f} ms; views {[s['view'] for s in run['scans']]}")
 PY

@@ -122,7 +122,7 @@ def test_the_planner_takes_the_clis_settings(spec):
     assert vt.PlannerConfig(method="probabilistic").objective == "bits"
     assert vt.PlannerConfig(method="probabilistic").search == "pruned"
     assert vt.PlannerConfig(method="survival").search == "swept"
-    assert vt.PlannerConfig(method="unobserved-voxel").search == "exhaustive"
+    assert vt.PlannerConfig(method="unobserved-voxel").search == "swept"
     grid = vt.OccupancyGrid(spec)
     candidates = vt.ring_candidates(spec)
     exact = vt.plan_next_view(
@@ -148,8 +148,8 @@ def test_the_planner_takes_the_clis_settings(spec):
         vt.PlannerConfig(method="sequence", objective="bits")
     with pytest.raises(ValueError, match="decision search"):
         vt.PlannerConfig(search="best")
-    with pytest.raises(ValueError, match="does not serve unobserved-voxel"):
-        vt.PlannerConfig(method="unobserved-voxel", search="swept")
+    with pytest.raises(ValueError, match="does not serve random"):
+        vt.PlannerConfig(method="random", search="swept")
 
 
 def test_a_copy_is_independent(spec):

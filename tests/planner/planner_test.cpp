@@ -61,7 +61,9 @@ TEST(Planner, TheDefaultSearchIsTheFastestThatServesTheMethod) {
         Case{PlannerMethod::kProbabilistic, GainObjective::kBits, DecisionSearch::kPruned},
         Case{PlannerMethod::kSurvival, GainObjective::kBits, DecisionSearch::kPruned},
         Case{PlannerMethod{GainMethod::kUnobservedVoxel}, GainObjective::kBits,
-             DecisionSearch::kExhaustive},
+             DecisionSearch::kSwept},
+        Case{PlannerMethod{GainMethod::kRearSideEntropy}, GainObjective::kBits,
+             DecisionSearch::kSwept},
         Case{PlannerMethod::kRandom, GainObjective::kBits, DecisionSearch::kExhaustive},
         Case{PlannerMethod::kYamauchi, GainObjective::kBits, DecisionSearch::kExhaustive}}) {
     PlannerConfig config;
@@ -116,15 +118,14 @@ TEST(Planner, TheChosenViewsPredictionCanBeLeftOutOfTheDecision) {
 TEST(Planner, ASearchThatDoesNotServeTheMethodIsRefused) {
   HalfKnownBlock s;
   PlannerConfig config;
-  config.method = PlannerMethod{GainMethod::kUnobservedVoxel};
+  config.method = PlannerMethod::kRandom;
   config.search = DecisionSearch::kSwept;
   try {
     (void)plan_next_view(s.grid, s.candidates, config);
-    FAIL() << "the swept search served a metric";
+    FAIL() << "the swept search served a random choice";
   } catch (const std::invalid_argument& e) {
     const std::string message = e.what();
-    EXPECT_NE(message.find("swept search does not serve unobserved-voxel"), std::string::npos)
-        << message;
+    EXPECT_NE(message.find("swept search does not serve random"), std::string::npos) << message;
     EXPECT_NE(message.find("use exhaustive"), std::string::npos) << message;
   }
   config.method = PlannerMethod::kProbabilistic;

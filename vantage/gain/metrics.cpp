@@ -83,42 +83,187 @@ BlockCensus census_of(const GainMap& map) {
   return census;
 }
 
-/// The metric's evaluation: by the jumping walk over `free`, or the reference walk when null.
-std::vector<ViewGain> evaluate(const GainMap& map, const FreeSpace* free,
-                               std::span<const Frustum> views, const GainConfig& config) {
+/// The blocks of `spec`'s grid, kShift cells a side.
+Index3 block_dims(const GridSpec& spec) {
+  return (spec.dims.array() + (FreeSpace::kBlock - 1)).matrix() / FreeSpace::kBlock;
+}
+
+/// Per block, a label over its cells: `label(i)` (>= 0) when every cell i of the block has the
+/// same one, -1 when they differ or one has -1.
+template <typename Label>
+std::vector<std::int64_t> block_labels(const GridSpec& spec, Label&& label) {
+  const Index3 d = block_dims(spec);
+  std::vector<std::int64_t> out(static_cast<std::size_t>(d.prod()), -2);
+  Index3 c;
+  for (c.z() = 0; c.z() < spec.dims.z(); ++c.z()) {
+    for (c.y() = 0; c.y() < spec.dims.y(); ++c.y()) {
+      for (c.x() = 0; c.x() < spec.dims.x(); ++c.x()) {
+        const std::int64_t l = label(spec.linear(c));
+        std::int64_t& b = out[static_cast<std::size_t>(
+            (c.x() >> FreeSpace::kShift) +
+            d.x() * ((c.y() >> FreeSpace::kShift) + d.y() * (c.z() >> FreeSpace::kShift)))];
+        b = (b == -2 || b == l) && l >= 0 ? l : -1;
+      }
+    }
+  }
+  return out;
+}
+
+/// The cubes of blocks of one label (>= 0), built as free_space builds its cubes of free blocks:
+/// one more than the least of the seven neighbours ahead, here those of the same label.
+FreeSpace cubes_of(const Index3& d, const std::vector<std::int64_t>& label) {
+  FreeSpace cubes;
+  cubes.dims = d;
+  const auto block = [&](int x, int y, int z) {
+    return static_cast<std::size_t>(x) +
+           static_cast<std::size_t>(d.x()) *
+               (static_cast<std::size_t>(y) + static_cast<std::size_t>(d.y()) * z);
+  };
+  for (int o = 0; o < 8; ++o) {
+    std::vector<std::uint8_t>& e = cubes.extent[static_cast<std::size_t>(o)];
+    e.assign(label.size(), 0);
+    const int sx = (o & 1) ? 1 : -1, sy = (o & 2) ? 1 : -1, sz = (o & 4) ? 1 : -1;
+    for (int kz = 0; kz < d.z(); ++kz) {
+      const int z = sz > 0 ? d.z() - 1 - kz : kz;
+      for (int ky = 0; ky < d.y(); ++ky) {
+        const int y = sy > 0 ? d.y() - 1 - ky : ky;
+        for (int kx = 0; kx < d.x(); ++kx) {
+          const int x = sx > 0 ? d.x() - 1 - kx : kx;
+          const std::size_t b = block(x, y, z);
+          if (label[b] < 0) continue;
+          int least = 254;  // blocks past the grid do not limit the cube
+          for (int n = 1; n < 8; ++n) {
+            const int nx = x + ((n & 1) ? sx : 0), ny = y + ((n & 2) ? sy : 0),
+                      nz = z + ((n & 4) ? sz : 0);
+            if (nx < 0 || ny < 0 || nz < 0 || nx >= d.x() || ny >= d.y() || nz >= d.z()) continue;
+            const std::size_t m = block(nx, ny, nz);
+            least = std::min(least, label[m] == label[b] ? static_cast<int>(e[m]) : 0);
+          }
+          e[b] = static_cast<std::uint8_t>(least + 1);
+        }
+      }
+    }
+  }
+  return cubes;
+}
+
+/// The cubes of free cells of one value (detail::MetricContext::uniform): the label of a free
+/// cell is its code.
+FreeSpace uniform_free_space(const GainMap& map) {
+  return with_codes(map, [&](const auto* codes) {
+    return cubes_of(block_dims(map.spec()),
+                    block_labels(map.spec(), [&](std::size_t i) -> std::int64_t {
+                      return map.value(i).state == CellState::kFree
+                                 ? static_cast<std::int64_t>(codes[i])
+                                 : -1;
+                    }));
+  });
+}
+
+/// With distances, the cubes of free cells and unobserved ones beyond D of every occupied cell
+/// (detail::QuietCells); empty without.
+FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
+  if (near.empty()) return FreeSpace{};
+  return cubes_of(block_dims(map.spec()), block_labels(map.spec(), [&](std::size_t i) {
+                    const CellState state = map.value(i).state;
+                    return state == CellState::kFree ||
+                                   (state == CellState::kUnobserved && near[i] > kProximityCells)
+                               ? 0
+                               : -1;
+                  }));
+}
+
+/// Throws when `config` names no metric.
+void require_metric(const GainConfig& config) {
   config.validate();
   if (!is_volumetric_metric(config.method)) {
     throw std::invalid_argument(
         cat("gain.method '", to_string(config.method), "' is not a volumetric metric"));
   }
-  const MethodTraits& method = method_traits(config.method);
-  const std::vector<float> near =
-      method.needs_distances ? occupied_distance(map, kProximityCells) : std::vector<float>{};
-  const detail::MetricContext ctx{map, near, config.ray_spacing,
-                                  config.evaluation == GainEvaluation::kExact ? 1 : kFastSubsample,
-                                  free};
-  return method.metric(ctx, views, config.num_threads);
+}
+
+/// The distances the metric reads, none when it reads none.
+std::vector<float> distances_for(const GainMap& map, const GainConfig& config) {
+  return method_traits(config.method).needs_distances ? occupied_distance(map, kProximityCells)
+                                                      : std::vector<float>{};
+}
+
+/// The cubes the jumping walk crosses (detail::MetricContext); all null: the reference walk.
+struct Spaces {
+  const FreeSpace *free = nullptr, *uniform = nullptr, *far = nullptr;
+};
+
+/// The metric's rays at `coarseness` times the pitch `config` asks for, by the jumping walk over
+/// `spaces` (the reference walk when they are null).
+std::vector<ViewGain> evaluate(const GainMap& map, const std::vector<float>& near,
+                               const Spaces& spaces, std::span<const Frustum> views,
+                               const GainConfig& config, int coarseness, bool count_cells) {
+  const int subsample = config.evaluation == GainEvaluation::kExact ? 1 : kFastSubsample;
+  const detail::MetricContext ctx{map,         near,        config.ray_spacing, subsample,
+                                  spaces.free, spaces.uniform, spaces.far,   count_cells,
+                                  coarseness};
+  return method_traits(config.method).metric(ctx, views, config.num_threads);
 }
 
 }  // namespace
 
 std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frustum> views,
                                         const GainConfig& config) {
-  const FreeSpace free = free_space(census_of(map));
-  return evaluate(map, &free, views, config);
+  require_metric(config);
+  const FreeSpace free = free_space(census_of(map)), uniform = uniform_free_space(map);
+  return evaluate(map, distances_for(map, config), Spaces{&free, &uniform}, views, config, 1, true);
 }
 
 std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                         const GainConfig& config) {
-  config.validate();
-  const FreeSpace free = free_space(grid.census());
-  return evaluate(GainMap(grid, config.num_threads), &free, views, config);
+  return MetricEvaluator(grid, config).gains(views);
+}
+
+MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& config)
+    : config_((require_metric(config), config)),
+      map_(grid, config.num_threads),
+      free_(free_space(grid.census())),
+      uniform_(uniform_free_space(map_)),
+      near_(distances_for(map_, config)),
+      far_(far_space(map_, near_)) {}
+
+std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int coarseness,
+                                             bool count_cells) const {
+  if (coarseness < 1) {
+    throw std::invalid_argument(cat("MetricEvaluator: coarseness ", coarseness, " is not >= 1"));
+  }
+  return evaluate(map_, near_, Spaces{&free_, &uniform_, far_.empty() ? nullptr : &far_},
+                  views, config_, coarseness, count_cells);
+}
+
+std::span<const MetricRound> metric_race_rounds(GainMethod method) {
+  // NOTE: the worst rank of the exact best view among the estimates of all views, over the 48
+  // oracle states: occlusion aware 5 by every 27th ray; unobserved voxel 40 by every 9th and 17
+  // by every 3rd; average entropy 28 and 12; area factor 34 and 5. Each round keeps about twice
+  // that (BENCHMARK.md, "The metrics raced").
+  static constexpr MetricRound kOcclusionAware[] = {{27, 12}};
+  static constexpr MetricRound kUnobservedVoxel[] = {{9, 64}, {3, 24}};
+  static constexpr MetricRound kAverageEntropy[] = {{9, 48}, {3, 20}};
+  static constexpr MetricRound kAreaFactor[] = {{9, 56}, {3, 10}};
+  switch (method) {
+    case GainMethod::kOcclusionAware:
+      return kOcclusionAware;
+    case GainMethod::kUnobservedVoxel:
+      return kUnobservedVoxel;
+    case GainMethod::kAverageEntropy:
+      return kAverageEntropy;
+    case GainMethod::kAreaFactor:
+      return kAreaFactor;
+    default:
+      return {};
+  }
 }
 
 std::vector<ViewGain> metric_view_gains_reference(const GainMap& map,
                                                   std::span<const Frustum> views,
                                                   const GainConfig& config) {
-  return evaluate(map, nullptr, views, config);
+  require_metric(config);
+  return evaluate(map, distances_for(map, config), Spaces{}, views, config, 1, true);
 }
 
 }  // namespace vantage

@@ -18,6 +18,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vantage/gain/free_space.hpp"
 #include "vantage/gain/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/types.hpp"
@@ -51,6 +52,46 @@ std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frus
 /// The same on the grid, which is only read.
 std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                         const GainConfig& config);
+
+/// A round of a metric's race (the swept search, docs/decision.md "The swept search"): the views
+/// still in the race estimated by every `coarseness`-th of the metric's rays along each image axis
+/// (MetricEvaluator::gains), the best `keep` of them passed on to the next round.
+struct MetricRound {
+  int coarseness;
+  std::size_t keep;
+};
+
+/// The rounds of `method`'s race before the last, which evaluates the views left exactly; empty
+/// when the metric's coarser rays rank too poorly to race (the rear side metrics and the proximity
+/// count, whose value sits on few rays: the race would need most views to keep its choice), so that
+/// every view is evaluated exactly. Sized on the oracle states of
+/// tests/gain/metrics_race_scenes_test.cpp (docs/model.md, "The metrics at speed").
+std::span<const MetricRound> metric_race_rounds(GainMethod method);
+
+/// metric_view_gains on one map for several sets of views and ray pitches: the snapshot, its free
+/// cubes and the distances are built once (a decision that evaluates views in rounds, the swept
+/// search's metric race, docs/decision.md).
+class MetricEvaluator {
+ public:
+  /// Throws std::invalid_argument when `config` is invalid or names no metric.
+  MetricEvaluator(const OccupancyGrid& grid, const GainConfig& config);
+  /// Every view's value as metric_view_gains gives it when `coarseness` is 1; else an estimate of
+  /// it by every coarseness-th of its rays along each image axis, each cell weighed by about how
+  /// many cells the metric's own rays cross for each the coarser rays cross at its distance
+  /// (detail::RayCell::weight).
+  /// With `count_cells` false, ViewGain::cells is 0 and the proximity count crosses cubes of
+  /// free cells and unobserved ones beyond D of every occupied cell in one step too, the same
+  /// values to the last bit.
+  std::vector<ViewGain> gains(std::span<const Frustum> views, int coarseness = 1,
+                              bool count_cells = true) const;
+
+ private:
+  GainConfig config_;
+  GainMap map_;
+  FreeSpace free_, uniform_;
+  std::vector<float> near_;
+  FreeSpace far_;  // empty when the metric reads no distances
+};
 
 /// The reference the evaluation above is held to (tests/gain/metrics_test.cpp): the same rays,
 /// each walked cell by cell and every cell handed to the metric, where metric_view_gains crosses

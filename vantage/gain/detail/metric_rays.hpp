@@ -10,6 +10,12 @@
 /// the jumping walk below may cross free space (optional: by default it crosses nothing):
 ///   static constexpr bool kFreeInert;  // after one free cell, more free cells change nothing
 ///                                      // (visibility aside, which it ignores)
+/// or that free cells change only the visibility of the cells after them (the jumping walk then
+/// crosses cubes of free cells of one value, multiplying the visibility by each cell's 1 - p):
+///   static constexpr bool kFreeDims;
+/// A free-inert metric may also say which other cells change nothing after the first of them
+/// (the jumping walk crosses cubes of those too when it need not count the unobserved cells):
+///   static constexpr QuietCells kQuiet;
 ///
 /// One walk feeds it (`view_rays`), in two ways: the reference hands the metric every cell of
 /// every ray; the jumping walk (docs/model.md "The metrics at speed") casts only the rays that
@@ -29,6 +35,7 @@
 #include <vector>
 
 #include "vantage/gain/free_space.hpp"
+#include "vantage/gain/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/types.hpp"
 #include "vantage/map/traversal.hpp"
@@ -50,6 +57,11 @@ struct RayCell {
   /// unobserved cells only (+inf for the others), the one class a metric reads it for.
   float near;
   bool in_range;  ///< the cell's centre lies at least the sensor's min range away
+  /// What the cell stands for in an estimate by coarser rays (MetricContext::coarseness): about
+  /// 1 / the share of such cells the coarser rays cross among those the metric's own rays cross,
+  /// at the cell's distance; exactly 1 at the metric's own pitch. A metric that sums over cells
+  /// weighs each by it.
+  double weight;
 };
 
 /// Marks cells counted in the current view: one bit per cell (a 129 x 129 x 65 grid in 135 KB,
@@ -83,7 +95,49 @@ struct MetricContext {
   double spacing;                   // ray pitch at the farthest cell in view [cells]
   int subsample;                    // cast every subsample-th ray along each image axis
   const FreeSpace* free = nullptr;  // the jumping walk's free cubes; nullptr: the reference walk
+  /// The cubes of free cells of one value, for a metric that free cells only dim (free_dims);
+  /// nullptr: it is walked cell by cell.
+  const FreeSpace* uniform = nullptr;
+  /// The cubes of free cells and unobserved ones beyond D of every occupied cell (QuietCells),
+  /// crossed only when the unobserved cells need not be counted.
+  const FreeSpace* far = nullptr;
+  /// Whether ViewGain::cells counts the unobserved cells reached; false: 0, and a metric whose
+  /// quiet cells include unobserved ones crosses their cubes in one step.
+  bool count_cells = true;
+  /// 1: the metric's own rays (every subsample-th); k > 1: every k-th of those along each axis,
+  /// an estimate whose cells carry RayCell::weight.
+  int coarseness = 1;
 };
+
+/// The mean area a cell shows a ray, the cube's mean projection (a quarter of its surface,
+/// Cauchy) [cells^2]: a lattice of parallel rays `a` cells apart crosses about min(1, kCellShadow
+/// / a^2) of the cells it passes.
+inline constexpr double kCellShadow = 1.5;
+
+/// Which cells besides free ones change nothing for a metric after the first of them on a ray.
+enum class QuietCells {
+  kFree,  ///< none besides free cells
+  kFar,   ///< unobserved cells beyond D of every occupied cell (MetricContext::far)
+};
+
+template <typename Metric>
+constexpr QuietCells quiet_cells() {
+  if constexpr (requires { Metric::kQuiet; }) {
+    return Metric::kQuiet;
+  } else {
+    return QuietCells::kFree;
+  }
+}
+
+/// Whether free cells only dim `Metric`'s later cells (the file's note); false unless it says so.
+template <typename Metric>
+constexpr bool free_dims() {
+  if constexpr (requires { Metric::kFreeDims; }) {
+    return Metric::kFreeDims;
+  } else {
+    return false;
+  }
+}
 
 /// Whether `Metric` is free-inert (the file's note); false unless it says so.
 template <typename Metric>
@@ -104,6 +158,10 @@ struct RayImage {
   int rows, cols, first, step;
   double max_range, min_r2;
   bool all_in_range;  ///< every cell's centre lies at least the min range from the origin
+  /// With coarser rays (coarseness k > 1): RayCell::weight at squared distance r2 from the origin
+  /// [m^2] is clamp(weight_scale * r2, 1, k^2), k^2 times the squared spacing of the metric's own
+  /// rays there [cells^2] over kCellShadow; 0 with the metric's own rays.
+  double weight_scale = 0.0, most_weight = 1.0;
 
   RayImage(const MetricContext& ctx, const Frustum& view) {
     const GridSpec& spec = ctx.map.spec();
@@ -125,8 +183,16 @@ struct RayImage {
     rows = std::max(1, static_cast<int>(std::ceil(2.0 * tan_v / du)));
     su = 2.0 * tan_h / cols;
     sv = 2.0 * tan_v / rows;
-    first = ctx.subsample / 2;
-    step = ctx.subsample;
+    step = ctx.subsample * ctx.coarseness;
+    first = step / 2;
+    if (ctx.coarseness > 1) {
+      const double k2 = static_cast<double>(ctx.coarseness) * ctx.coarseness;
+      // NOTE: the metric's own rays lie ctx.subsample * su apart in the image, about as many
+      // cells apart at distance r as that times r / resolution.
+      const double own = ctx.subsample * std::max(su, sv) / spec.resolution;
+      weight_scale = k2 * own * own / kCellShadow;
+      most_weight = k2;
+    }
     max_range = fov.max_range;
     min_r2 = fov.min_range * fov.min_range;
     // NOTE: cell centres lie in the grid's box, so none is nearer than the box itself.
@@ -212,26 +278,54 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
         for (;;) {
           const std::size_t linear = walk.linear();
           const GainMap::Value& v = values[codes[linear]];
-          const bool in_range =
-              image.all_in_range || (spec.center(walk.cell()) - o).squaredNorm() >= image.min_r2;
+          double r2 = 0.0;
+          if (!image.all_in_range || image.weight_scale > 0.0) {
+            r2 = (spec.center(walk.cell()) - o).squaredNorm();
+          }
+          const bool in_range = image.all_in_range || r2 >= image.min_r2;
+          const double weight =
+              image.weight_scale > 0.0 ? std::clamp(image.weight_scale * r2, 1.0, image.most_weight)
+                                       : 1.0;
           // NOTE: the distance read for unobserved cells only (RayCell::near): otherwise 4 bytes
           // a cell from a table four times the codes' size; 10-20 % of the CPU time of
           // proximity count and area factor on BM_MetricDecision187.
           const bool unobserved = v.state == CellState::kUnobserved;
           metric.cell(RayCell{linear, v, visibility,
-                              unobserved && !ctx.near.empty() ? ctx.near[linear] : far, in_range},
+                              unobserved && !ctx.near.empty() ? ctx.near[linear] : far, in_range,
+                              weight},
                       credit);
           if (v.state == CellState::kOccupied) {
             rear_side = previous_unknown;
             break;
           }
           previous_unknown = unobserved;
-          if (previous_unknown && in_range && seen.take(linear)) result.cells += 1.0;
+          if (ctx.count_cells && previous_unknown && in_range && seen.take(linear)) {
+            result.cells += weight;
+          }
           visibility *= 1.0 - v.p;  // eq. M1
+          if constexpr (quiet_cells<Metric>() == QuietCells::kFar) {
+            const bool quiet = v.state == CellState::kFree ||
+                               (unobserved && ctx.near[linear] > kProximityCells);
+            if (!ctx.count_cells && ctx.far != nullptr && quiet && ctx.far->cross(walk, spec)) {
+              if (!spec.contains(walk.cell())) break;  // left the grid
+              continue;
+            }
+          }
           if (free_inert<Metric>() && free != nullptr && v.state == CellState::kFree &&
               free->cross(walk, spec)) {
             if (!spec.contains(walk.cell())) break;  // left the grid
             continue;
+          }
+          if (free_dims<Metric>() && ctx.uniform != nullptr && v.state == CellState::kFree) {
+            const Index3 from = walk.cell();
+            if (ctx.uniform->cross(walk, spec)) {
+              // NOTE: the cells crossed between are free and of this cell's value: the visibility
+              // the reference's steps leave, one factor at a time, so to the last bit.
+              const int between = (walk.cell() - from).cwiseAbs().sum() - 1;
+              for (int k = 0; k < between; ++k) visibility *= 1.0 - v.p;
+              if (!spec.contains(walk.cell())) break;  // left the grid
+              continue;
+            }
           }
           if (walk.at_end()) break;
           walk.advance();

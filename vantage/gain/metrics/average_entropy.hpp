@@ -14,8 +14,8 @@ struct AverageEntropy {
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {
     if (c.in_range && s.take(c.linear)) {
-      sum += c.value.entropy;
-      count += 1.0;
+      sum += c.weight * c.value.entropy;
+      count += c.weight;
     }
   }
   void end_ray(bool, Stamp&) {}

@@ -16,7 +16,7 @@ struct OcclusionAware {
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {
-    if (c.in_range && s.take(c.linear)) sum += c.visibility * c.value.entropy;
+    if (c.in_range && s.take(c.linear)) sum += c.weight * c.visibility * c.value.entropy;
   }
   void end_ray(bool, Stamp&) {}
   double value(double) const { return sum; }

@@ -12,11 +12,12 @@ namespace vantage {
 /// occupied cell, else 0 (eq. M5): unobserved cells near a surface, the nearer the more.
 struct ProximityCount {
   static constexpr bool kFreeInert = true;
+  static constexpr detail::QuietCells kQuiet = detail::QuietCells::kFar;  // they credit nothing
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {
     if (c.in_range && unknown(c) && c.near <= kProximityCells && s.take(c.linear)) {
-      sum += kProximityCells - c.near;
+      sum += c.weight * (kProximityCells - c.near);
     }
   }
   void end_ray(bool, Stamp&) {}

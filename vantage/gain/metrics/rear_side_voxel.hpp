@@ -11,13 +11,15 @@ namespace vantage {
 /// unobserved cell, a rear side of a surface seen before (eq. M3), else 0.
 struct RearSideVoxel {
   static constexpr bool kFreeInert = true;
+  // NOTE: no cubes of unobserved cells (after one, more change nothing): tried, they cost as
+  // much as they saved on tabletop-4's hemisphere (BENCHMARK.md, "The metrics raced").
   double sum = 0.0;
   bool previous_unknown = false;
   void begin_ray() { previous_unknown = false; }
   void cell(const RayCell& c, Stamp& s) {
     if (c.value.state == CellState::kOccupied && previous_unknown && c.in_range &&
         s.take(c.linear)) {
-      sum += 1.0;
+      sum += c.weight;
     }
     previous_unknown = unknown(c);
   }

@@ -14,7 +14,7 @@ struct UnobservedVoxel {
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {
-    if (c.in_range && unknown(c) && s.take(c.linear)) sum += 1.0;
+    if (c.in_range && unknown(c) && s.take(c.linear)) sum += c.weight;
   }
   void end_ray(bool, Stamp&) {}
   double value(double) const { return sum; }

@@ -3,8 +3,10 @@
 // each crediting the volume it sweeps through unobserved cells); the leaders cast again at twice
 // the rays a side; the leaders of that raced on nested samples of their cells up to all of them
 // (race.hpp); the winner's full prediction after. Under the paper's model no ray sweeps a volume,
-// so every candidate enters the race on the model's exact per-target v_M. Statistical, with the
-// exhaustive exact search's choice in every oracle state (tests/planner/swept_scenes_test.cpp).
+// so every candidate enters the race on the model's exact per-target v_M. A metric's rounds cast
+// the metric's own rays, coarser but in the last (run_metric). Statistical, with the exhaustive
+// exact search's choice in every oracle state (tests/planner/swept_scenes_test.cpp,
+// tests/gain/metrics_race_scenes_test.cpp).
 
 #include "vantage/gain/swept.hpp"
 
@@ -14,7 +16,9 @@
 #include "vantage/gain/exact.hpp"
 #include "vantage/gain/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/metrics.hpp"
 #include "vantage/gain/view_cells.hpp"
+#include "vantage/planner/choose.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/planner/searches/race.hpp"
 
@@ -42,8 +46,14 @@ bool paper_race(const PlannerConfig& config) {
          config.objective == GainObjective::kCells;
 }
 
+/// Whether the search serves a metric (metrics.hpp): its rounds cast the metric's rays.
+bool metric_race(const PlannerConfig& config) {
+  return ranks_by_gain(config.method) && config.method.ranking != Ranking::kSequence &&
+         method_traits(config.method.gain).kind == MethodKind::kMetric;
+}
+
 bool serves(const PlannerConfig& config) {
-  return swept_rule(config).has_value() || paper_race(config);
+  return swept_rule(config).has_value() || paper_race(config) || metric_race(config);
 }
 
 /// The rounds: how many candidates the second round casts again at twice the rays a side, and
@@ -139,8 +149,51 @@ Plan run_paper(const SearchInput& in) {
   return finish(in, all, factor, race, estimates(in));
 }
 
+/// A metric's race (metric_race_rounds): every candidate estimated by the metric's coarser rays,
+/// the best of each round passed on to the next, the last round's evaluated at the metric's own
+/// pitch, exactly; the best exact value decides, the lower index on a tie.
+Plan run_metric(const SearchInput& in) {
+  const MetricEvaluator metric(in.grid, in.gain);
+  Plan plan = estimates(in);
+  std::vector<std::size_t> among(in.candidates.size());
+  for (std::size_t c = 0; c < among.size(); ++c) among[c] = c;
+  const auto evaluate = [&](int coarseness) {
+    const CandidateViews subset = in.views.subset(among);
+    // NOTE: no cell counts in the rounds, so that the rays may cross the cells the metric
+    // leaves unchanged; the chosen view's are counted after.
+    const std::vector<ViewGain> sums =
+        subset.sums(metric.gains(subset.frusta, coarseness, /*count_cells=*/false));
+    for (std::size_t k = 0; k < among.size(); ++k) {
+      const std::size_t c = among[k];
+      plan.gains[c] = sums[k];
+      plan.scores[c] = sums[k].gain * in.travel_factor(c);
+    }
+  };
+  for (const MetricRound& round : metric_race_rounds(in.gain.method)) {
+    evaluate(round.coarseness);
+    among = leaders(plan.scores, among, round.keep, 1.0);
+    // NOTE: in candidate order, so that an exact tie goes to the lower index, as in the
+    // exhaustive search.
+    std::sort(among.begin(), among.end());
+  }
+  evaluate(1);
+  std::vector<double> exact;
+  for (const std::size_t c : among) {
+    plan.estimated[c] = false;
+    exact.push_back(plan.scores[c]);
+  }
+  plan.best = among[choose_best(exact)];
+  plan.evaluated = among.size();
+  const CandidateViews chosen = in.views.subset({plan.best});
+  plan.gains[plan.best] = chosen.sums(metric.gains(chosen.frusta)).front();
+  plan.seconds = in.seconds();
+  report_choice(in, plan);
+  return plan;
+}
+
 Plan run(const SearchInput& in) {
   if (paper_race(in.config)) return run_paper(in);
+  if (metric_race(in.config)) return run_metric(in);
   // NOTE: the grid's own classes and census, no snapshot: the swept rays and the race read
   // classes only.
   const ClassMap map(in.grid);
@@ -194,7 +247,8 @@ extern const SearchTraits kSweptSearch;
 const SearchTraits kSweptSearch = {
     DecisionSearch::kSwept,
     "every view ranked by rays cast outward, the leaders raced on samples of their cells up to "
-    "all of them: milliseconds; survival and probabilistic by cells, greedy and latombe",
+    "all of them: milliseconds; survival and probabilistic by cells, greedy and latombe; the "
+    "metrics on their coarser rays, the leaders on their own",
     &serves, &run};
 
 }  // namespace vantage
