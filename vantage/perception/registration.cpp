@@ -268,13 +268,6 @@ class Problem {
     // its own. The geometric mean of the two did neither on the measured runs.
     const double weight =
         last ? data_weight_ : 1.0 / std::max(kernel * config_.sensor_sigma, 1.0 / data_weight_);
-    // NOTE: a stage pairs within its distance and hands its pose to the next, finer one, which
-    // moves it again: a coarse stage need only come as close as its distance allows, a step of
-    // `convergence` x its distance / min_distance (0.6 mm at the first stage of a hand-held
-    // frame's 0.95 m, 10 um at the last). Steps down to 10 um there cost a frame ~3x the
-    // iterations for no change the last stage keeps.
-    const double convergence =
-        config_.convergence * std::max(1.0, stage.distance / config_.min_distance);
     int iteration = 0;
     while (iteration < config_.max_iterations) {
       const std::vector<Pair> pairs =
@@ -308,7 +301,7 @@ class Problem {
       // The increment turns about the current sensor position c + t, which leaves t as is.
       correction.R = dR * correction.R;
       correction.t += dx.tail<3>();
-      if (dx.norm() < convergence) break;
+      if (dx.norm() < config_.convergence) break;
     }
     return iteration;
   }
