@@ -68,6 +68,8 @@ MapperConfig config(int threads, bool thin) {
   c.register_scans = true;
   c.integration.num_threads = threads;
   c.registration.num_threads = threads;
+  c.map.num_threads = threads;
+  c.table.num_threads = threads;
   c.keep_object_cloud = false;
   return c;
 }
@@ -89,6 +91,8 @@ void BM_KinectFrame_Ours(benchmark::State& state) {
   state.counters["segment_ms"] = update.seconds_segment * 1e3;
   state.counters["register_ms"] = update.seconds_register * 1e3;
   state.counters["integrate_ms"] = update.seconds_integrate * 1e3;
+  state.counters["objects"] = static_cast<double>(update.object_points);
+  state.counters["register_iterations"] = update.registration_result.iterations;
   state.counters["pose_error_mm"] =
       (update.T_world_sensor.translation() - k.T_world_second.translation()).norm() * 1e3;
 }
