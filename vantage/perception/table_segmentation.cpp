@@ -288,14 +288,15 @@ TableSegmentation segment_table(const PointCloud& points_world, const TableConfi
   for (const int i : table->inliers) sample_inliers.push_back(sample[static_cast<std::size_t>(i)]);
   const Extent coarse(table->coefficients, sample_inliers);
   if (coarse.hull.size() < 3) return result;
-  const std::vector<char> near = flag(points_world, [&](const Eigen::Vector3d& p) {
-    return std::abs(coarse.height(p)) <= config.distance_threshold &&
-           coarse.contains(p, config.voxel_size);
+  // 1: near the plane, inside the sample's hull; 2: near it, outside, but within a voxel.
+  const std::vector<char> near = flag(points_world, [&](const Eigen::Vector3d& p) -> char {
+    if (std::abs(coarse.height(p)) > config.distance_threshold) return 0;
+    if (coarse.contains(p, 0.0)) return 1;
+    return coarse.contains(p, config.voxel_size) ? 2 : 0;
   });
   const Eigen::Vector4d plane = fit_plane(points_world, near, table->coefficients);
   for (std::size_t i = 0; i < points_world.size(); ++i) {
-    if (near[i] && !coarse.contains(points_world[i], 0.0))
-      sample_inliers.push_back(points_world[i]);
+    if (near[i] == 2) sample_inliers.push_back(points_world[i]);
   }
   // NOTE: the sample's hull holds every full-cloud point inside it, so the points outside it and
   // its corners give the hull of all the inliers.
