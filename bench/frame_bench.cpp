@@ -14,10 +14,15 @@
 #include <pcl/segmentation/sac_segmentation.h>
 
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "vantage/experiment/recorded.hpp"
 #include "vantage/io/cloud_io.hpp"
+#include "vantage/io/depth_image.hpp"
+#include "vantage/map/integrate.hpp"
 #include "vantage/perception/table_pose.hpp"
 #include "vantage/perception/voxel_filter.hpp"
 
@@ -68,6 +73,8 @@ MapperConfig config(int threads, bool thin) {
   c.register_scans = true;
   c.integration.num_threads = threads;
   c.registration.num_threads = threads;
+  c.map.num_threads = threads;
+  c.table.num_threads = threads;
   c.keep_object_cloud = false;
   return c;
 }
@@ -89,6 +96,8 @@ void BM_KinectFrame_Ours(benchmark::State& state) {
   state.counters["segment_ms"] = update.seconds_segment * 1e3;
   state.counters["register_ms"] = update.seconds_register * 1e3;
   state.counters["integrate_ms"] = update.seconds_integrate * 1e3;
+  state.counters["objects"] = static_cast<double>(update.object_points);
+  state.counters["register_iterations"] = update.registration_result.iterations;
   state.counters["pose_error_mm"] =
       (update.T_world_sensor.translation() - k.T_world_second.translation()).norm() * 1e3;
 }
@@ -180,6 +189,67 @@ void BM_KinectFrame_PclIcp(benchmark::State& state) {
   state.counters["residual_shift_mm"] = error_mm;
 }
 BENCHMARK(BM_KinectFrame_PclIcp)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+/// The first frame as a depth camera gives it: each finite point projected into a 640 x 480
+/// image by milk.yaml's intrinsics, its depth in millimetres (0: none).
+DepthImage kinect_depth_image() {
+  const Manifest& m = frames().manifest;
+  const PinholeIntrinsics& k = *m.intrinsics;
+  DepthImage image{
+      .width = k.width,
+      .height = k.height,
+      .depth = std::vector<std::uint16_t>(static_cast<std::size_t>(k.width) * k.height)};
+  for (const Eigen::Vector3d& p :
+       read_point_cloud(m.clouds[0].file, {.skip_non_finite = true})) {  // optical frame
+    const long u = std::lround(k.fx * p.x() / p.z() + k.cx);
+    const long v = std::lround(k.fy * p.y() / p.z() + k.cy);
+    if (u < 0 || v < 0 || u >= k.width || v >= k.height) continue;
+    image.depth[static_cast<std::size_t>(v) * k.width + static_cast<std::size_t>(u)] =
+        static_cast<std::uint16_t>(std::lround(p.z() * 1000.0));
+  }
+  return image;
+}
+
+/// Integrating a depth image (item 2 of issue 38) into the 7.8 mm grid, on 2 threads: directly,
+/// each valid pixel one ray (integrate_depth), or through the points of its valid pixels
+/// (depth_to_points, turned into the sensor frame and placed in the world, then integrate_scan),
+/// which gives the same grid cell for cell (tests/map/integrate_test.cpp). Args: 0 direct,
+/// 1 through points; the integration mode (0 paper, 1 endpoint). The whole frame, table and all,
+/// into an empty grid.
+void BM_KinectDepth(benchmark::State& state) {
+  const KinectFrames& k = frames();
+  static const DepthImage image = kinect_depth_image();
+  const DepthEncoding encoding{.units_per_metre = 1000.0, .invalid = 0};
+  const DepthFrame frame = depth_frame(image, *k.manifest.intrinsics, encoding);
+  IntegrationConfig config;
+  config.num_threads = 2;
+  config.mode = state.range(1) == 0 ? IntegrationMode::kPaper : IntegrationMode::kEndpoint;
+  const Frustum view(k.T_world_first, k.manifest.fov);
+  const Eigen::Matrix3d R_sensor_optical = R_cloud_sensor(CloudFrame::kOptical).transpose();
+  std::size_t hits = 0;
+  for (auto _ : state) {
+    OccupancyGrid grid(k.grid);  // not timed
+    const auto start = std::chrono::steady_clock::now();
+    if (state.range(0) == 0) {
+      hits = integrate_depth(grid, frame, view, config).hit_cells;
+    } else {
+      PointCloud points = depth_to_points(image, *k.manifest.intrinsics, encoding);
+      for (Eigen::Vector3d& p : points) p = k.T_world_first * (R_sensor_optical * p);
+      hits = integrate_scan(grid, {points, view}, config).hit_cells;
+    }
+    state.SetIterationTime(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  state.counters["hit_cells"] = static_cast<double>(hits);
+}
+BENCHMARK(BM_KinectDepth)
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Args({0, 1})
+    ->Args({1, 1})
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseManualTime();
 
 }  // namespace
 }  // namespace vantage::bench

@@ -4,7 +4,13 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdint>
 #include <random>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace vantage {
 namespace {
@@ -104,6 +110,101 @@ TEST(Integrate, PointsOutsideTheGridAreCountedAndTheirRaysStillCarve) {
   EXPECT_EQ(result.points_outside, scene.wall.size());
   EXPECT_EQ(result.hit_cells, 0u);
   EXPECT_GT(result.missed_cells, 0u);
+}
+
+// A 64 x 48 depth image of the wall scene's wall with a box before it, a few pixels without depth
+// (0) and some beyond the grid, integrated directly and as the points of its valid pixels in row
+// order: the same grid, cell for cell, and the same counts, in both modes and with a mask.
+TEST(IntegrateDepth, EqualsIntegratingThePixelsAsPoints) {
+  WallScene scene;
+  std::vector<std::uint16_t> depth(64 * 48);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> noise(-4, 4);
+  std::vector<std::uint8_t> mask(depth.size());
+  for (int v = 0; v < 48; ++v) {
+    for (int u = 0; u < 64; ++u) {
+      const std::size_t k = static_cast<std::size_t>(v) * 64 + u;
+      const bool box = u > 20 && u < 40 && v > 10 && v < 30;
+      depth[k] = static_cast<std::uint16_t>((box ? 6000 : 7500) + 10 * u + noise(rng));  // 5000/m
+      if (u > 60) depth[k] = 40000;                  // 8 m: beyond the grid
+      if ((u * 7 + v * 13) % 17 == 0) depth[k] = 0;  // no depth
+      mask[k] = static_cast<std::uint8_t>((u + v) % 3 != 0);
+    }
+  }
+  DepthFrame frame{.width = 64,
+                   .height = 48,
+                   .depth = depth,
+                   .fx = 80.0,
+                   .fy = 80.0,
+                   .cx = 31.5,
+                   .cy = 23.5,
+                   .units_per_metre = 5000.0,
+                   .invalid = 0};
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  pose.linear() = Eigen::AngleAxisd(0.1, Eigen::Vector3d(0.2, 0.3, 1.0).normalized()).matrix();
+  pose.translation() = Eigen::Vector3d(-0.4, 0.013, 0.021);
+  const Frustum view(pose, SensorFov{deg2rad(44), deg2rad(34), 0.1, 10.0});
+  // The points path, as a reader hands them over: the optical frame turned into the sensor's.
+  Eigen::Matrix3d R_sensor_optical;
+  R_sensor_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  for (const bool masked : {false, true}) {
+    PointCloud points;
+    for (int v = 0; v < 48; ++v) {
+      for (int u = 0; u < 64; ++u) {
+        const std::size_t k = static_cast<std::size_t>(v) * 64 + u;
+        if (depth[k] == 0 || (masked && mask[k] == 0)) continue;
+        points.push_back(pose * (R_sensor_optical * frame.optical_point(u, v, depth[k])));
+      }
+    }
+    for (const IntegrationMode mode : {IntegrationMode::kPaper, IntegrationMode::kEndpoint}) {
+      IntegrationConfig config;
+      config.mode = mode;
+      OccupancyGrid direct(scene.spec), via_points(scene.spec);
+      const IntegrationResult a = integrate_depth(
+          direct, frame, view, config,
+          masked ? std::span<const std::uint8_t>(mask) : std::span<const std::uint8_t>());
+      const IntegrationResult b = integrate_scan(via_points, {points, view}, config);
+      std::size_t changed = 0;
+      for (std::size_t i = 0; i < scene.spec.num_cells(); ++i) {
+        ASSERT_EQ(direct.log_odds(i), via_points.log_odds(i)) << "cell " << i;
+        changed += direct.is_unobserved(i) ? 0 : 1;
+      }
+      EXPECT_GT(changed, 1000u);
+      EXPECT_EQ(a.left_unobserved, b.left_unobserved);
+      EXPECT_EQ(a.points_inside, b.points_inside);
+      EXPECT_EQ(a.points_outside, b.points_outside);
+      EXPECT_GT(a.points_outside, 0u);
+      EXPECT_EQ(a.hit_cells, b.hit_cells);
+      EXPECT_EQ(a.missed_cells, b.missed_cells);
+    }
+  }
+}
+
+TEST(IntegrateDepth, StatesWhatIsWrongWithAFrame) {
+  WallScene scene;
+  OccupancyGrid grid(scene.spec);
+  const std::vector<std::uint16_t> depth(12, 1000);
+  const DepthFrame good{
+      .width = 4, .height = 3, .depth = depth, .fx = 5, .fy = 5, .cx = 1.5, .cy = 1.0};
+  EXPECT_NO_THROW(integrate_depth(grid, good, scene.view, {}));
+  const std::pair<void (*)(DepthFrame&), const char*> spoilt[] = {
+      {[](DepthFrame& f) { f.width = 5; }, "12 depth values for 5 x 3"},
+      {[](DepthFrame& f) { f.fx = 0.0; }, "fx and fy"},
+      {[](DepthFrame& f) { f.units_per_metre = -1.0; }, "units_per_metre"},
+      {[](DepthFrame& f) { f.cy = std::nan(""); }, "cx and cy"},
+  };
+  for (const auto& [spoil, what] : spoilt) {
+    DepthFrame frame = good;
+    spoil(frame);
+    try {
+      integrate_depth(grid, frame, scene.view, {});
+      ADD_FAILURE() << what << " accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
+    }
+  }
+  const std::vector<std::uint8_t> mask(11, 1);
+  EXPECT_THROW(integrate_depth(grid, good, scene.view, {}, mask), std::invalid_argument);
 }
 
 }  // namespace

@@ -289,6 +289,7 @@ TEST(Registration, RejectsBadInput) {
       {[](RegistrationConfig& c) { c.start_sigmas = -1.0; }, "registration.start_sigmas"},
       {[](RegistrationConfig& c) { c.ambiguity_cost = std::nan(""); },
        "registration.ambiguity_cost"},
+      {[](RegistrationConfig& c) { c.prune_cost = 1.0; }, "registration.prune_cost"},
   };
   for (const auto& [spoil, field] : fields) {
     RegistrationConfig config;

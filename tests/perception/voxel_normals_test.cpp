@@ -1,8 +1,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <random>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "vantage/perception/normals.hpp"
 #include "vantage/perception/voxel_filter.hpp"
@@ -29,6 +32,40 @@ TEST(VoxelDownsample, KeepsOnePointPerOccupiedVoxelAtAnyExtent) {
   // PCL's VoxelGrid gives up beyond 2^31 voxels; this must not.
   const PointCloud points = {{-1e4, 0, 0}, {1e4, 0, 0}, {0, 1e4, 1e4}, {1e4 + 1e-4, 0, 0}};
   EXPECT_EQ(voxel_downsample(points, 0.001).size(), 3u);
+}
+
+// The oracle: a map from each voxel, in (z, y, x) order, to its points' sum in input order.
+// Both of voxel_downsample's sorts are checked: voxels within 2^21 of each other (packed) and a
+// cloud with one far point (compared).
+TEST(VoxelDownsample, EqualsABruteForceCentroidPerVoxel) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> coord(-0.3, 0.5);
+  PointCloud points;
+  for (int i = 0; i < 20000; ++i) points.emplace_back(coord(rng), coord(rng), 0.1 * coord(rng));
+  for (int i = 0; i < 500; ++i) points.push_back(points[static_cast<std::size_t>(i) * 7]);
+  for (const bool far : {false, true}) {
+    PointCloud cloud = points;
+    if (far) cloud.emplace_back(0.0, 0.0, 1e5);
+    for (const double voxel : {0.007, 0.02, 0.1}) {
+      std::map<std::tuple<double, double, double>, std::pair<Eigen::Vector3d, std::size_t>> oracle;
+      for (const Eigen::Vector3d& p : cloud) {
+        auto& [sum, n] = oracle[{std::floor(p.z() / voxel), std::floor(p.y() / voxel),
+                                 std::floor(p.x() / voxel)}];
+        if (n++ == 0) sum.setZero();
+        sum += p;
+      }
+      std::vector<std::size_t> counts;
+      const PointCloud out = voxel_downsample(cloud, voxel, &counts);
+      ASSERT_EQ(out.size(), oracle.size()) << voxel;
+      ASSERT_EQ(counts.size(), oracle.size());
+      std::size_t k = 0;
+      for (const auto& [key, value] : oracle) {
+        EXPECT_EQ(out[k], value.first / static_cast<double>(value.second)) << voxel << " " << k;
+        EXPECT_EQ(counts[k], value.second);
+        ++k;
+      }
+    }
+  }
 }
 
 TEST(VoxelDownsample, RejectsBadInput) {

@@ -153,23 +153,34 @@ DepthImage read_depth_png(const std::filesystem::path& path) {
   }
 }
 
-PointCloud depth_to_points(const DepthImage& image, const PinholeIntrinsics& k,
-                           const DepthEncoding& encoding) {
+DepthFrame depth_frame(const DepthImage& image, const PinholeIntrinsics& k,
+                       const DepthEncoding& encoding) {
   k.validate();
   encoding.validate();
   if (image.width != k.width || image.height != k.height) {
     throw std::invalid_argument(cat("the depth image is ", image.width, " x ", image.height,
                                     " pixels, the intrinsics' ", k.width, " x ", k.height));
   }
+  return {.width = image.width,
+          .height = image.height,
+          .depth = image.depth,
+          .fx = k.fx,
+          .fy = k.fy,
+          .cx = k.cx,
+          .cy = k.cy,
+          .units_per_metre = encoding.units_per_metre,
+          .invalid = encoding.invalid};
+}
+
+PointCloud depth_to_points(const DepthImage& image, const PinholeIntrinsics& k,
+                           const DepthEncoding& encoding) {
+  const DepthFrame frame = depth_frame(image, k, encoding);
   PointCloud points;
   points.reserve(image.depth.size());
-  const auto round = [](double x) { return static_cast<double>(static_cast<float>(x)); };
   for (int v = 0; v < image.height; ++v) {
     for (int u = 0; u < image.width; ++u) {
       const std::uint16_t d = image.depth[static_cast<std::size_t>(v) * image.width + u];
-      if (d == encoding.invalid) continue;
-      const double z = static_cast<double>(d) / encoding.units_per_metre;
-      points.emplace_back(round((u - k.cx) * z / k.fx), round((v - k.cy) * z / k.fy), round(z));
+      if (d != encoding.invalid) points.push_back(frame.optical_point(u, v, d));
     }
   }
   return points;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "vantage/io/manifest.hpp"
+#include "vantage/map/integrate.hpp"
 #include "vantage/map/point_cloud.hpp"
 
 namespace vantage {
@@ -32,12 +33,17 @@ DepthImage decode_depth_png(std::string_view bytes);
 /// std::runtime_error "path: what".
 DepthImage read_depth_png(const std::filesystem::path& path);
 
+/// The image as integration reads it (map/integrate.hpp: integrate_depth, each valid pixel one
+/// ray, no point cloud in between), a view of `image`'s depths, which must outlive it. Throws
+/// std::invalid_argument for bad intrinsics or encoding, or when the image's size is not the
+/// intrinsics'.
+DepthFrame depth_frame(const DepthImage& image, const PinholeIntrinsics& intrinsics,
+                       const DepthEncoding& encoding);
+
 /// The ray end of every valid pixel, in the camera's optical frame (z forward, x right, y down)
-/// [m]: pixel (u, v) of depth z ends at ((u - cx) z / fx, (v - cy) z / fy, z). One point per
-/// pixel, in row order; a pixel of `encoding.invalid` gives none. Each coordinate is rounded to
-/// float, as a PCD file or a PointCloud2 message of the same frame holds it, so that every way
-/// of handing over the frame maps the same. Throws std::invalid_argument when the image's size is
-/// not the intrinsics'.
+/// [m], by DepthFrame::optical_point: pixel (u, v) of depth z ends at ((u - cx) z / fx,
+/// (v - cy) z / fy, z), each coordinate rounded to float. One point per pixel, in row order; a
+/// pixel of `encoding.invalid` gives none. Throws as depth_frame.
 PointCloud depth_to_points(const DepthImage& image, const PinholeIntrinsics& intrinsics,
                            const DepthEncoding& encoding);
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <stdexcept>
 
 #include "vantage/map/line_of_sight.hpp"
@@ -41,11 +42,44 @@ void apply(OccupancyGrid& grid, const CellList& cells, Update&& update, Integrat
   }
 }
 
+/// A scan's points in the world, one per index.
+struct PointSource {
+  const PointCloud& points;
+  std::size_t size() const { return points.size(); }
+  bool get(std::size_t k, Eigen::Vector3d& p) const {
+    p = points[k];
+    return true;
+  }
+};
+
+/// A depth image's ray ends in the world, one per pixel; a pixel without depth, or masked out,
+/// has none.
+struct DepthSource {
+  const DepthFrame& frame;
+  const Eigen::Isometry3d& T_world_sensor;
+  std::span<const std::uint8_t> mask;
+  std::size_t size() const { return frame.depth.size(); }
+  bool get(std::size_t k, Eigen::Vector3d& p) const {
+    const std::uint16_t d = frame.depth[k];
+    if (d == frame.invalid || (!mask.empty() && mask[k] == 0)) return false;
+    const auto width = static_cast<std::size_t>(frame.width);
+    const Eigen::Vector3d o =
+        frame.optical_point(static_cast<int>(k % width), static_cast<int>(k / width), d);
+    // NOTE: the optical frame (z forward, x right, y down) turned into the sensor's (x forward,
+    // y left, z up), exactly as the rotation matrix of its 0 and +-1 entries turns it.
+    p = T_world_sensor * Eigen::Vector3d(o.z(), -o.x(), -o.y());
+    return true;
+  }
+};
+
 /// The distinct cells holding the scan's points, ascending.
-CellList hit_cells(const GridSpec& spec, const Scan& scan, IntegrationResult& out) {
+template <typename Source>
+CellList hit_cells(const GridSpec& spec, const Source& source, IntegrationResult& out) {
   CellList cells;
-  cells.reserve(scan.points_world.size());
-  for (const Eigen::Vector3d& p : scan.points_world) {
+  cells.reserve(source.size());
+  Eigen::Vector3d p;
+  for (std::size_t k = 0; k < source.size(); ++k) {
+    if (!source.get(k, p)) continue;
     if (const auto cell = spec.find(p)) {
       cells.push_back(static_cast<std::uint32_t>(spec.linear(*cell)));
       ++out.points_inside;
@@ -89,10 +123,11 @@ CellList visible_unobserved(const OccupancyGrid& grid, const Frustum& view) {
   return cells;
 }
 
-IntegrationResult integrate_paper(OccupancyGrid& grid, const Scan& scan,
+template <typename Source>
+IntegrationResult integrate_paper(OccupancyGrid& grid, const Source& source, const Frustum& view,
                                   const IntegrationConfig& config) {
   IntegrationResult out;
-  const CellList hits = hit_cells(grid.spec(), scan, out);
+  const CellList hits = hit_cells(grid.spec(), source, out);
   out.hit_cells = hits.size();
   apply(
       grid, hits, [&](std::uint32_t i) { grid.hit(i); }, out);
@@ -101,17 +136,19 @@ IntegrationResult integrate_paper(OccupancyGrid& grid, const Scan& scan,
   out.filled_cells = filled.filled.size();
   out.left_unobserved.insert(out.left_unobserved.end(), filled.filled.begin(), filled.filled.end());
 
-  const CellList misses = visible_unobserved(grid, scan.view);
+  const CellList misses = visible_unobserved(grid, view);
   out.missed_cells = misses.size();
   apply(
       grid, misses, [&](std::uint32_t i) { grid.miss(i); }, out);
   return out;
 }
 
-IntegrationResult integrate_endpoint(OccupancyGrid& grid, const Scan& scan) {
+template <typename Source>
+IntegrationResult integrate_endpoint(OccupancyGrid& grid, const Source& source,
+                                     const Frustum& view) {
   IntegrationResult out;
   const GridSpec& spec = grid.spec();
-  const Eigen::Vector3d origin = scan.view.origin();
+  const Eigen::Vector3d origin = view.origin();
   std::vector<std::uint8_t> marks(grid.size(), 0);
   tbb::enumerable_thread_specific<CellList> touched_by_thread;
 
@@ -121,26 +158,27 @@ IntegrationResult integrate_endpoint(OccupancyGrid& grid, const Scan& scan) {
       touched.push_back(static_cast<std::uint32_t>(linear));
     }
   };
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, scan.points_world.size(), 256),
-                    [&](const auto& range) {
-                      CellList& touched = touched_by_thread.local();
-                      for (std::size_t k = range.begin(); k != range.end(); ++k) {
-                        const Eigen::Vector3d& point = scan.points_world[k];
-                        const auto end = spec.find(point);
-                        const std::size_t end_linear = end ? spec.linear(*end) : SIZE_MAX;
-                        traverse(spec, origin, point, [&](const Index3&, std::size_t linear, int) {
-                          if (linear != end_linear) mark(linear, kMarkMiss, touched);
-                        });
-                        if (end) mark(end_linear, kMarkHit, touched);
-                      }
-                    });
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, source.size(), 256), [&](const auto& range) {
+    CellList& touched = touched_by_thread.local();
+    Eigen::Vector3d point;
+    for (std::size_t k = range.begin(); k != range.end(); ++k) {
+      if (!source.get(k, point)) continue;
+      const auto end = spec.find(point);
+      const std::size_t end_linear = end ? spec.linear(*end) : SIZE_MAX;
+      traverse(spec, origin, point, [&](const Index3&, std::size_t linear, int) {
+        if (linear != end_linear) mark(linear, kMarkMiss, touched);
+      });
+      if (end) mark(end_linear, kMarkHit, touched);
+    }
+  });
 
   CellList touched;
   for (const CellList& part : touched_by_thread)
     touched.insert(touched.end(), part.begin(), part.end());
   std::sort(touched.begin(), touched.end());  // a fixed order, whatever the threads did
-  for (const Eigen::Vector3d& p : scan.points_world) {
-    ++(spec.find(p) ? out.points_inside : out.points_outside);
+  Eigen::Vector3d p;
+  for (std::size_t k = 0; k < source.size(); ++k) {
+    if (source.get(k, p)) ++(spec.find(p) ? out.points_inside : out.points_outside);
   }
   apply(
       grid, touched,
@@ -183,18 +221,69 @@ void IntegrationConfig::validate() const {
   }
 }
 
-IntegrationResult integrate_scan(OccupancyGrid& grid, const Scan& scan,
-                                 const IntegrationConfig& config) {
-  config.validate();
-  require_finite(scan);
+namespace {
+
+template <typename Source>
+IntegrationResult integrate(OccupancyGrid& grid, const Source& source, const Frustum& view,
+                            const IntegrationConfig& config) {
   IntegrationResult result;
   run_with_threads(config.num_threads, [&] {
-    result = config.mode == IntegrationMode::kPaper ? integrate_paper(grid, scan, config)
-                                                    : integrate_endpoint(grid, scan);
+    result = config.mode == IntegrationMode::kPaper ? integrate_paper(grid, source, view, config)
+                                                    : integrate_endpoint(grid, source, view);
   });
   std::sort(result.left_unobserved.begin(), result.left_unobserved.end());
   std::sort(result.entered_unobserved.begin(), result.entered_unobserved.end());
   return result;
+}
+
+}  // namespace
+
+IntegrationResult integrate_scan(OccupancyGrid& grid, const Scan& scan,
+                                 const IntegrationConfig& config) {
+  config.validate();
+  require_finite(scan);
+  return integrate(grid, PointSource{scan.points_world}, scan.view, config);
+}
+
+void DepthFrame::validate() const {
+  const auto positive = [](double x) { return std::isfinite(x) && x > 0.0; };
+  if (width < 1 || height < 1) {
+    throw std::invalid_argument(
+        cat("depth frame: size must be positive, got ", width, " x ", height));
+  }
+  if (!positive(fx) || !positive(fy)) {
+    throw std::invalid_argument(cat("depth frame: fx and fy must be > 0, got ", fx, " and ", fy));
+  }
+  if (!std::isfinite(cx) || !std::isfinite(cy)) {
+    throw std::invalid_argument(
+        cat("depth frame: cx and cy must be finite, got ", cx, " and ", cy));
+  }
+  if (!positive(units_per_metre)) {
+    throw std::invalid_argument(
+        cat("depth frame: units_per_metre must be > 0, got ", units_per_metre));
+  }
+  if (depth.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height)) {
+    throw std::invalid_argument(
+        cat("depth frame: ", depth.size(), " depth values for ", width, " x ", height, " pixels"));
+  }
+}
+
+Eigen::Vector3d DepthFrame::optical_point(int u, int v, std::uint16_t d) const {
+  const auto round = [](double x) { return static_cast<double>(static_cast<float>(x)); };
+  const double z = static_cast<double>(d) / units_per_metre;
+  return {round((u - cx) * z / fx), round((v - cy) * z / fy), round(z)};
+}
+
+IntegrationResult integrate_depth(OccupancyGrid& grid, const DepthFrame& frame, const Frustum& view,
+                                  const IntegrationConfig& config,
+                                  std::span<const std::uint8_t> mask) {
+  config.validate();
+  frame.validate();
+  if (!mask.empty() && mask.size() != frame.depth.size()) {
+    throw std::invalid_argument(
+        cat("depth frame: a mask of ", mask.size(), " values for ", frame.depth.size(), " pixels"));
+  }
+  return integrate(grid, DepthSource{frame, view.T_world_sensor(), mask}, view, config);
 }
 
 }  // namespace vantage

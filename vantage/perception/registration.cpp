@@ -231,9 +231,30 @@ class Problem {
         if (!known) merged.push_back(solution);
       }
       solutions = std::move(merged);
+      if (i == join) prune(solutions);
     }
     for (Solution& solution : solutions) solution.score = score(solution.correction);
     return solutions;
+  }
+
+  /// Drops the solutions whose posterior cost on the last stage's pairing exceeds the lowest by
+  /// more than prune_cost.
+  void prune(std::vector<Solution>& solutions) const {
+    if (solutions.size() < 2) return;
+    std::vector<Score> scores;
+    std::size_t most = 0;
+    for (const Solution& solution : solutions) {
+      scores.push_back(score(solution.correction));
+      most = std::max(most, scores.back().correspondences);
+    }
+    const double share = independent_share(most, config_);
+    double lowest = INFINITY;
+    for (const Score& s : scores) lowest = std::min(lowest, cost(s, share));
+    std::vector<Solution> kept;
+    for (std::size_t k = 0; k < solutions.size(); ++k) {
+      if (cost(scores[k], share) <= lowest + config_.prune_cost) kept.push_back(solutions[k]);
+    }
+    solutions = std::move(kept);
   }
 
   /// Gauss-Newton iterations of one stage from `solution`'s correction; returns how many.

@@ -72,6 +72,11 @@ struct RegistrationConfig {
   /// ... and a solution elsewhere (further than 2 x max_position_sigma) whose cost is within this
   /// of the winner's makes the pose uncertain: the data cannot tell the two apart.
   double ambiguity_cost = 3.0;
+  /// Once every start has run a stage, a start whose posterior cost is above the lowest by more
+  /// than this is dropped: the finer stages pair within half the distance and less, and move a
+  /// start that far behind too little to catch up, at up to max_iterations a stage each (a
+  /// hand-held Kinect frame: 150 of its 184 iterations). Must be >= ambiguity_cost.
+  double prune_cost = 30.0;
   int num_threads = 0;  ///< 0 = all cores; the result is the same for any count
 
   /// Throws std::invalid_argument naming the field (e.g. "registration.min_distance").

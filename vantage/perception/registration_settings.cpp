@@ -59,6 +59,11 @@ void RegistrationConfig::validate() const {
     throw std::invalid_argument(
         cat("registration.ambiguity_cost must be >= 0, got ", ambiguity_cost));
   }
+  if (!(prune_cost >= ambiguity_cost && std::isfinite(prune_cost))) {
+    throw std::invalid_argument(
+        cat("registration.prune_cost must be >= registration.ambiguity_cost (", ambiguity_cost,
+            "), got ", prune_cost));
+  }
   if (!(min_overlap >= 0.0 && min_overlap <= 1.0)) {
     throw std::invalid_argument(
         cat("registration.min_overlap must be in [0, 1], got ", min_overlap));

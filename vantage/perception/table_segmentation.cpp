@@ -5,7 +5,10 @@
 #include <pcl/sample_consensus/method_types.h>
 #include <pcl/sample_consensus/model_types.h>
 #include <pcl/segmentation/sac_segmentation.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -22,6 +25,7 @@ namespace {
 struct Plane {
   Eigen::Vector4d coefficients;
   std::vector<int> inliers;
+  std::size_t points = 0;  ///< the input points its inliers stand for
 };
 
 double cross(const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
@@ -58,6 +62,78 @@ bool inside(const std::vector<Eigen::Vector2d>& hull,
     if (cross(unit_edges[e], p - hull[e]) < -margin) return false;
   }
   return true;
+}
+
+/// A plane's convex extent: its points projected onto it, counter-clockwise seen from above.
+struct Extent {
+  Extent(const Eigen::Vector4d& plane, const PointCloud& points)
+      : n(plane.head<3>()), d(plane[3]), u(n.unitOrthogonal()), v(n.cross(u)) {
+    std::vector<Eigen::Vector2d> projected;
+    projected.reserve(points.size());
+    for (const Eigen::Vector3d& p : points) projected.emplace_back(u.dot(p), v.dot(p));
+    hull = convex_hull(std::move(projected));
+    for (std::size_t e = 0; e < hull.size(); ++e) {
+      unit_edges.push_back((hull[(e + 1) % hull.size()] - hull[e]).normalized());
+    }
+  }
+  double height(const Eigen::Vector3d& p) const { return n.dot(p) + d; }
+  /// Whether `p`, projected, lies inside the hull with every edge moved outward by `margin`.
+  bool contains(const Eigen::Vector3d& p, double margin) const {
+    return inside(hull, unit_edges, {u.dot(p), v.dot(p)}, margin);
+  }
+  /// The hull's corners on the plane, in the world frame [m].
+  std::vector<Eigen::Vector3d> corners() const {
+    // NOTE: (u, v, n) is right-handed with n up, so counter-clockwise in (u, v) is
+    // counter-clockwise seen from above.
+    std::vector<Eigen::Vector3d> out;
+    for (const Eigen::Vector2d& q : hull) out.push_back(q.x() * u + q.y() * v - d * n);
+    return out;
+  }
+
+  Eigen::Vector3d n;
+  double d;
+  Eigen::Vector3d u, v;
+  std::vector<Eigen::Vector2d> hull, unit_edges;
+};
+
+/// `test` of every point, in parallel (each point alone: the same for any thread count).
+template <typename Test>
+std::vector<char> flag(const PointCloud& points, Test&& test) {
+  std::vector<char> out(points.size(), 0);
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, points.size(), 4096),
+                    [&](const tbb::blocked_range<std::size_t>& range) {
+                      for (std::size_t i = range.begin(); i != range.end(); ++i) {
+                        out[i] = static_cast<char>(test(points[i]));
+                      }
+                    });
+  return out;
+}
+
+/// The least-squares plane of the flagged points (the normal: the covariance's least
+/// eigenvector), oriented as `guess`; `guess` itself when fewer than three are flagged.
+Eigen::Vector4d fit_plane(const PointCloud& points, const std::vector<char>& flagged,
+                          const Eigen::Vector4d& guess) {
+  // NOTE: about the guess's point nearest the origin, so that the sums lose no precision.
+  const Eigen::Vector3d centre = -guess[3] * guess.head<3>();
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (!flagged[i]) continue;
+    const Eigen::Vector3d q = points[i] - centre;
+    sum += q;
+    outer += q * q.transpose();
+    ++count;
+  }
+  if (count < 3) return guess;
+  const Eigen::Vector3d mean = sum / static_cast<double>(count);
+  const Eigen::Matrix3d covariance = outer / static_cast<double>(count) - mean * mean.transpose();
+  Eigen::Vector3d n =
+      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(covariance).eigenvectors().col(0);
+  if (n.dot(guess.head<3>()) < 0.0) n = -n;
+  Eigen::Vector4d plane;
+  plane << n, -n.dot(mean + centre);
+  return plane;
 }
 
 }  // namespace
@@ -103,7 +179,8 @@ TableSegmentation segment_table(const PointCloud& points_world, const TableConfi
     }
   }
   TableSegmentation result;
-  const PointCloud sample = voxel_downsample(points_world, config.voxel_size);
+  std::vector<std::size_t> weight;  // the input points each sample point stands for
+  const PointCloud sample = voxel_downsample(points_world, config.voxel_size, &weight);
   if (sample.size() < config.min_inliers) return result;
 
   // Normals oriented up, toward a viewpoint high above the cloud (only their angle to +z is used).
@@ -131,7 +208,15 @@ TableSegmentation segment_table(const PointCloud& points_world, const TableConfi
   }
 
   std::vector<Plane> planes;
-  std::size_t most_inliers = 0;  // of an eligible plane so far
+  std::size_t most_points = 0;  // of an eligible plane so far
+  // NOTE: planes are weighed by the input points their sample points stand for, not by the
+  // sample points: a coarse sample counts area, and a sparse floor's would outweigh the table.
+  const auto points_of = [&](const pcl::Indices& indices) {
+    std::size_t n = 0;
+    for (const int i : indices) n += weight[static_cast<std::size_t>(i)];
+    return n;
+  };
+  std::size_t remaining_points = points_of(*remaining);
   const auto eligible = [&](const Plane& plane) {
     double z = 0.0;
     for (const int i : plane.inliers) z += sample[static_cast<std::size_t>(i)].z();
@@ -141,7 +226,7 @@ TableSegmentation segment_table(const PointCloud& points_world, const TableConfi
   // NOTE: once fewer points remain than the largest eligible plane holds, no later plane can
   // beat it, so the search stops: usually after the table, or the floor and then the table.
   for (int k = 0; k < config.max_planes && remaining->size() >= config.min_inliers &&
-                  remaining->size() > most_inliers;
+                  remaining_points > most_points;
        ++k) {
     // NOTE: constructed with random = false, PCL seeds its sample consensus with the fixed seed
     // 12345, and the default thread count (-1) keeps RANSAC serial: the search is repeatable.
@@ -169,6 +254,7 @@ TableSegmentation segment_table(const PointCloud& points_world, const TableConfi
     if (plane.coefficients.z() < 0.0) plane.coefficients = -plane.coefficients;
     plane.inliers.assign(inliers.indices.begin(), inliers.indices.end());
     std::sort(plane.inliers.begin(), plane.inliers.end());
+    plane.points = points_of(plane.inliers);
     // NOTE: the plane claims its whole slab, not only the inliers whose normals agreed: noisy
     // normals left ~half of a sparse floor behind, which then came back as many small "planes",
     // each costing RANSAC its full max_iterations (2 s instead of 0.2 s).
@@ -181,50 +267,58 @@ TableSegmentation segment_table(const PointCloud& points_world, const TableConfi
       }
     }
     remaining = rest;
-    if (eligible(plane)) most_inliers = std::max(most_inliers, plane.inliers.size());
+    remaining_points = points_of(*remaining);
+    if (eligible(plane)) most_points = std::max(most_points, plane.points);
     planes.push_back(std::move(plane));
   }
 
   // The table: the eligible plane with the most inliers, the first found on a tie.
   const Plane* table = nullptr;
   for (const Plane& plane : planes) {
-    if (eligible(plane) && (!table || plane.inliers.size() > table->inliers.size())) {
+    if (eligible(plane) && (!table || plane.points > table->points)) {
       table = &plane;
     }
   }
   if (!table) return result;
 
-  const Eigen::Vector3d n = table->coefficients.head<3>();
-  const double d = table->coefficients[3];
-  const Eigen::Vector3d u = n.unitOrthogonal(), v = n.cross(u);
-  std::vector<Eigen::Vector2d> projected;
-  projected.reserve(table->inliers.size());
-  for (const int i : table->inliers) {
-    const Eigen::Vector3d& p = sample[static_cast<std::size_t>(i)];
-    projected.emplace_back(u.dot(p), v.dot(p));
+  // The sample's plane and extent, then the full cloud's: its points near that plane and within
+  // a voxel of that extent (what sampling may have pulled in) refit the plane and widen the
+  // extent to where the table's points reach.
+  PointCloud sample_inliers;
+  for (const int i : table->inliers) sample_inliers.push_back(sample[static_cast<std::size_t>(i)]);
+  const Extent coarse(table->coefficients, sample_inliers);
+  if (coarse.hull.size() < 3) return result;
+  // 1: near the plane, inside the sample's hull; 2: near it, outside, but within a voxel.
+  const std::vector<char> near = flag(points_world, [&](const Eigen::Vector3d& p) -> char {
+    if (std::abs(coarse.height(p)) > config.distance_threshold) return 0;
+    if (coarse.contains(p, 0.0)) return 1;
+    return coarse.contains(p, config.voxel_size) ? 2 : 0;
+  });
+  const Eigen::Vector4d plane = fit_plane(points_world, near, table->coefficients);
+  for (std::size_t i = 0; i < points_world.size(); ++i) {
+    if (near[i] == 2) sample_inliers.push_back(points_world[i]);
   }
-  const std::vector<Eigen::Vector2d> hull = convex_hull(std::move(projected));
-  if (hull.size() < 3) return result;
-  std::vector<Eigen::Vector2d> unit_edges;
-  for (std::size_t e = 0; e < hull.size(); ++e) {
-    unit_edges.push_back((hull[(e + 1) % hull.size()] - hull[e]).normalized());
-  }
+  // NOTE: the sample's hull holds every full-cloud point inside it, so the points outside it and
+  // its corners give the hull of all the inliers.
+  for (const Eigen::Vector3d& corner : coarse.corners()) sample_inliers.push_back(corner);
+  const Extent extent(plane, sample_inliers);
+  if (extent.hull.size() < 3) return result;
 
   result.found = true;
-  result.plane = table->coefficients;
-  // (u, v, n) is right-handed with n up, so counter-clockwise in (u, v) is counter-clockwise
-  // seen from above.
-  for (const Eigen::Vector2d& q : hull) result.table_hull.push_back(q.x() * u + q.y() * v - d * n);
-  for (std::size_t i = 0; i < points_world.size(); ++i) {
-    const Eigen::Vector3d& p = points_world[i];
-    const double height = n.dot(p) + d;
+  result.plane = plane;
+  result.table_hull = extent.corners();
+  const std::vector<char> kind = flag(points_world, [&](const Eigen::Vector3d& p) -> char {
+    const double height = extent.height(p);
     const bool near_plane = std::abs(height) <= config.distance_threshold;
     const bool above = height > config.min_height && height <= config.max_height;
-    if (!near_plane && !above) continue;
-    if (!inside(hull, unit_edges, {u.dot(p), v.dot(p)}, config.margin)) continue;
-    if (near_plane) ++result.table_inliers;
-    if (above) {
-      result.objects.push_back(p);
+    if (!near_plane && !above) return 0;
+    if (!extent.contains(p, config.margin)) return 0;
+    return near_plane ? 1 : 2;
+  });
+  for (std::size_t i = 0; i < points_world.size(); ++i) {
+    if (kind[i] == 1) ++result.table_inliers;
+    if (kind[i] == 2) {
+      result.objects.push_back(points_world[i]);
       result.object_indices.push_back(i);
     }
   }
