@@ -321,7 +321,8 @@ def plan_figure(run_dir, plan):
     if method in OBSERVABILITY_METHODS:
         other = ("predicted_gain", plan["units"].get("predicted_gain", "bits")) \
             if unit == "cells" else ("predicted_cells", "cells")
-        if other[0] in best:
+        # NOTE: `vantage plan --no-prediction` leaves the chosen view's bits null.
+        if best.get(other[0]) is not None:
             title += f" ({format_number(best[other[0]], other[1])})"
     ax.set_title(title, fontsize=10)
     ax.grid(alpha=0.2)

@@ -165,4 +165,19 @@ for pruned, swept in (("milk", "milk_swept"), ("fr079_latombe", "fr079_swept")):
     if swept == "milk_swept" and any(c["greedy_gain"] is not None for c in others):
         sys.exit(f"FAIL: {swept}: a greedy reference the swept search does not compute")
 PY
+# Decided only (--no-prediction), plots on: the chosen view's bits are null in plan.json, the
+# decision and its view are the default's, and the map's picture is drawn.
+"$vantage" plan "$work/milk.yaml" --threads 2 --no-prediction --out "$work/milk_decided" \
+  >/dev/null 2>"$work/milk_decided.err" || fail "milk_decided: $(cat "$work/milk_decided.err")"
+[[ -s "$work/milk_decided/map.png" ]] || fail "milk_decided: no map.png"
+/usr/bin/python3 - "$work" <<'PY'
+import json, sys
+work = sys.argv[1]
+a = json.load(open(f"{work}/milk_swept/plan.json"))["next_best_view"]
+b = json.load(open(f"{work}/milk_decided/plan.json"))
+if b["next_best_view"]["index"] != a["index"] or b["next_best_view"]["predicted_gain"] is not None:
+    sys.exit(f"FAIL: milk_decided: {b['next_best_view']} against {a}")
+if b["seconds"]["prediction"] != 0:
+    sys.exit(f"FAIL: milk_decided: seconds {b['seconds']}")
+PY
 echo "ok: milk, mug and fr079 planned"
