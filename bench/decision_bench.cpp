@@ -258,36 +258,9 @@ DecisionState& fr079() {
   return state;
 }
 
-/// PCL's Kinect frame of a table top (tests/data/real/milk.yaml), mapped as `vantage plan` maps
-/// it (the pose from the table, segmentation, ICP), with the ring `vantage plan` gives its region
-/// of interest; built once.
-DecisionState& kinect() {
-  static DecisionState state = [] {
-    const Manifest manifest = read_manifest(VANTAGE_REAL_DATA_DIR "/milk.yaml");
-    MapperConfig config = mapper_config_for(manifest);
-    config.keep_object_cloud = false;
-    Mapper mapper(manifest.grid, config);
-    map_recorded(manifest, mapper);
-    DecisionState s(mapper.grid(), kSurvivalAlpha);
-    for (const Eigen::Isometry3d& pose : ring_poses(default_ring(manifest.roi))) {
-      s.candidates.push_back({Frustum(pose, manifest.fov), 0.0});
-    }
-    return s;
-  }();
-  return state;
-}
-
-/// The same Kinect frame over the held-out grid's table top (issue 38, item 5): the ROI widened to
-/// x, y in [-0.7, 0.7] m and z in [0.7, 1.14] m, at cells of `cell` [m], mapped and ringed as
-/// `vantage plan` maps and rings it. At 1/128 m (7.8 mm) that is 180 x 180 x 57 = 1.85 M cells
-/// (1.08 M unobserved); at 2^(1/3) and 2 times the edge, 1/2 and 1/8 of that.
-DecisionState& kinect_wide(double cell) {
-  static std::map<double, DecisionState> states;
-  if (const auto it = states.find(cell); it != states.end()) return it->second;
-  Manifest manifest = read_manifest(VANTAGE_REAL_DATA_DIR "/milk.yaml");
-  manifest.roi =
-      Eigen::AlignedBox3d(Eigen::Vector3d(-0.7, -0.7, 0.7), Eigen::Vector3d(0.7, 0.7, 1.14));
-  manifest.grid = grid_for_roi(manifest.roi, cell);
+/// A manifest's frames mapped as `vantage plan` maps them (the pose from the table, segmentation,
+/// ICP), with the ring `vantage plan` gives its region of interest.
+DecisionState planned(const Manifest& manifest) {
   MapperConfig config = mapper_config_for(manifest);
   config.keep_object_cloud = false;
   Mapper mapper(manifest.grid, config);
@@ -296,7 +269,27 @@ DecisionState& kinect_wide(double cell) {
   for (const Eigen::Isometry3d& pose : ring_poses(default_ring(manifest.roi))) {
     s.candidates.push_back({Frustum(pose, manifest.fov), 0.0});
   }
-  return states.emplace(cell, std::move(s)).first->second;
+  return s;
+}
+
+/// PCL's Kinect frame of a table top (tests/data/real/milk.yaml), planned; built once.
+DecisionState& kinect() {
+  static DecisionState state = planned(read_manifest(VANTAGE_REAL_DATA_DIR "/milk.yaml"));
+  return state;
+}
+
+/// The same Kinect frame over the held-out grid's table top (issue 38, item 5): the ROI widened to
+/// x, y in [-0.7, 0.7] m and z in [0.7, 1.14] m, at cells of `cell` [m], planned. At 1/128 m
+/// (7.8 mm) that is 180 x 180 x 57 = 1.85 M cells (1.08 M unobserved); at 2^(1/3) and 2 times
+/// the edge, 1/2 and 1/8 of that.
+DecisionState& kinect_wide(double cell) {
+  static std::map<double, DecisionState> states;
+  if (const auto it = states.find(cell); it != states.end()) return it->second;
+  Manifest manifest = read_manifest(VANTAGE_REAL_DATA_DIR "/milk.yaml");
+  manifest.roi =
+      Eigen::AlignedBox3d(Eigen::Vector3d(-0.7, -0.7, 0.7), Eigen::Vector3d(0.7, 0.7, 1.14));
+  manifest.grid = grid_for_roi(manifest.roi, cell);
+  return states.emplace(cell, planned(manifest)).first->second;
 }
 
 /// Arguments: case (0-2 tabletop-4's ring after 1, 3, 6 scans; 3, 4 sphere of 200, 1 000 views
