@@ -58,7 +58,7 @@ PlannerConfig make_planner_config(const std::string& method, const std::optional
                                   double lambda, bool greedy_reference,
                                   const std::optional<std::string>& objective,
                                   const std::optional<std::string>& search, int sample, int horizon,
-                                  double travel_weight, int swept_rays) {
+                                  double travel_weight, int swept_rays, bool predict_chosen) {
   PlanningSettings settings;
   settings.method = method;
   settings.objective = objective.value_or("");
@@ -81,6 +81,7 @@ PlannerConfig make_planner_config(const std::string& method, const std::optional
   }
   if (gain) config.gain = *gain;
   config.greedy_reference = greedy_reference;
+  config.predict_chosen = predict_chosen;
   config.validate();
   return config;
 }
@@ -89,7 +90,7 @@ PlannerConfig make_planner_config(const std::string& method, const std::optional
 /// survival reading by cells with the search that serves it fastest.
 PlannerConfig default_planner_config() {
   return make_planner_config("survival", std::nullopt, PlannerConfig{}.lambda, false, std::nullopt,
-                             std::nullopt, 1, 1, 0.0, PlannerConfig{}.swept_rays);
+                             std::nullopt, 1, 1, 0.0, PlannerConfig{}.swept_rays, true);
 }
 
 /// The mapping settings `vantage plan` derives from a manifest with these options.
@@ -287,6 +288,7 @@ void bind_plan(py::module_& m) {
           py::arg("greedy_reference") = false, py::arg("objective") = std::nullopt,
           py::arg("search") = std::nullopt, py::arg("sample") = 1, py::arg("horizon") = 1,
           py::arg("travel_weight") = 0.0, py::arg("swept_rays") = PlannerConfig{}.swept_rays,
+          py::arg("predict_chosen") = true,
           "method: a name as `vantage explore --method` takes ('survival', the default as in "
           "`vantage plan`, 'probabilistic', 'greedy', 'random', 'latombe', 'yamauchi', "
           "'sequence' or a metric); gain: a GainConfig (its method follows from `method`; "
@@ -297,7 +299,9 @@ void bind_plan(py::module_& m) {
           "`vantage plan`); sample: a sequence's values on one unobserved cell in `sample` "
           "(1: exact); horizon, travel_weight: plan that many views ahead and tour them "
           "(docs/decision.md, 'Planning a sequence') [views, 1/m]; swept_rays: the "
-          "swept search's rays across a view's image in its first round, in [1, 4096].")
+          "swept search's rays across a view's image in its first round, in [1, 4096]; "
+          "predict_chosen: False leaves the chosen view's full prediction in bits, which on a "
+          "large grid takes longer than the decision, out of it (`vantage plan --no-prediction`).")
       .def_property_readonly(
           "method", [](const PlannerConfig& c) { return std::string(to_string(c.method)); },
           "How the next view is chosen.")
@@ -319,7 +323,9 @@ void bind_plan(py::module_& m) {
           "horizon", [](const PlannerConfig& c) { return sequence_of(c).horizon; },
           "Views planned ahead (the sequence method's default when it is not told).")
       .def_readonly("swept_rays", &PlannerConfig::swept_rays,
-                    "The swept search's rays across a view's image in its first round.");
+                    "The swept search's rays across a view's image in its first round.")
+      .def_readonly("predict_chosen", &PlannerConfig::predict_chosen,
+                    "Whether the chosen view's full prediction in bits follows the decision.");
 
   py::class_<RankedPlan>(m, "Plan", "The decision and everything behind it.")
       .def_property_readonly(

@@ -91,3 +91,13 @@ def test_evaluate_views_gives_the_plan_gains(planned):
     one_thread = vt.evaluate_views(grid, candidates, manifest["fov"],
                                    vt.GainConfig(num_threads=1))
     assert [g.gain for g in one_thread] == [g.gain for g in gains]
+
+
+def test_the_chosen_views_prediction_can_be_left_out(planned):
+    # `vantage plan --no-prediction`: the same choice, and no bits predicted for it.
+    manifest, candidates, grid, plan, _ = planned
+    config = vt.PlannerConfig(predict_chosen=False)
+    assert vt.PlannerConfig().predict_chosen and not config.predict_chosen
+    decided = vt.plan_next_view(grid, candidates, manifest["fov"], config)
+    assert decided.best == plan.best
+    assert decided.gains[decided.best].gain == 0.0 and plan.gains[plan.best].gain > 0.0
