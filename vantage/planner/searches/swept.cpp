@@ -246,9 +246,9 @@ Plan run(const SearchInput& in) {
 extern const SearchTraits kSweptSearch;
 const SearchTraits kSweptSearch = {
     DecisionSearch::kSwept,
-    "every view ranked by rays cast outward, the leaders raced on samples of their cells up to "
-    "all of them: milliseconds; survival and probabilistic by cells, greedy and latombe; the "
-    "metrics on their coarser rays, the leaders on their own",
+    "every view ranked by rays cast outward, the leaders raced on samples of their cells until "
+    "one is within 0.5 % of the best: milliseconds; survival and probabilistic by cells, greedy "
+    "and latombe; the metrics on their coarser rays, the leaders on their own",
     &serves, &run};
 
 }  // namespace vantage
