@@ -173,6 +173,38 @@ FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
                   }));
 }
 
+/// For a metric of rear side rays (detail::MetricContext::open), the cubes of blocks that hold no
+/// occupied cell, and in `occupied` the box of the occupied cells with a cell to spare on each
+/// side [m]; empty for the others.
+FreeSpace open_space(const GainMap& map, GainMethod method, Eigen::AlignedBox3d& occupied) {
+  occupied.setEmpty();
+  if (method != GainMethod::kRearSideVoxel && method != GainMethod::kRearSideEntropy) {
+    return FreeSpace{};
+  }
+  const GridSpec& spec = map.spec();
+  const Index3 d = block_dims(spec);
+  std::vector<std::int64_t> label(static_cast<std::size_t>(d.prod()), 0);
+  Index3 c;
+  for (c.z() = 0; c.z() < spec.dims.z(); ++c.z()) {
+    for (c.y() = 0; c.y() < spec.dims.y(); ++c.y()) {
+      for (c.x() = 0; c.x() < spec.dims.x(); ++c.x()) {
+        if (map.value(spec.linear(c)).state != CellState::kOccupied) continue;
+        occupied.extend(spec.center(c));
+        label[static_cast<std::size_t>(
+            (c.x() >> FreeSpace::kShift) +
+            d.x() * ((c.y() >> FreeSpace::kShift) + d.y() * (c.z() >> FreeSpace::kShift)))] = -1;
+      }
+    }
+  }
+  if (!occupied.isEmpty()) {
+    // NOTE: a cell's centre and 1.5 cells to spare: every point of the cell and then a cell more
+    // for the rounding of the walk's cell indices.
+    const Eigen::Vector3d spare = Eigen::Vector3d::Constant(1.5 * spec.resolution);
+    occupied = Eigen::AlignedBox3d(occupied.min() - spare, occupied.max() + spare);
+  }
+  return cubes_of(d, label);
+}
+
 /// Throws when `config` names no metric.
 void require_metric(const GainConfig& config) {
   config.validate();
@@ -190,7 +222,8 @@ std::vector<float> distances_for(const GainMap& map, const GainConfig& config) {
 
 /// The cubes the jumping walk crosses (detail::MetricContext); all null: the reference walk.
 struct Spaces {
-  const FreeSpace *free = nullptr, *uniform = nullptr, *far = nullptr;
+  const FreeSpace *free = nullptr, *uniform = nullptr, *far = nullptr, *open = nullptr;
+  Eigen::AlignedBox3d occupied{};  // with open (detail::MetricContext::occupied)
 };
 
 /// The metric's rays at `coarseness` times the pitch `config` asks for, by the jumping walk over
@@ -199,9 +232,10 @@ std::vector<ViewGain> evaluate(const GainMap& map, const std::vector<float>& nea
                                const Spaces& spaces, std::span<const Frustum> views,
                                const GainConfig& config, int coarseness, bool count_cells) {
   const int subsample = config.evaluation == GainEvaluation::kExact ? 1 : kFastSubsample;
-  const detail::MetricContext ctx{map,         near,        config.ray_spacing, subsample,
-                                  spaces.free, spaces.uniform, spaces.far,   count_cells,
-                                  coarseness};
+  const detail::MetricContext ctx{map,          near,        config.ray_spacing,
+                                  subsample,    spaces.free, spaces.uniform,
+                                  spaces.far,   spaces.open, spaces.occupied,
+                                  count_cells,  coarseness};
   return method_traits(config.method).metric(ctx, views, config.num_threads);
 }
 
@@ -225,14 +259,17 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       free_(free_space(grid.census())),
       uniform_(uniform_free_space(map_)),
       near_(distances_for(map_, config)),
-      far_(far_space(map_, near_)) {}
+      far_(far_space(map_, near_)),
+      open_(open_space(map_, config.method, occupied_)) {}
 
 std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int coarseness,
                                              bool count_cells) const {
   if (coarseness < 1) {
     throw std::invalid_argument(cat("MetricEvaluator: coarseness ", coarseness, " is not >= 1"));
   }
-  return evaluate(map_, near_, Spaces{&free_, &uniform_, far_.empty() ? nullptr : &far_},
+  return evaluate(map_, near_,
+                  Spaces{&free_, &uniform_, far_.empty() ? nullptr : &far_,
+                         open_.empty() ? nullptr : &open_, occupied_},
                   views, config_, coarseness, count_cells);
 }
 

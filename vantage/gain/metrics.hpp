@@ -80,8 +80,9 @@ class MetricEvaluator {
   /// many cells the metric's own rays cross for each the coarser rays cross at its distance
   /// (detail::RayCell::weight).
   /// With `count_cells` false, ViewGain::cells is 0 and the proximity count crosses cubes of
-  /// free cells and unobserved ones beyond D of every occupied cell in one step too, the same
-  /// values to the last bit.
+  /// free cells and unobserved ones beyond D of every occupied cell in one step too, and the
+  /// rear side metrics walk in full only the rays that end on a rear side (found by a probe
+  /// across cubes of blocks with no occupied cell): the same values to the last bit.
   std::vector<ViewGain> gains(std::span<const Frustum> views, int coarseness = 1,
                               bool count_cells = true) const;
 
@@ -90,7 +91,9 @@ class MetricEvaluator {
   GainMap map_;
   FreeSpace free_, uniform_;
   std::vector<float> near_;
-  FreeSpace far_;  // empty when the metric reads no distances
+  FreeSpace far_;    // empty when the metric reads no distances
+  Eigen::AlignedBox3d occupied_;  // the box of the occupied cells, with open_
+  FreeSpace open_;               // empty but for the metrics of rear side rays
 };
 
 /// The reference the evaluation above is held to (tests/gain/metrics_test.cpp): the same rays,

@@ -16,6 +16,10 @@
 /// A free-inert metric may also say which other cells change nothing after the first of them
 /// (the jumping walk crosses cubes of those too when it need not count the unobserved cells):
 ///   static constexpr QuietCells kQuiet;
+/// A metric may say that a ray changes it only when it ends on a rear side (optional; false by
+/// default); when the walk need not count the unobserved cells, it then probes each ray first
+/// across cubes of blocks with no occupied cell (MetricContext::open) and walks in full only those that do:
+///   static constexpr bool kRearSideRays;
 ///
 /// One walk feeds it (`view_rays`), in two ways: the reference hands the metric every cell of
 /// every ray; the jumping walk (docs/model.md "The metrics at speed") casts only the rays that
@@ -101,6 +105,12 @@ struct MetricContext {
   /// The cubes of free cells and unobserved ones beyond D of every occupied cell (QuietCells),
   /// crossed only when the unobserved cells need not be counted.
   const FreeSpace* far = nullptr;
+  /// The cubes of blocks that hold no occupied cell, probed across by a metric of rear side rays
+  /// (the file's note) when the unobserved cells need not be counted; nullptr: none.
+  const FreeSpace* open = nullptr;
+  /// With `open`: the box [m] of the occupied cells with a cell to spare on each side; a ray that
+  /// misses it ends on no occupied cell.
+  Eigen::AlignedBox3d occupied{};
   /// Whether ViewGain::cells counts the unobserved cells reached; false: 0, and a metric whose
   /// quiet cells include unobserved ones crosses their cubes in one step.
   bool count_cells = true;
@@ -147,6 +157,63 @@ constexpr bool free_inert() {
   } else {
     return false;
   }
+}
+
+/// Whether only rays that end on a rear side change `Metric` (the file's note); false unless it
+/// says so.
+template <typename Metric>
+constexpr bool rear_side_rays() {
+  if constexpr (requires { Metric::kRearSideRays; }) {
+    return Metric::kRearSideRays;
+  } else {
+    return false;
+  }
+}
+
+/// Whether the walk ends on a rear side, an occupied cell right after an unobserved one, as the
+/// reference walk finds it: the same cells, but the cubes of `open` (no occupied cell) crossed in
+/// one step. Landing on an occupied cell, the cell before it is the cube's cell face to face with
+/// it: the landing cell pulled back into the cube.
+template <typename Code>
+bool ends_on_rear_side(GridWalk walk, const GridSpec& spec, const Code* codes,
+                       std::span<const GainMap::Value> values, const FreeSpace& open) {
+  bool previous_unknown = false;
+  for (;;) {
+    const CellState state = values[codes[walk.linear()]].state;
+    if (state == CellState::kOccupied) return previous_unknown;
+    previous_unknown = state == CellState::kUnobserved;
+    if (const int e = open.extent_at(walk.octant(), walk.cell()); e > 0) {
+      Index3 lo, hi;
+      FreeSpace::cube(walk.cell(), walk.octant(), e, spec.dims, lo, hi);
+      if ((walk.end().array() < lo.array()).any() || (walk.end().array() > hi.array()).any()) {
+        walk.leave_box(lo, hi);
+        if (!spec.contains(walk.cell())) return false;  // left the grid
+        const Index3 before = walk.cell().cwiseMax(lo).cwiseMin(hi);
+        previous_unknown = values[codes[spec.linear(before)]].state == CellState::kUnobserved;
+        continue;
+      }
+    }
+    if (walk.at_end()) return false;
+    walk.advance();
+    if (walk.ends_outside() && !spec.contains(walk.cell())) return false;  // left the grid
+  }
+}
+
+/// Whether the segment from `from` along `dir` (parameters 0 to 1) meets `box`.
+inline bool segment_meets(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& from,
+                          const Eigen::Vector3d& dir) {
+  double t_in = 0.0, t_out = 1.0;
+  for (int a = 0; a < 3; ++a) {
+    if (dir[a] == 0.0) {
+      if (from[a] < box.min()[a] || from[a] > box.max()[a]) return false;
+      continue;
+    }
+    double t0 = (box.min()[a] - from[a]) / dir[a], t1 = (box.max()[a] - from[a]) / dir[a];
+    if (t0 > t1) std::swap(t0, t1);
+    t_in = std::max(t_in, t0);
+    t_out = std::min(t_out, t1);
+  }
+  return t_in <= t_out;
 }
 
 /// A view's pinhole image of rays: neighbouring rays `spacing` cells apart at the farthest corner
@@ -268,10 +335,24 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
         const Eigen::Vector3d dir = image.direction(row, col);
         metric.begin_ray();
         const Eigen::Vector3d to = o + image.max_range * dir;
+        if constexpr (rear_side_rays<Metric>()) {
+          if (!ctx.count_cells && ctx.open != nullptr &&
+              !segment_meets(ctx.occupied, o, to - o)) {
+            metric.end_ray(false, credit);
+            continue;
+          }
+        }
         GridWalk walk(spec, o, to);
         if (!walk.entered()) {
           metric.end_ray(false, credit);
           continue;
+        }
+        if constexpr (rear_side_rays<Metric>()) {
+          if (!ctx.count_cells && ctx.open != nullptr &&
+              !ends_on_rear_side(walk, spec, codes, values, *ctx.open)) {
+            metric.end_ray(false, credit);
+            continue;
+          }
         }
         double visibility = 1.0;
         bool previous_unknown = false, rear_side = false;

@@ -15,6 +15,7 @@ namespace vantage {
 /// side, else 0 (eq. M4).
 struct RearSideEntropy {
   static constexpr bool kFreeDims = true;  // free cells credit nothing; they dim the later ones
+  static constexpr bool kRearSideRays = true;  // it credits nothing on the others
   // NOTE: no visibility floor past which a ray's cells are ignored: its values fall to 1e-5 bits
   // and below as a table top is explored, where a floor of 1e-6 changed tabletop-4's decision.
   double sum = 0.0;
