@@ -313,7 +313,8 @@ TEST(Metrics, CoarserRaysEstimateTheValue) {
     GainConfig config;
     config.method = m;
     const MetricEvaluator evaluator(s.grid, config);
-    const std::vector<ViewGain> exact = evaluator.gains(s.views), coarse = evaluator.gains(s.views, 3);
+    const std::vector<ViewGain> exact = evaluator.gains(s.views);
+    const std::vector<ViewGain> coarse = evaluator.gains(s.views, 3);
     for (std::size_t v = 0; v < s.views.size(); ++v) {
       EXPECT_GT(coarse[v].gain, 0.5 * exact[v].gain) << to_string(m) << ", view " << v;
       EXPECT_LT(coarse[v].gain, 2.0 * exact[v].gain) << to_string(m) << ", view " << v;

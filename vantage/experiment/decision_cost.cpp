@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "vantage/gain/methods.hpp"
+#include "vantage/map/traversal.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/util/memory.hpp"
 #include "vantage/util/text.hpp"
@@ -36,24 +37,6 @@ constexpr double kBytesPerCandidate = 2048.0;
 /// index of it (4 B) and of its union (4 B) [bytes].
 constexpr double kBytesPerListedCell = 20.0;
 
-/// Where the ray origin + t dir lies inside the box: [t0, t1], empty when t0 > t1.
-std::pair<double, double> clip_to_box(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir,
-                                      const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
-  double t0 = -std::numeric_limits<double>::infinity();
-  double t1 = std::numeric_limits<double>::infinity();
-  for (int a = 0; a < 3; ++a) {
-    if (dir[a] == 0.0) {
-      if (origin[a] < lo[a] || origin[a] > hi[a]) return {1.0, 0.0};
-      continue;
-    }
-    double near = (lo[a] - origin[a]) / dir[a], far = (hi[a] - origin[a]) / dir[a];
-    if (near > far) std::swap(near, far);
-    t0 = std::max(t0, near);
-    t1 = std::min(t1, far);
-  }
-  return {t0, t1};
-}
-
 }  // namespace
 
 ViewCost view_cost(const GridSpec& spec, const Frustum& view, int swept_rays) {
@@ -72,7 +55,7 @@ ViewCost view_cost(const GridSpec& spec, const Frustum& view, int swept_rays) {
                               tan_v * (2.0 * (j + 0.5) / kRaysUp - 1.0));
       const double omega = pixel / std::pow(p.norm(), 3);  // [sr]
       const Eigen::Vector3d dir = R * p.normalized();
-      const auto [t0, t1] = clip_to_box(origin, dir, lo, hi);
+      const auto [t0, t1] = clip_to_box(lo, hi, origin, dir);
       const double enter = std::max(t0, 0.0);
       const double r0 = std::max(enter, fov.min_range), r1 = std::min(t1, fov.max_range);
       if (!(r1 > r0)) continue;

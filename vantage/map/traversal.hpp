@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 #include "vantage/map/grid_spec.hpp"
 
@@ -27,6 +28,25 @@ inline int max_ray_cells(const GridSpec& spec, const Eigen::Vector3d& origin) {
   const Eigen::Vector3d lo = (spec.origin - origin).cwiseAbs();
   const Eigen::Vector3d hi = (spec.max_corner() - origin).cwiseAbs();
   return static_cast<int>(lo.cwiseMax(hi).sum() / spec.resolution) + 4;
+}
+
+/// Where the ray o + s * dir lies in the closed box [lo, hi] (slab test): [s_in, s_out], empty
+/// (s_in > s_out) when the ray misses it.
+inline std::pair<double, double> clip_to_box(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi,
+                                             const Eigen::Vector3d& o, const Eigen::Vector3d& dir) {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  double s_in = -kInf, s_out = kInf;
+  for (int a = 0; a < 3; ++a) {
+    if (dir[a] == 0.0) {
+      if (o[a] < lo[a] || o[a] > hi[a]) return {kInf, -kInf};
+      continue;
+    }
+    double t0 = (lo[a] - o[a]) / dir[a], t1 = (hi[a] - o[a]) / dir[a];
+    if (t0 > t1) std::swap(t0, t1);
+    s_in = std::max(s_in, t0);
+    s_out = std::min(s_out, t1);
+  }
+  return {s_in, s_out};
 }
 
 /// Clips the ray o + s * dir, s in [s_in, s_out] as passed in, to the grid's box (slab test).

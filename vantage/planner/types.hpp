@@ -77,7 +77,11 @@ GainObjective parse_gain_objective(std::string_view name);
 GainObjective natural_objective(PlannerMethod method);
 
 /// The swept search's tolerance: its choice is within this share of the best candidate's exact
-/// score (at three standard errors of its race's samples; docs/decision.md, "The swept search").
+/// score (at three standard errors of its race's samples; docs/decision.md, "The swept search"),
+/// so that two views that nearly tie do not drive its race to the full lists. On the Kinect table
+/// top at 1.85 M cells two ring views lie 0.069 % apart, and telling them apart took the race to
+/// one cell in two (BENCHMARK.md, issue 38); 0.5 % is far below the survival reading's own error
+/// in predicting a scan's cells (a median of 14 %, RESULTS.md, "The sweep with every method").
 /// The exact argmax, proven, is the pruned search's.
 inline constexpr double kSweptTolerance = 0.005;
 

@@ -18,7 +18,8 @@
 ///   static constexpr QuietCells kQuiet;
 /// A metric may say that a ray changes it only when it ends on a rear side (optional; false by
 /// default); when the walk need not count the unobserved cells, it then probes each ray first
-/// across cubes of blocks with no occupied cell (MetricContext::open) and walks in full only those that do:
+/// across cubes of blocks with no occupied cell (MetricContext::open) and walks in full only those
+/// that do:
 ///   static constexpr bool kRearSideRays;
 ///
 /// One walk feeds it (`view_rays`), in two ways: the reference hands the metric every cell of
@@ -199,23 +200,6 @@ bool ends_on_rear_side(GridWalk walk, const GridSpec& spec, const Code* codes,
   }
 }
 
-/// Whether the segment from `from` along `dir` (parameters 0 to 1) meets `box`.
-inline bool segment_meets(const Eigen::AlignedBox3d& box, const Eigen::Vector3d& from,
-                          const Eigen::Vector3d& dir) {
-  double t_in = 0.0, t_out = 1.0;
-  for (int a = 0; a < 3; ++a) {
-    if (dir[a] == 0.0) {
-      if (from[a] < box.min()[a] || from[a] > box.max()[a]) return false;
-      continue;
-    }
-    double t0 = (box.min()[a] - from[a]) / dir[a], t1 = (box.max()[a] - from[a]) / dir[a];
-    if (t0 > t1) std::swap(t0, t1);
-    t_in = std::max(t_in, t0);
-    t_out = std::min(t_out, t1);
-  }
-  return t_in <= t_out;
-}
-
 /// A view's pinhole image of rays: neighbouring rays `spacing` cells apart at the farthest corner
 /// of the grid, every subsample-th along each axis cast.
 struct RayImage {
@@ -336,10 +320,13 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
         metric.begin_ray();
         const Eigen::Vector3d to = o + image.max_range * dir;
         if constexpr (rear_side_rays<Metric>()) {
-          if (!ctx.count_cells && ctx.open != nullptr &&
-              !segment_meets(ctx.occupied, o, to - o)) {
-            metric.end_ray(false, credit);
-            continue;
+          if (!ctx.count_cells && ctx.open != nullptr) {
+            const auto [s_in, s_out] =
+                clip_to_box(ctx.occupied.min(), ctx.occupied.max(), o, to - o);
+            if (std::max(s_in, 0.0) > std::min(s_out, 1.0)) {  // the segment misses the box
+              metric.end_ray(false, credit);
+              continue;
+            }
           }
         }
         GridWalk walk(spec, o, to);
@@ -364,17 +351,17 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
             r2 = (spec.center(walk.cell()) - o).squaredNorm();
           }
           const bool in_range = image.all_in_range || r2 >= image.min_r2;
-          const double weight =
-              image.weight_scale > 0.0 ? std::clamp(image.weight_scale * r2, 1.0, image.most_weight)
-                                       : 1.0;
+          const double weight = image.weight_scale > 0.0
+                                    ? std::clamp(image.weight_scale * r2, 1.0, image.most_weight)
+                                    : 1.0;
           // NOTE: the distance read for unobserved cells only (RayCell::near): otherwise 4 bytes
           // a cell from a table four times the codes' size; 10-20 % of the CPU time of
           // proximity count and area factor on BM_MetricDecision187.
           const bool unobserved = v.state == CellState::kUnobserved;
-          metric.cell(RayCell{linear, v, visibility,
-                              unobserved && !ctx.near.empty() ? ctx.near[linear] : far, in_range,
-                              weight},
-                      credit);
+          metric.cell(
+              RayCell{linear, v, visibility,
+                      unobserved && !ctx.near.empty() ? ctx.near[linear] : far, in_range, weight},
+              credit);
           if (v.state == CellState::kOccupied) {
             rear_side = previous_unknown;
             break;
@@ -385,8 +372,8 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
           }
           visibility *= 1.0 - v.p;  // eq. M1
           if constexpr (quiet_cells<Metric>() == QuietCells::kFar) {
-            const bool quiet = v.state == CellState::kFree ||
-                               (unobserved && ctx.near[linear] > kProximityCells);
+            const bool quiet =
+                v.state == CellState::kFree || (unobserved && ctx.near[linear] > kProximityCells);
             if (!ctx.count_cells && ctx.far != nullptr && quiet && ctx.far->cross(walk, spec)) {
               if (!spec.contains(walk.cell())) break;  // left the grid
               continue;

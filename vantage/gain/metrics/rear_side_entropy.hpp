@@ -22,7 +22,9 @@ struct RearSideEntropy {
   std::vector<std::pair<std::size_t, double>> pending;  // this ray's unobserved cells, P_v I
   void begin_ray() { pending.clear(); }
   void cell(const RayCell& c, Stamp&) {
-    if (c.in_range && unknown(c)) pending.emplace_back(c.linear, c.weight * c.visibility * c.value.entropy);
+    if (c.in_range && unknown(c)) {
+      pending.emplace_back(c.linear, c.weight * c.visibility * c.value.entropy);
+    }
   }
   void end_ray(bool rear_side, Stamp& s) {
     if (!rear_side) return;

@@ -69,12 +69,6 @@ constexpr std::size_t kFinal = 3;
 constexpr double kMargin = 0.15;
 constexpr std::size_t kMostFinal = 8;
 constexpr double kNearTie = 0.05;
-/// The race's tolerance, kSweptTolerance: two views that nearly tie do not drive it to the full
-/// lists. On the Kinect table top at 1.85 M cells two ring views lie 0.069 % apart, and telling
-/// them apart took the race to one cell in two (BENCHMARK.md, issue 38). 0.5 % is a twentieth of
-/// what the survival reading's prediction of a scan's cells errs by (a median of 10.5 % on the
-/// table tops' ring, issue 36's sweep).
-constexpr double kTolerance = kSweptTolerance;
 /// The most unobserved cells the race's first sample is expected to hold, whatever the map holds,
 /// so that its cost does not grow with the cells.
 constexpr std::size_t kSample = std::size_t{1} << 13;
@@ -145,7 +139,7 @@ Plan run_paper(const SearchInput& in) {
       factor, [&](std::span<const Frustum> raced, std::span<const std::uint32_t> cells) {
         return paper_view_cells(map, raced, in.gain, cells);
       },
-      kTolerance);
+      kSweptTolerance);
   return finish(in, all, factor, race, estimates(in));
 }
 
@@ -237,7 +231,7 @@ Plan run(const SearchInput& in) {
   for (const std::size_t c : final_round) factor.push_back(in.travel_factor(c));
   const detail::Race race =
       detail::race_candidates(map, finalists.frusta, finalists.first, factor, in.gain, kSample,
-                              kTolerance);
+                              kSweptTolerance);
   return finish(in, final_round, factor, race, std::move(plan));
 }
 
