@@ -11,6 +11,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <stdexcept>
 #include <tuple>
 
 #include "test_scene.hpp"
@@ -118,13 +119,17 @@ TEST(Yardstick, CountCommonCountsTheIntersection) {
   EXPECT_EQ(count_common(std::vector<std::uint32_t>{}, std::vector<std::uint32_t>{3}), 0u);
 }
 
-TEST(Yardstick, DenominatorIsTheUnionOfTheCandidatesAndStartsNoiseFreeHits) {
+class YardstickAtTolerance : public ::testing::TestWithParam<int> {};
+
+TEST_P(YardstickAtTolerance, DenominatorIsTheUnionOfTheCandidatesAndStartsNoiseFreeHits) {
+  const int tolerance = GetParam();
   const sim::Scene scene = sim::load_scene(testing::small_scene_path());
   const sim::World world(scene, sim::WorldConfig{2});
   const std::vector<Eigen::Isometry3d> candidates = scene.candidate_poses();
-  const SurfaceTruth truth = compute_surface_truth(world, candidates, 2);
+  const SurfaceTruth truth = compute_surface_truth(world, candidates, tolerance, 2);
   ASSERT_EQ(truth.candidate_hits.size(), candidates.size());
-  const SurfaceTruth one_thread = compute_surface_truth(world, candidates, 1);
+  EXPECT_EQ(truth.tolerance, tolerance);
+  const SurfaceTruth one_thread = compute_surface_truth(world, candidates, tolerance, 1);
   EXPECT_EQ(one_thread.visible, truth.visible);
   EXPECT_EQ(one_thread.candidate_hits, truth.candidate_hits);
   ASSERT_EQ(truth.start_hits.size(), scene.start_poses.size());
@@ -157,9 +162,9 @@ TEST(Yardstick, DenominatorIsTheUnionOfTheCandidatesAndStartsNoiseFreeHits) {
     for (const std::uint32_t cell : truth.surface) {
       const Index3 c = scene.grid.unravel(cell);
       bool near = false;
-      for (int dz = -1; dz <= 1; ++dz) {
-        for (int dy = -1; dy <= 1; ++dy) {
-          for (int dx = -1; dx <= 1; ++dx) {
+      for (int dz = -tolerance; dz <= tolerance; ++dz) {
+        for (int dy = -tolerance; dy <= tolerance; ++dy) {
+          for (int dx = -tolerance; dx <= tolerance; ++dx) {
             near = near || point_cells.count({c.x() + dx, c.y() + dy, c.z() + dz}) > 0;
           }
         }
@@ -188,6 +193,40 @@ TEST(Yardstick, DenominatorIsTheUnionOfTheCandidatesAndStartsNoiseFreeHits) {
   EXPECT_EQ(truth.surface, sim::surface_cells(scene.grid, sim::voxelize(objects, scene.grid, 2)));
 }
 
+INSTANTIATE_TEST_SUITE_P(InACellAndWithinOne, YardstickAtTolerance, ::testing::Values(0, 1));
+
+TEST(Yardstick, AtToleranceZeroOnlyTheCellAPointLiesInIsCovered) {
+  const BoxCase box;
+  const std::vector<std::uint32_t> surface = sim::surface_cells(box.grid, box.occupied);
+  // 1 cm in front of the face, in the cells x = 1: within one cell of the face, in none of it.
+  EXPECT_EQ(covered_cells(box.grid, surface, box.face(0, 0.19), 1).size(), 16u);
+  EXPECT_TRUE(covered_cells(box.grid, surface, box.face(0, 0.19), 0).empty());
+  // 1 cm behind the face, in its cells x = 2: exactly those 16, not the layer behind (x = 3).
+  const std::vector<std::uint32_t> in_face = covered_cells(box.grid, surface, box.face(0, 0.21), 0);
+  EXPECT_EQ(in_face.size(), 16u);
+  for (const std::uint32_t c : in_face) EXPECT_EQ(box.grid.unravel(c).x(), 2);
+  // ... and from +y, 1 cm inside the face y = 5: 16 more less the shared edge x = 2, y = 5.
+  PointCloud points = box.face(0, 0.21);
+  const PointCloud from_y = box.face(1, 0.59);
+  points.insert(points.end(), from_y.begin(), from_y.end());
+  EXPECT_EQ(covered_cells(box.grid, surface, points, 0).size(), 28u);
+  // A point just outside the grid covers nothing at tolerance 0.
+  std::vector<std::uint32_t> corner{box.id(0, 0, 0)};
+  EXPECT_TRUE(covered_cells(box.grid, corner, {Eigen::Vector3d(-0.05, 0.05, 0.05)}, 0).empty());
+  EXPECT_THROW(covered_cells(box.grid, surface, points, 2), std::invalid_argument);
+
+  SurfaceTruth truth;
+  truth.grid = box.grid;
+  truth.tolerance = 0;
+  truth.surface = surface;
+  truth.visible = surface;
+  EXPECT_DOUBLE_EQ(surface_coverage(truth, points).visible, 28.0 / 56.0);
+  // At 1 the points reach the next layer in too: every surface cell with x in {2, 3} or y in
+  // {4, 5}, all but the 14 with x in {4, 5} and y in {2, 3} (8 on the face x = 5, 6 at x = 4).
+  truth.tolerance = 1;
+  EXPECT_DOUBLE_EQ(surface_coverage(truth, points).visible, 42.0 / 56.0);
+}
+
 /// The first scan of `scans` whose surface coverage reaches `level`, or infinity.
 double scans_to(const std::vector<ScanRecord>& scans, double level) {
   for (const ScanRecord& r : scans) {
@@ -199,7 +238,7 @@ double scans_to(const std::vector<ScanRecord>& scans, double level) {
 TEST(Yardstick, GreedyOracleNeverNeedsMoreScansThanGreedyOnTheSmallTableTop) {
   const sim::Scene scene = sim::load_scene(testing::small_scene_path());
   const sim::World world(scene, sim::WorldConfig{2});
-  const SurfaceTruth truth = compute_surface_truth(world, scene.candidate_poses(), 2);
+  const SurfaceTruth truth = compute_surface_truth(world, scene.candidate_poses(), 1, 2);
   for (int start = 0; start < 3; ++start) {
     std::vector<ScanRecord> runs[2];
     for (const bool oracle : {false, true}) {
@@ -245,7 +284,7 @@ TEST(Yardstick, TheGreedyOracleChoosesByTheTruthAloneWhateverTheNoise) {
   const sim::Scene scene = sim::load_scene(testing::small_scene_path());
   const sim::World world(scene, sim::WorldConfig{2});
   const std::vector<Eigen::Isometry3d> candidates = scene.candidate_poses();
-  const SurfaceTruth truth = compute_surface_truth(world, candidates, 2);
+  const SurfaceTruth truth = compute_surface_truth(world, candidates, 1, 2);
   ExplorationConfig config;
   config.planner.method = PlannerMethod::kGreedy;
   config.greedy_oracle = true;

@@ -68,6 +68,7 @@ nlohmann::json trial_settings(const BenchConfig& config) {
       {"observability_recency", e.observability.recency},
       {"project_stops", e.office.project_stops},
       {"candidates", to_string(e.candidates)},
+      {"coverage_tolerance", e.coverage_tolerance},
       {"hemisphere_spacing", e.hemisphere.spacing},
       {"hemisphere_radii", e.hemisphere.radii},
       {"arm", e.arm ? nlohmann::json{{"base", {e.arm->base.x(), e.arm->base.y(), e.arm->base.z()}},
@@ -252,6 +253,7 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
     const SurfaceTruth& truth =
         truths
             .emplace(spec.scene, compute_surface_truth(world, candidates,
+                                                       config.exploration.coverage_tolerance,
                                                        config.exploration.planner.gain.num_threads))
             .first->second;
     const fs::path file = dir / kYardstickFolder / (spec.scene + ".json");
@@ -351,6 +353,7 @@ void write_yardstick_file(const fs::path& path, const sim::Scene& scene,
       {"candidates", to_string(config.candidates)},
       {"surface_cells", truth.surface.size()},
       {"visible_cells", truth.visible.size()},
+      {"tolerance_cells", truth.tolerance},
       {"rule",
        "views[i] and starts[j]: the visible surface cells (indices into V) that a noise-free scan "
        "from candidate i or start j hits; travel_m: between candidates (views x views) and from "

@@ -65,13 +65,15 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
     if (surface_truth == nullptr) {
       check_surface_truth(scene, result_.candidates.size(), config.budget);
       own_surface_ =
-          compute_surface_truth(world_, result_.candidates, config.planner.gain.num_threads);
+          compute_surface_truth(world_, result_.candidates, config.coverage_tolerance,
+                                config.planner.gain.num_threads);
       surface_truth = &*own_surface_;
     }
     if (!(surface_truth->grid == scene.grid) ||
-        surface_truth->candidate_hits.size() != result_.candidates.size()) {
+        surface_truth->candidate_hits.size() != result_.candidates.size() ||
+        surface_truth->tolerance != config.coverage_tolerance) {
       throw std::invalid_argument(cat("the surface truth given for scene '", scene.name,
-                                      "' is for another grid or candidate set"));
+                                      "' is for another grid, candidate set or tolerance"));
     }
     surface_ = surface_truth;
     truly_hit_ = surface_->start_hits.at(static_cast<std::size_t>(config.start));

@@ -104,6 +104,10 @@ struct ExplorationConfig {
   /// true hit sets of the start and the views taken; ties to the shorter travel, then the lower
   /// index. Its choices depend on the world only, not on the run's noise or registration.
   bool greedy_oracle = false;
+  /// Table top: the yardstick's tolerance [cells], 0 or 1 (yardstick.hpp): surface coverage, its
+  /// denominator and the greedy oracle's hit sets count a surface cell covered once a scan point
+  /// lies in it (0) or within one cell of it (1, issue 36's definition).
+  int coverage_tolerance = 1;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;

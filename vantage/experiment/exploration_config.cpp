@@ -8,6 +8,7 @@
 
 #include "vantage/experiment/detail/explorer.hpp"
 #include "vantage/experiment/exploration.hpp"
+#include "vantage/experiment/yardstick.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -46,6 +47,10 @@ void ExplorationConfig::validate() const {
   hemisphere.validate();
   if (arm && !(arm->reach > 0.0)) {
     throw std::invalid_argument(cat("explore.arm.reach must be > 0 m, got ", arm->reach));
+  }
+  if (coverage_tolerance < 0 || coverage_tolerance > kMaxCoverageTolerance) {
+    throw std::invalid_argument(cat("explore.coverage_tolerance must be 0 or ",
+                                    kMaxCoverageTolerance, " cells, got ", coverage_tolerance));
   }
 }
 

@@ -299,10 +299,14 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
               {"surface_cells", result.surface_cells},
               {"visible_surface_cells", result.visible_surface_cells},
               {"surface_coverage_rule",
-               "a surface cell of the objects (table and floor excluded) is covered once a "
-               "registered point lies in it or in one of its 26 neighbours; surface_coverage "
-               "divides by the cells the candidate views and starts hit with noise-free scans, "
-               "raw_surface_coverage by all object surface cells"},
+               fmt::format("a surface cell of the objects (table and floor excluded) is covered "
+                           "once a registered point lies {}; surface_coverage divides by the "
+                           "cells the candidate views and starts hit with noise-free scans, "
+                           "raw_surface_coverage by all object surface cells",
+                           config.coverage_tolerance == 0
+                               ? "in it"
+                               : "in it or in one of its 26 neighbours")},
+              {"coverage_tolerance_cells", config.coverage_tolerance},
               {"scans", json::array()},
               {"candidates", json::array()}};
   if (config.candidates == CandidateSet::kHemisphere && scene.kind == sim::SceneKind::kTableTop) {

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <iterator>
+#include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "vantage/sim/ground_truth.hpp"
 #include "vantage/util/clock.hpp"
@@ -55,7 +58,11 @@ std::vector<std::uint32_t> object_surface_cells(const sim::Scene& scene, int num
 }
 
 std::vector<std::uint32_t> covered_cells(const GridSpec& grid, std::span<const std::uint32_t> cells,
-                                         const PointCloud& points_world) {
+                                         const PointCloud& points_world, int tolerance) {
+  if (tolerance < 0 || tolerance > kMaxCoverageTolerance) {
+    throw std::invalid_argument(
+        fmt::format("coverage tolerance {} cells: must be 0 or {}", tolerance, kMaxCoverageTolerance));
+  }
   PaddedMarks padded(grid);
   for (const Eigen::Vector3d& p : points_world) {
     if (!p.allFinite()) continue;
@@ -67,9 +74,9 @@ std::vector<std::uint32_t> covered_cells(const GridSpec& grid, std::span<const s
   for (const std::uint32_t c : cells) {
     const Index3 q = grid.unravel(c) + Index3::Ones();
     bool near = false;
-    for (int dz = -1; dz <= 1 && !near; ++dz) {
-      for (int dy = -1; dy <= 1 && !near; ++dy) {
-        for (int dx = -1; dx <= 1 && !near; ++dx) {
+    for (int dz = -tolerance; dz <= tolerance && !near; ++dz) {
+      for (int dy = -tolerance; dy <= tolerance && !near; ++dy) {
+        for (int dx = -tolerance; dx <= tolerance && !near; ++dx) {
           near = padded.marks[padded.at(q + Index3(dx, dy, dz))] != 0;
         }
       }
@@ -98,11 +105,13 @@ std::size_t count_common(std::span<const std::uint32_t> a, std::span<const std::
 }
 
 SurfaceTruth compute_surface_truth(const sim::World& world,
-                                   std::span<const Eigen::Isometry3d> candidates, int num_threads) {
+                                   std::span<const Eigen::Isometry3d> candidates, int tolerance,
+                                   int num_threads) {
   const auto start = std::chrono::steady_clock::now();
   const sim::Scene& scene = world.scene();
   SurfaceTruth truth;
   truth.grid = scene.grid;
+  truth.tolerance = tolerance;
   truth.surface = object_surface_cells(scene, num_threads);
   // NOTE: noise-free means the range noise only: the scan is taken from the true pose, and its
   // points are placed through it, so pose noise never enters.
@@ -122,7 +131,7 @@ SurfaceTruth compute_surface_truth(const sim::World& world,
       const Eigen::Vector3d q = pose * p;
       if (!on_support(supports, q)) objects.push_back(q);
     }
-    return covered_cells(truth.grid, truth.surface, objects);
+    return covered_cells(truth.grid, truth.surface, objects, tolerance);
   };
   std::vector<std::uint8_t> seen(truth.grid.num_cells(), 0);
   for (const Eigen::Isometry3d& pose : candidates) {
@@ -142,7 +151,7 @@ SurfaceTruth compute_surface_truth(const sim::World& world,
 
 SurfaceCoverage surface_coverage(const SurfaceTruth& truth, const PointCloud& points_world) {
   SurfaceCoverage result;
-  const std::vector<std::uint32_t> covered = covered_cells(truth.grid, truth.surface, points_world);
+  const std::vector<std::uint32_t> covered = covered_cells(truth.grid, truth.surface, points_world, truth.tolerance);
   std::set_intersection(covered.begin(), covered.end(), truth.visible.begin(), truth.visible.end(),
                         std::back_inserter(result.covered));
   if (!truth.visible.empty()) {

@@ -8,9 +8,10 @@
 /// - object surface S: the surface cells (sim::surface_cells) of the scene's shapes other than
 ///   the table and the floor, voxelized alone (sim::voxelize). The table's own surface does not
 ///   count: the mapper segments it away, so no run measures it.
-/// - covered: a cell c of S is covered by a point p when p's cell is c or one of c's 26
-///   neighbours, i.e. p lies within one cell of c's box along every axis (the L-infinity distance
-///   from p to the box is below one resolution).
+/// - covered: a cell c of S is covered by a point p, at a tolerance of t cells (0 or 1), when
+///   p's cell lies within t cells of c along every axis: at t = 1 (the default, issue 36) c or
+///   one of its 26 neighbours, i.e. p within one resolution of c's box (L-infinity); at t = 0
+///   (issue 37, GenNBV's scanned voxels) p inside c itself.
 /// - hit set of a view: the cells of S covered by the points of its noise-free scan (the scene's
 ///   sensor with its range noise set to zero, from the true pose) that lie on no table or floor
 ///   (outside their bounding boxes), as a run's segmented points do.
@@ -38,11 +39,14 @@ inline constexpr std::string_view kSupportKinds[] = {"table", "floor"};
 /// The object surface S of a scene in its grid, ascending linear indices (see the file comment).
 std::vector<std::uint32_t> object_surface_cells(const sim::Scene& scene, int num_threads = 0);
 
-/// The cells of `cells` (ascending) within one cell of some point of `points_world`: the point's
-/// cell is the cell or one of its 26 neighbours. Points outside the grid count for the border
-/// cells they lie next to. Ascending.
+/// The tolerances the yardstick knows [cells] (the file's note).
+inline constexpr int kMaxCoverageTolerance = 1;
+
+/// The cells of `cells` (ascending) within `tolerance` cells (0 or 1) of some point of
+/// `points_world`: the point's cell is the cell or, at 1, one of its 26 neighbours. Points
+/// outside the grid count for the border cells they lie next to. Ascending.
 std::vector<std::uint32_t> covered_cells(const GridSpec& grid, std::span<const std::uint32_t> cells,
-                                         const PointCloud& points_world);
+                                         const PointCloud& points_world, int tolerance = 1);
 
 /// The size of the intersection of two ascending index lists.
 std::size_t count_common(std::span<const std::uint32_t> a, std::span<const std::uint32_t> b);
@@ -50,6 +54,7 @@ std::size_t count_common(std::span<const std::uint32_t> a, std::span<const std::
 /// The ground truth the yardstick needs for one scene and candidate set.
 struct SurfaceTruth {
   GridSpec grid;
+  int tolerance = 1;                   ///< covered within this many cells (the file's note)
   std::vector<std::uint32_t> surface;  ///< S, ascending
   std::vector<std::uint32_t> visible;  ///< V: the cells of S some candidate or start hits
   /// Per candidate view, its hit set: the cells of S its noise-free scan covers (a subset of
@@ -61,9 +66,10 @@ struct SurfaceTruth {
 };
 
 /// Scans the world noise-free from every candidate and every start pose of its scene, and
-/// collects S, V and each one's hit set. Deterministic for any thread count (World::scan is).
+/// collects S, V and each one's hit set at `tolerance` cells. Deterministic for any thread count
+/// (World::scan is).
 SurfaceTruth compute_surface_truth(const sim::World& world,
-                                   std::span<const Eigen::Isometry3d> candidates,
+                                   std::span<const Eigen::Isometry3d> candidates, int tolerance,
                                    int num_threads = 0);
 
 /// The surface coverage figures of a set of measured points.
@@ -73,7 +79,8 @@ struct SurfaceCoverage {
   std::vector<std::uint32_t> covered;  ///< the covered cells of V, ascending
 };
 
-/// Surface coverage of `points_world` (registered measured points) against `truth`.
+/// Surface coverage of `points_world` (registered measured points) against `truth`, at its
+/// tolerance.
 SurfaceCoverage surface_coverage(const SurfaceTruth& truth, const PointCloud& points_world);
 
 }  // namespace vantage

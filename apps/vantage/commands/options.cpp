@@ -8,6 +8,7 @@
 
 #include "shell.hpp"
 #include "vantage/experiment/exploration.hpp"
+#include "vantage/experiment/yardstick.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/util/memory.hpp"
 
@@ -128,6 +129,12 @@ void CandidateOptions::add_to(CLI::App& cmd) {
                  "hemisphere: distances of its rings of views from the scene's target, r1,r2,... "
                  "[m]")
       ->default_str(fmt::format("{}", fmt::join(HemisphereConfig{}.radii, ",")));
+  cmd.add_option("--coverage-tolerance", coverage_tolerance,
+                 "table top: surface coverage counts an object surface cell once a scan point "
+                 "lies within this many cells of it, 1 (it or a neighbour) or 0 (in it); the "
+                 "greedy oracle and the yardstick's denominator follow [cells]")
+      ->check(whole_in(0, kMaxCoverageTolerance))
+      ->capture_default_str();
 }
 
 void CandidateOptions::apply(ExplorationConfig& config) const {
@@ -141,6 +148,7 @@ void CandidateOptions::apply(ExplorationConfig& config) const {
         "--arm-base and --reach come together: the arm's base x,y,z and its reach [m]");
   }
   config.hemisphere.spacing = spacing;
+  config.coverage_tolerance = coverage_tolerance;
   if (!radii.empty()) config.hemisphere.radii = parse_numbers(radii, "--hemisphere-radii");
   if (reach > 0.0) {
     ArmReach arm;

@@ -34,13 +34,15 @@ struct PlanningOptions : PlanningSettings {
   PlannerConfig planner_config(double literal_alpha = kTableTopAlpha) const;
 };
 
-/// --candidates ring|hemisphere, --arm-base, --reach, --view-spacing (explore, bench tabletop).
+/// --candidates ring|hemisphere, --arm-base, --reach, --view-spacing, and the yardstick over
+/// them, --coverage-tolerance (explore, bench tabletop).
 struct CandidateOptions {
   std::string candidates = "ring";
   std::string arm_base;                         ///< "x,y,z" [m]; empty: the scene's arm
   double reach = 0.0;                           ///< [m]; 0: the scene's arm
   double spacing = HemisphereConfig{}.spacing;  ///< the hemisphere's view spacing [m]
   std::string radii;                            ///< "r1,r2,..." [m]; empty: HemisphereConfig's
+  int coverage_tolerance = ExplorationConfig{}.coverage_tolerance;  ///< [cells]
 
   void add_to(CLI::App& cmd);
   /// Sets the candidate set, the hemisphere and the arm; throws UsageError naming the option.
