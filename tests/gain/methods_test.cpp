@@ -29,7 +29,7 @@ TEST(Methods, EveryMethodHasOneRowAndItsNameParsesBack) {
     EXPECT_EQ(find_gain_method(t.name), t.method);
     EXPECT_EQ(to_string(t.method), t.name);
   }
-  EXPECT_EQ(names.size(), 10u);
+  EXPECT_EQ(names.size(), 11u);
   EXPECT_FALSE(find_gain_method("counting").has_value());
   try {
     parse_gain_method("counting");

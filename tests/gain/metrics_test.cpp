@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <string>
@@ -29,11 +30,11 @@ namespace {
 using test::looking_along_x;
 using test::row_grid;
 
-// The seven metrics.
+// The seven metrics and the surface model, which walks their rays.
 constexpr GainMethod kMetrics[] = {GainMethod::kOcclusionAware, GainMethod::kUnobservedVoxel,
                                    GainMethod::kRearSideVoxel,  GainMethod::kRearSideEntropy,
                                    GainMethod::kProximityCount, GainMethod::kAverageEntropy,
-                                   GainMethod::kAreaFactor};
+                                   GainMethod::kAreaFactor,     GainMethod::kSurface};
 
 ViewGain metric_on_row(GainMethod method, GainEvaluation evaluation = GainEvaluation::kExact) {
   GainConfig config;
@@ -98,6 +99,36 @@ TEST(Metrics, ProximityCountWeighsUnobservedCellsByHowNearAnOccupiedOneTheyLie) 
   // Cells 7, 6, 5 lie 1, 2, 3 cells from cell 8: (4 - 1) + (4 - 2) + (4 - 3) with D = 4.
   ASSERT_EQ(kProximityCells, 4.0);
   EXPECT_DOUBLE_EQ(metric_on_row(GainMethod::kProximityCount).gain, 6.0);
+}
+
+TEST(Metrics, SurfaceSumsEachUnobservedCellsChanceToBeTheFirstSurfaceItsRayMeets) {
+  // Cells 7, 6, 5 lie 1, 2, 3 cells from cell 8: classes 0, 1, 2. Along the row the ray reaches
+  // 5, 6, 7 in turn: r2 + (1 - r2) r1 + (1 - r2)(1 - r1) r0; cell 8 ends it.
+  GainConfig config;
+  config.method = GainMethod::kSurface;
+  config.evaluation = GainEvaluation::kExact;
+  config.surface_rates = {0.5, 0.25, 0.125, 0.0625, 0.01};
+  const Frustum view = looking_along_x({0.05, 0.0, 0.0});
+  const ViewGain g = evaluate_views(row_grid(), std::span<const Frustum>(&view, 1), config)[0];
+  EXPECT_DOUBLE_EQ(g.gain, 0.125 + 0.875 * 0.25 + 0.875 * 0.75 * 0.5);
+  EXPECT_DOUBLE_EQ(g.cells, 3.0);
+  // With the prior's one chance everywhere it is the survival reading's sum of a^n (1 - a).
+  config.surface_rates = kSurfacePrior;
+  const double r = kSurfacePrior[0];
+  EXPECT_NEAR(evaluate_views(row_grid(), std::span<const Frustum>(&view, 1), config)[0].gain,
+              r * (1.0 + (1.0 - r) + (1.0 - r) * (1.0 - r)), 1e-15);
+  // A rate outside [0, 1] is refused.
+  config.surface_rates[4] = 1.5;
+  EXPECT_THROW(config.validate(), std::invalid_argument);
+}
+
+TEST(Metrics, SurfaceClassesAreTheDistanceToTheNearestOccupiedCellRoundedUp) {
+  EXPECT_EQ(surface_class(1.0f), 0u);
+  EXPECT_EQ(surface_class(1.4142f), 1u);
+  EXPECT_EQ(surface_class(2.0f), 1u);
+  EXPECT_EQ(surface_class(3.0f), 2u);
+  EXPECT_EQ(surface_class(4.0f), 3u);
+  EXPECT_EQ(surface_class(std::numeric_limits<float>::infinity()), kSurfaceClasses - 1);
 }
 
 TEST(Metrics, AverageEntropyIsTheMeanEntropyOfTheCellsReached) {

@@ -27,6 +27,7 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
     fit_.emplace(config.observability);
     planner_.gain.alpha = fit_->alpha();
   }
+  if (planner_.method.gain == GainMethod::kSurface) surface_fit_.emplace();
   if (office_) {
     navigation_.footprint = scene.robot.footprint;
     navigation_.max_height = scene.robot.height;
@@ -126,10 +127,15 @@ ExplorationResult Explorer::run(const ScanCallback& on_scan) {
       record.calibration = expected_cells_by_alpha(mapper_.grid(), views, gain, fit_->alphas());
       record.seconds.calibrate = seconds_since(start);
     }
+    if (surface_fit_) surface_fit_->before(mapper_.grid(), planner_.gain.num_threads);
     if (office_) {
       observe_sweep(k, record);
     } else {
       observe_view(k, record);
+    }
+    if (surface_fit_) {
+      surface_fit_->after(mapper_.grid());
+      planner_.gain.surface_rates = surface_fit_->rates();
     }
     if (fit_) {
       fit_->record(record.calibration, static_cast<double>(record.actual_gain));

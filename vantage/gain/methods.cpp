@@ -11,6 +11,7 @@
 #include "vantage/gain/metrics/proximity_count.hpp"
 #include "vantage/gain/metrics/rear_side_entropy.hpp"
 #include "vantage/gain/metrics/rear_side_voxel.hpp"
+#include "vantage/gain/metrics/surface.hpp"
 #include "vantage/gain/metrics/unobserved_voxel.hpp"
 #include "vantage/util/text.hpp"
 
@@ -43,6 +44,7 @@ constexpr std::array kMethods = {
     metric(GainMethod::kProximityCount, "proximity-count", &all_views<ProximityCount>, true),
     metric(GainMethod::kAverageEntropy, "average-entropy", &all_views<AverageEntropy>),
     metric(GainMethod::kAreaFactor, "area-factor", &all_views<AreaFactor>, true),
+    metric(GainMethod::kSurface, "surface", &all_views<Surface>, true),
 };
 
 }  // namespace

@@ -235,7 +235,7 @@ std::vector<ViewGain> evaluate(const GainMap& map, const std::vector<float>& nea
   const detail::MetricContext ctx{map,          near,        config.ray_spacing,
                                   subsample,    spaces.free, spaces.uniform,
                                   spaces.far,   spaces.open, spaces.occupied,
-                                  count_cells,  coarseness};
+                                  count_cells,  coarseness,  config.surface_rates};
   return method_traits(config.method).metric(ctx, views, config.num_threads);
 }
 
@@ -286,6 +286,7 @@ std::span<const MetricRound> metric_race_rounds(GainMethod method) {
     case GainMethod::kOcclusionAware:
       return kOcclusionAware;
     case GainMethod::kUnobservedVoxel:
+    case GainMethod::kSurface:  // NOTE: the same sum over the unobserved cells, reweighted
       return kUnobservedVoxel;
     case GainMethod::kAverageEntropy:
       return kAverageEntropy;

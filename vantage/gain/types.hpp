@@ -4,6 +4,7 @@
 /// cell's gain (GainMethod, whose traits live in the registry, methods.hpp), how a view's gain is
 /// evaluated (GainEvaluation), the settings (GainConfig) and the result (ViewGain).
 
+#include <array>
 #include <cstddef>
 #include <string_view>
 
@@ -28,12 +29,16 @@ enum class GainMethod {
   kProximityCount,   ///< unobserved cells near occupied ones, eq. M5
   kAverageEntropy,   ///< Kriegel's mean entropy of the cells reached, eq. M6
   kAreaFactor,       ///< Vasquez-Gomez's area factor, eq. M7
+  /// The surface the view's rays reach first (issue 37, gain/metrics/surface.hpp): the survival
+  /// reading on the metrics' rays, with the chance that an unobserved cell holds a surface taken
+  /// by its distance to the nearest occupied cell (GainConfig::surface_rates, fitted online).
+  kSurface,
 };
 
 std::string_view to_string(GainMethod method);
 /// Parses "probabilistic", "survival", "greedy" or a metric's name (occlusion-aware,
 /// unobserved-voxel, rear-side-voxel, rear-side-entropy, proximity-count, average-entropy,
-/// area-factor); throws std::invalid_argument naming the value.
+/// area-factor) or "surface"; throws std::invalid_argument naming the value.
 GainMethod parse_gain_method(std::string_view name);
 
 /// How finely a view's gain is computed. The target models always take one ray from the sensor
@@ -49,6 +54,19 @@ std::string_view to_string(GainEvaluation evaluation);
 /// Parses "exact" or "auto"; throws std::invalid_argument naming the value.
 GainEvaluation parse_gain_evaluation(std::string_view name);
 
+/// The surface model's distance classes (gain/metrics/surface.hpp): an unobserved cell whose
+/// centre lies within 1, 2, 3 or 4 cells of the nearest occupied cell's, or farther.
+inline constexpr std::size_t kSurfaceClasses = 5;
+
+/// Per distance class, the chance that an unobserved cell holds a surface: the share of such
+/// cells that a scan turned occupied among those it turned known (SurfaceRateFit).
+using SurfaceRates = std::array<double, kSurfaceClasses>;
+
+/// The rates before any scan is seen: 1 - the survival reading's a (kSurvivalAlpha, 0.995) in
+/// every class, the chance that one unobserved cell hides a surface wherever it lies. The fit
+/// replaces them from the first scan on.
+inline constexpr SurfaceRates kSurfacePrior = {0.005, 0.005, 0.005, 0.005, 0.005};
+
 /// Settings of a gain evaluation.
 struct GainConfig {
   GainMethod method = GainMethod::kProbabilistic;
@@ -61,6 +79,8 @@ struct GainConfig {
   /// At most 1/sqrt(2) (the default) guarantees that every cell in view is crossed by a ray.
   double ray_spacing = 0.7071;
   int num_threads = 0;  ///< 0 = all cores; results are identical for any count
+  /// The surface model's chances per distance class, each in [0, 1] (kSurface only).
+  SurfaceRates surface_rates = kSurfacePrior;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;

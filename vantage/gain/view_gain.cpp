@@ -34,6 +34,11 @@ void GainConfig::validate() const {
   if (num_threads < 0) {
     throw std::invalid_argument(cat("gain.num_threads must be >= 0, got ", num_threads));
   }
+  for (const double r : surface_rates) {
+    if (!(r >= 0.0 && r <= 1.0)) {
+      throw std::invalid_argument(cat("gain.surface_rates must each lie in [0, 1], got ", r));
+    }
+  }
 }
 
 std::vector<ViewGain> evaluate_views(const OccupancyGrid& grid, std::span<const Frustum> views,

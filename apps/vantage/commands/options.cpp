@@ -42,7 +42,9 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                  "(survival's views planned past the next scan and toured: --horizon, "
                  "--travel-weight; default 3 views, 0.1/m), or one of the field's metrics: "
                  "occlusion-aware, unobserved-voxel, rear-side-voxel, rear-side-entropy, "
-                 "proximity-count, average-entropy, area-factor (docs/model.md); a ranking of "
+                 "proximity-count, average-entropy, area-factor (docs/model.md); surface (the "
+                 "unobserved cells the rays reach, each weighed by its chance to be the first "
+                 "surface met, fitted online); a ranking of "
                  "another gain as RANKING+GAIN (latombe+survival); explore and bench "
                  "on a table top also take greedy-oracle (the view whose true hits add the most "
                  "surface, docs/yardstick.md)")

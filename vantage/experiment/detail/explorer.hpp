@@ -13,6 +13,7 @@
 
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/yardstick.hpp"
+#include "vantage/gain/surface_rates.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/perception/registration.hpp"
 #include "vantage/perception/voxel_filter.hpp"
@@ -129,6 +130,7 @@ class Explorer {
   Mapper& mapper_;
   bool office_;
   std::optional<ObservabilityFit> fit_;  ///< --alpha auto
+  std::optional<SurfaceRateFit> surface_fit_;  ///< the surface model's rates, always fitted
   sim::World world_;
   sim::GroundTruth truth_;
   std::optional<SurfaceTruth> own_surface_;  ///< table top, when the caller gave none

@@ -37,6 +37,7 @@
 #include <cstring>
 #include <limits>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "vantage/gain/free_space.hpp"
@@ -118,6 +119,8 @@ struct MetricContext {
   /// 1: the metric's own rays (every subsample-th); k > 1: every k-th of those along each axis,
   /// an estimate whose cells carry RayCell::weight.
   int coarseness = 1;
+  /// The surface model's chances (GainConfig::surface_rates).
+  SurfaceRates surface_rates = kSurfacePrior;
 };
 
 /// The mean area a cell shows a ray, the cube's mean projection (a quarter of its surface,
@@ -408,6 +411,17 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
   });
 }
 
+/// A metric for one view: from the context when it reads settings from it (the surface model's
+/// rates), else default-constructed.
+template <typename Metric>
+Metric make_metric(const MetricContext& ctx) {
+  if constexpr (std::is_constructible_v<Metric, const MetricContext&>) {
+    return Metric(ctx);
+  } else {
+    return Metric{};
+  }
+}
+
 /// Every view's value under `Metric`; views in parallel, each view's rays in order on one thread,
 /// so the result does not depend on threads. The jumping walk when the context has free cubes.
 template <typename Metric>
@@ -427,7 +441,7 @@ std::vector<ViewGain> all_views(const MetricContext& ctx, std::span<const Frustu
       Stamp credit{m.credit}, seen{m.seen};
       credit.clear();
       seen.clear();
-      Metric metric;
+      Metric metric = make_metric<Metric>(ctx);
       gains[v] = view_rays(ctx, views[v], metric, credit, seen);
     });
   });

@@ -3,15 +3,26 @@
 /// What the metrics' own files (this folder) share beneath the metrics' evaluation
 /// (gain/metrics.hpp): the distances and the area factor's shape.
 
+#include <cmath>
+#include <cstddef>
 #include <vector>
 
 #include "vantage/gain/snapshot.hpp"
+#include "vantage/gain/types.hpp"
 
 namespace vantage {
 
 /// D, the distance [cells] within which an unobserved cell counts as near an occupied one:
 /// the proximity count's cut-off and the area factor's "occplane" test.
 inline constexpr double kProximityCells = 4.0;
+
+/// The surface model's distance class (kSurfaceClasses) of an unobserved cell `near` cells from
+/// the nearest occupied cell (+infinity beyond kProximityCells): 0 within 1 cell (face to face),
+/// 1 within 2, 2 within 3, 3 within 4, 4 farther.
+inline std::size_t surface_class(float near) {
+  if (!(near <= static_cast<float>(kProximityCells))) return kSurfaceClasses - 1;
+  return near <= 1.0f ? 0 : static_cast<std::size_t>(std::ceil(near)) - 1;
+}
 
 /// The area factor's desired fractions of rays on occupied cells and on occplane cells
 /// (Vasquez-Gomez et al. 2014; rpg's defaults).

@@ -1,0 +1,37 @@
+#pragma once
+/// @file
+/// The surface model (issue 37, docs/model.md "The surface model"), as a metric type of
+/// detail/metric_rays.hpp; registered in gain/methods.cpp.
+
+#include "vantage/gain/detail/metric_rays.hpp"
+#include "vantage/gain/metrics/shared.hpp"
+
+namespace vantage {
+
+/// The surface a view's rays reach first: the survival reading (survival.hpp) on the metrics'
+/// pinhole rays, with a chance per unobserved cell that it holds a surface, r(x), taken by its
+/// distance to the nearest occupied cell (surface_class, GainConfig::surface_rates). Along a ray
+/// the visibility is v(x_n) = prod_{i<n} (1 - r(x_i)) over the unobserved cells before x_n (free
+/// cells pass it, an occupied one ends it), and the view's value is
+///   sum over the unobserved cells x its rays reach, once each, of v(x) r(x),
+/// the expected number of cells that its scan turns occupied: the surface it measures, which the
+/// yardstick's coverage counts. Greedy and the unobserved-voxel metric count every reachable
+/// cell alike; the survival reading gives every cell one chance 1 - a.
+struct Surface {
+  static constexpr bool kFreeInert = true;
+  explicit Surface(const detail::MetricContext& ctx) : rates(ctx.surface_rates) {}
+  SurfaceRates rates;
+  double sum = 0.0;
+  double v = 1.0;
+  void begin_ray() { v = 1.0; }
+  void cell(const RayCell& c, Stamp& s) {
+    if (!unknown(c)) return;
+    const double r = rates[surface_class(c.near)];
+    if (c.in_range && s.take(c.linear)) sum += c.weight * v * r;
+    v *= 1.0 - r;
+  }
+  void end_ray(bool, Stamp&) {}
+  double value(double) const { return sum; }
+};
+
+}  // namespace vantage
