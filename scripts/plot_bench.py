@@ -576,12 +576,14 @@ def gap_shares(trials):
     return shares, {k: (a / b if b > 1e-12 else None) for k, (a, b) in pooled.items()}
 
 
-def surface_summary(trials, budget, set_cover_rows):
+def surface_summary(trials, budget, set_cover_rows, tolerance=1):
+    covered = ("a cell covered once a point lies in it" if tolerance == 0 else
+               "a cell covered once a point lies in it or in one of its 26 neighbours")
     lines = ["## Surface coverage by scan points", "",
              "surface = the share of the visible object surface (the object surface cells that the",
              "candidate views and starts hit with noise-free scans; table excluded) covered by the",
-             "registered scan points, a cell covered once a point lies in it or in one of its 26",
-             "neighbours (docs/yardstick.md); raw = the same share of all object surface cells.",
+             f"registered scan points, {covered} (docs/yardstick.md,",
+             f"--coverage-tolerance {tolerance}); raw = the same share of all object surface cells.",
              "Both after the last scan, mean over trials. AAC = area above the surface-coverage",
              "curve, sum over scans 1..N of (1 - coverage) [scans], mean over trials (lower is",
              "better). gap closed = (AAC greedy - AAC method) / (AAC greedy - AAC greedy-oracle),",
@@ -711,13 +713,18 @@ def read_set_cover(out):
         return list(csv.DictReader(f))
 
 
-def candidate_set(out):
-    """The sweep's candidate set (sweep.json), or 'unknown'."""
+def sweep_setting(out, key, default):
+    """A setting of the sweep (sweep.json), or `default` where it has none."""
     try:
         with open(os.path.join(out, "sweep.json")) as f:
-            return json.load(f).get("candidates", "unknown")
+            return json.load(f).get(key, default)
     except (OSError, ValueError):
-        return "unknown"
+        return default
+
+
+def candidate_set(out):
+    """The sweep's candidate set (sweep.json), or 'unknown'."""
+    return sweep_setting(out, "candidates", "unknown")
 
 
 def main(argv):
@@ -747,7 +754,9 @@ def main(argv):
     extra = []
     if has_surface(rows):
         surface = surface_metrics(g)
-        extra = surface_summary(surface, budget, read_set_cover(out))
+        extra = surface_summary(surface, budget, read_set_cover(out),
+                                # NOTE: a sweep from before the setting counted within one cell
+                                sweep_setting(out, "coverage_tolerance", 1))
         plot_coverage_travel(out, surface, candidate_set(out))
     summary(out, scenes, g, extra + paired_summary(trials, budget))
 

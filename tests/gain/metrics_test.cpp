@@ -112,11 +112,17 @@ TEST(Metrics, SurfaceSumsEachUnobservedCellsChanceToBeTheFirstSurfaceItsRayMeets
   const ViewGain g = evaluate_views(row_grid(), std::span<const Frustum>(&view, 1), config)[0];
   EXPECT_DOUBLE_EQ(g.gain, 0.125 + 0.875 * 0.25 + 0.875 * 0.75 * 0.5);
   EXPECT_DOUBLE_EQ(g.cells, 3.0);
-  // With the prior's one chance everywhere it is the survival reading's sum of a^n (1 - a).
+  // With the prior's one chance everywhere it is the survival reading's sum of a^n (1 - a) over
+  // the cells near the surface.
   config.surface_rates = kSurfacePrior;
   const double r = kSurfacePrior[0];
   EXPECT_NEAR(evaluate_views(row_grid(), std::span<const Frustum>(&view, 1), config)[0].gain,
               r * (1.0 + (1.0 - r) + (1.0 - r) * (1.0 - r)), 1e-15);
+  // With cell 8 free, nothing is occupied: every cell is far, and dims the ray but credits
+  // nothing.
+  OccupancyGrid open = row_grid();
+  open.set_probability(8, open.params().p_min);
+  EXPECT_EQ(evaluate_views(open, std::span<const Frustum>(&view, 1), config)[0].gain, 0.0);
   // A rate outside [0, 1] is refused.
   config.surface_rates[4] = 1.5;
   EXPECT_THROW(config.validate(), std::invalid_argument);
