@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The seven metrics' decisions among the 187 hemisphere views (issue 36, item 4; BENCHMARK.md,
+# The seven metrics' decisions (and the surface model's, issue 37) among the 187 hemisphere views (issue 36, item 4; BENCHMARK.md,
 # "The seven metrics at speed"), through the CLI as a user runs them: `vantage explore` on
 # tabletop-4, --candidates hemisphere --hemisphere-radii 0.9,1.1,1.3 --view-spacing 0.3 (the
 # issue-26 sweeps' candidates), 7 scans on 2 threads, per metric and per build. Prints each
@@ -24,7 +24,7 @@ echo "lscpu: $(lscpu | sed -n 's/^Model name: *//p'); $(nproc) CPUs;" \
   "load: $(cut -d' ' -f1-3 /proc/loadavg); $(date -u +%H:%M) UTC"
 yardstick
 for method in occlusion-aware unobserved-voxel rear-side-voxel rear-side-entropy proximity-count \
-  average-entropy area-factor; do
+  average-entropy area-factor surface; do
   for build in "${builds[@]}"; do
     out="$work/$method-$(echo "$build" | tr / _)"
     "$build/apps/vantage/vantage" explore --scene tabletop-4 --candidates hemisphere \

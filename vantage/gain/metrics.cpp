@@ -224,7 +224,30 @@ std::vector<float> distances_for(const GainMap& map, const GainConfig& config) {
 struct Spaces {
   const FreeSpace *free = nullptr, *uniform = nullptr, *far = nullptr, *open = nullptr;
   Eigen::AlignedBox3d occupied{};  // with open (detail::MetricContext::occupied)
+  const Eigen::AlignedBox3d* near_box = nullptr;  // detail::MetricContext::near_box
 };
+
+/// For a metric that reads distances, the box [m] of every cell within D (kProximityCells) of an
+/// occupied cell: the occupied cells' centres, and D + 1.5 cells to spare (a cell's centre within
+/// D on every axis, half a cell to its faces, a cell for the rounding of the walk's indices);
+/// empty when no cell is occupied. Unset for the other metrics.
+std::optional<Eigen::AlignedBox3d> near_box(const GainMap& map, const GainConfig& config) {
+  if (!method_traits(config.method).needs_distances) return std::nullopt;
+  const GridSpec& spec = map.spec();
+  Eigen::AlignedBox3d box;
+  box.setEmpty();
+  Index3 c;
+  for (c.z() = 0; c.z() < spec.dims.z(); ++c.z()) {
+    for (c.y() = 0; c.y() < spec.dims.y(); ++c.y()) {
+      for (c.x() = 0; c.x() < spec.dims.x(); ++c.x()) {
+        if (map.value(spec.linear(c)).state == CellState::kOccupied) box.extend(spec.center(c));
+      }
+    }
+  }
+  if (box.isEmpty()) return box;
+  const Eigen::Vector3d spare = Eigen::Vector3d::Constant((kProximityCells + 1.5) * spec.resolution);
+  return Eigen::AlignedBox3d(box.min() - spare, box.max() + spare);
+}
 
 /// The metric's rays at `coarseness` times the pitch `config` asks for, by the jumping walk over
 /// `spaces` (the reference walk when they are null).
@@ -235,7 +258,8 @@ std::vector<ViewGain> evaluate(const GainMap& map, const std::vector<float>& nea
   const detail::MetricContext ctx{map,          near,        config.ray_spacing,
                                   subsample,    spaces.free, spaces.uniform,
                                   spaces.far,   spaces.open, spaces.occupied,
-                                  count_cells,  coarseness,  config.surface_rates};
+                                  count_cells,  coarseness,  config.surface_rates,
+                                  spaces.near_box};
   return method_traits(config.method).metric(ctx, views, config.num_threads);
 }
 
@@ -260,7 +284,8 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       uniform_(uniform_free_space(map_)),
       near_(distances_for(map_, config)),
       far_(far_space(map_, near_)),
-      open_(open_space(map_, config.method, occupied_)) {}
+      open_(open_space(map_, config.method, occupied_)),
+      near_box_(near_box(map_, config)) {}
 
 std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int coarseness,
                                              bool count_cells) const {
@@ -269,7 +294,8 @@ std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int
   }
   return evaluate(map_, near_,
                   Spaces{&free_, &uniform_, far_.empty() ? nullptr : &far_,
-                         open_.empty() ? nullptr : &open_, occupied_},
+                         open_.empty() ? nullptr : &open_, occupied_,
+                         near_box_ ? &*near_box_ : nullptr},
                   views, config_, coarseness, count_cells);
 }
 

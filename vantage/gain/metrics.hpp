@@ -14,6 +14,7 @@
 /// the set of cells the view's rays traverse.
 
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -94,6 +95,9 @@ class MetricEvaluator {
   FreeSpace far_;    // empty when the metric reads no distances
   Eigen::AlignedBox3d occupied_;  // the box of the occupied cells, with open_
   FreeSpace open_;               // empty but for the metrics of rear side rays
+  // For the metrics that read distances, the box of every cell within D of an occupied one
+  // (detail::MetricContext::near_box); unset for the others.
+  std::optional<Eigen::AlignedBox3d> near_box_;
 };
 
 /// The reference the evaluation above is held to (tests/gain/metrics_test.cpp): the same rays,

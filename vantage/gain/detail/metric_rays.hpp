@@ -16,6 +16,10 @@
 /// A free-inert metric may also say which other cells change nothing after the first of them
 /// (the jumping walk crosses cubes of those too when it need not count the unobserved cells):
 ///   static constexpr QuietCells kQuiet;
+/// A metric may say that only the unobserved cells within D (kProximityCells) of an occupied cell
+/// change it (optional; false by default); when the walk need not count the unobserved cells, a
+/// ray that misses the box of those cells (MetricContext::near_box) is then not walked:
+///   static constexpr bool kNearRays;
 /// A metric may say that a ray changes it only when it ends on a rear side (optional; false by
 /// default); when the walk need not count the unobserved cells, it then probes each ray first
 /// across cubes of blocks with no occupied cell (MetricContext::open) and walks in full only those
@@ -121,6 +125,9 @@ struct MetricContext {
   int coarseness = 1;
   /// The surface model's chances (GainConfig::surface_rates).
   SurfaceRates surface_rates = kSurfacePrior;
+  /// For a metric of near rays (the file's note), the box [m] that holds every cell within D of
+  /// an occupied cell, with a cell to spare; nullptr: none given, every ray is walked.
+  const Eigen::AlignedBox3d* near_box = nullptr;
 };
 
 /// The mean area a cell shows a ray, the cube's mean projection (a quarter of its surface,
@@ -158,6 +165,17 @@ template <typename Metric>
 constexpr bool free_inert() {
   if constexpr (requires { Metric::kFreeInert; }) {
     return Metric::kFreeInert;
+  } else {
+    return false;
+  }
+}
+
+/// Whether only the cells near an occupied one change `Metric` (the file's note); false unless it
+/// says so.
+template <typename Metric>
+constexpr bool near_rays() {
+  if constexpr (requires { Metric::kNearRays; }) {
+    return Metric::kNearRays;
   } else {
     return false;
   }
@@ -328,6 +346,16 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
                 clip_to_box(ctx.occupied.min(), ctx.occupied.max(), o, to - o);
             if (std::max(s_in, 0.0) > std::min(s_out, 1.0)) {  // the segment misses the box
               metric.end_ray(false, credit);
+              continue;
+            }
+          }
+        }
+        if constexpr (near_rays<Metric>()) {
+          if (!ctx.count_cells && ctx.near_box != nullptr) {
+            const auto [s_in, s_out] =
+                clip_to_box(ctx.near_box->min(), ctx.near_box->max(), o, to - o);
+            if (ctx.near_box->isEmpty() || std::max(s_in, 0.0) > std::min(s_out, 1.0)) {
+              metric.end_ray(false, credit);  // the segment misses every cell near a surface
               continue;
             }
           }

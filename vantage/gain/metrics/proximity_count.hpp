@@ -13,6 +13,7 @@ namespace vantage {
 struct ProximityCount {
   static constexpr bool kFreeInert = true;
   static constexpr detail::QuietCells kQuiet = detail::QuietCells::kFar;  // they credit nothing
+  static constexpr bool kNearRays = true;
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {

@@ -24,6 +24,7 @@ namespace vantage {
 /// cell one chance 1 - a.
 struct Surface {
   static constexpr bool kFreeInert = true;
+  static constexpr bool kNearRays = true;  // the far class dims, but a ray of it alone credits 0
   explicit Surface(const detail::MetricContext& ctx) : rates(ctx.surface_rates) {}
   SurfaceRates rates;
   double sum = 0.0;
