@@ -106,6 +106,7 @@ ExplorationResult Explorer::run(const ScanCallback& on_scan) {
     record.greedy_predicted_gain = next.greedy_predicted;
     record.predicted_cells = next.predicted_cells;
     record.alpha = next.alpha;
+    record.surface_rates = next.surface_rates;
     record.seconds.plan = next.seconds;
     record.seconds.candidates = next.candidate_seconds;
     record.seconds.reference = next.reference_seconds;
@@ -259,6 +260,7 @@ void Explorer::record_prediction(const Plan& plan, const Candidate& chosen, std:
   d.greedy_predicted = greedy_of(plan, chosen, best, d);
   d.search = plan.sequence.empty() ? std::string(to_string(plan.search)) : "sequence";
   if (has_observability(planner_.method)) d.alpha = planner_.gain.alpha;
+  if (surface_fit_) d.surface_rates = planner_.gain.surface_rates;
 }
 
 CandidateRecord Explorer::considered(const Plan& plan, std::size_t j, int view,

@@ -153,6 +153,8 @@ struct ScanRecord {
   /// cells seen E, the other methods' greedy count [cells]
   std::optional<double> predicted_cells;
   std::optional<double> alpha;  ///< the a the probabilistic method chose this view with
+  /// The surface model's rates per distance class it chose this view with (SurfaceRateFit).
+  std::optional<SurfaceRates> surface_rates;
   /// What decided on this view: the search (swept, pruned, exhaustive) or "sequence"; empty for
   /// the first scan.
   std::string search;

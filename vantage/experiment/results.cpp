@@ -166,6 +166,7 @@ json scan_json(const ScanRecord& r) {
       r.greedy_predicted_gain ? json(*r.greedy_predicted_gain) : json(nullptr);
   j["predicted_cells"] = r.predicted_cells ? json(*r.predicted_cells) : json(nullptr);
   j["alpha"] = r.alpha ? json(*r.alpha) : json(nullptr);
+  if (r.surface_rates) j["surface_rates"] = *r.surface_rates;
   j["search"] = r.search.empty() ? json(nullptr) : json(r.search);
   if (!r.calibration.empty()) j["calibration_cells"] = r.calibration;
   json considered = json::array();

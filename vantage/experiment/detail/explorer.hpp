@@ -60,6 +60,7 @@ struct Decision {
   std::optional<double> predicted, greedy_predicted;
   std::optional<double> predicted_cells;  ///< the method's prediction in cells seen
   std::optional<double> alpha;            ///< the a the probabilistic method decided with
+  std::optional<SurfaceRates> surface_rates;  ///< the surface model's rates it decided with
   std::string search;                     ///< what decided: a search's name, or "sequence"
   double seconds = 0.0, candidate_seconds = 0.0, reference_seconds = 0.0;
   double travel = 0.0;
