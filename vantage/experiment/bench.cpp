@@ -252,9 +252,9 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
     const sim::World world(scene, sim::WorldConfig{config.exploration.planner.gain.num_threads});
     const SurfaceTruth& truth =
         truths
-            .emplace(spec.scene, compute_surface_truth(world, candidates,
-                                                       config.exploration.coverage_tolerance,
-                                                       config.exploration.planner.gain.num_threads))
+            .emplace(spec.scene,
+                     compute_surface_truth(world, candidates, config.exploration.coverage_tolerance,
+                                           config.exploration.planner.gain.num_threads))
             .first->second;
     const fs::path file = dir / kYardstickFolder / (spec.scene + ".json");
     if (!fs::exists(file)) {

@@ -65,9 +65,8 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
   if (!office_) {
     if (surface_truth == nullptr) {
       check_surface_truth(scene, result_.candidates.size(), config.budget);
-      own_surface_ =
-          compute_surface_truth(world_, result_.candidates, config.coverage_tolerance,
-                                config.planner.gain.num_threads);
+      own_surface_ = compute_surface_truth(world_, result_.candidates, config.coverage_tolerance,
+                                           config.planner.gain.num_threads);
       surface_truth = &*own_surface_;
     }
     if (!(surface_truth->grid == scene.grid) ||

@@ -286,6 +286,11 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
 
   const OccupancyGrid& grid = mapper.grid();
   const GridSpec& spec = grid.spec();
+  const std::string rule = fmt::format(
+      "a surface cell of the objects (table and floor excluded) is covered once a registered "
+      "point lies {}; surface_coverage divides by the cells the candidate views and starts hit "
+      "with noise-free scans, raw_surface_coverage by all object surface cells",
+      config.coverage_tolerance == 0 ? "in it" : "in it or in one of its 26 neighbours");
   json run = {{"vantage_version", VANTAGE_VERSION},
               {"scene",
                {{"name", scene.name},
@@ -299,14 +304,7 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
               {"observable_cells", result.observable_cells},
               {"surface_cells", result.surface_cells},
               {"visible_surface_cells", result.visible_surface_cells},
-              {"surface_coverage_rule",
-               fmt::format("a surface cell of the objects (table and floor excluded) is covered "
-                           "once a registered point lies {}; surface_coverage divides by the "
-                           "cells the candidate views and starts hit with noise-free scans, "
-                           "raw_surface_coverage by all object surface cells",
-                           config.coverage_tolerance == 0
-                               ? "in it"
-                               : "in it or in one of its 26 neighbours")},
+              {"surface_coverage_rule", rule},
               {"coverage_tolerance_cells", config.coverage_tolerance},
               {"scans", json::array()},
               {"candidates", json::array()}};

@@ -1,11 +1,11 @@
 #include "vantage/experiment/yardstick.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <iterator>
 #include <stdexcept>
-
-#include <fmt/format.h>
 
 #include "vantage/sim/ground_truth.hpp"
 #include "vantage/util/clock.hpp"
@@ -60,8 +60,8 @@ std::vector<std::uint32_t> object_surface_cells(const sim::Scene& scene, int num
 std::vector<std::uint32_t> covered_cells(const GridSpec& grid, std::span<const std::uint32_t> cells,
                                          const PointCloud& points_world, int tolerance) {
   if (tolerance < 0 || tolerance > kMaxCoverageTolerance) {
-    throw std::invalid_argument(
-        fmt::format("coverage tolerance {} cells: must be 0 or {}", tolerance, kMaxCoverageTolerance));
+    throw std::invalid_argument(fmt::format("coverage tolerance {} cells: must be 0 or {}",
+                                            tolerance, kMaxCoverageTolerance));
   }
   PaddedMarks padded(grid);
   for (const Eigen::Vector3d& p : points_world) {
@@ -151,7 +151,8 @@ SurfaceTruth compute_surface_truth(const sim::World& world,
 
 SurfaceCoverage surface_coverage(const SurfaceTruth& truth, const PointCloud& points_world) {
   SurfaceCoverage result;
-  const std::vector<std::uint32_t> covered = covered_cells(truth.grid, truth.surface, points_world, truth.tolerance);
+  const std::vector<std::uint32_t> covered =
+      covered_cells(truth.grid, truth.surface, points_world, truth.tolerance);
   std::set_intersection(covered.begin(), covered.end(), truth.visible.begin(), truth.visible.end(),
                         std::back_inserter(result.covered));
   if (!truth.visible.empty()) {

@@ -245,7 +245,8 @@ std::optional<Eigen::AlignedBox3d> near_box(const GainMap& map, const GainConfig
     }
   }
   if (box.isEmpty()) return box;
-  const Eigen::Vector3d spare = Eigen::Vector3d::Constant((kProximityCells + 1.5) * spec.resolution);
+  const Eigen::Vector3d spare =
+      Eigen::Vector3d::Constant((kProximityCells + 1.5) * spec.resolution);
   return Eigen::AlignedBox3d(box.min() - spare, box.max() + spare);
 }
 
@@ -255,11 +256,19 @@ std::vector<ViewGain> evaluate(const GainMap& map, const std::vector<float>& nea
                                const Spaces& spaces, std::span<const Frustum> views,
                                const GainConfig& config, int coarseness, bool count_cells) {
   const int subsample = config.evaluation == GainEvaluation::kExact ? 1 : kFastSubsample;
-  const detail::MetricContext ctx{map,          near,        config.ray_spacing,
-                                  subsample,    spaces.free, spaces.uniform,
-                                  spaces.far,   spaces.open, spaces.occupied,
-                                  count_cells,  coarseness,  config.surface_rates,
-                                  spaces.near_box};
+  const detail::MetricContext ctx{.map = map,
+                                  .near = near,
+                                  .spacing = config.ray_spacing,
+                                  .subsample = subsample,
+                                  .free = spaces.free,
+                                  .uniform = spaces.uniform,
+                                  .far = spaces.far,
+                                  .open = spaces.open,
+                                  .occupied = spaces.occupied,
+                                  .count_cells = count_cells,
+                                  .coarseness = coarseness,
+                                  .surface_rates = config.surface_rates,
+                                  .near_box = spaces.near_box};
   return method_traits(config.method).metric(ctx, views, config.num_threads);
 }
 
@@ -292,11 +301,11 @@ std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int
   if (coarseness < 1) {
     throw std::invalid_argument(cat("MetricEvaluator: coarseness ", coarseness, " is not >= 1"));
   }
-  return evaluate(map_, near_,
-                  Spaces{&free_, &uniform_, far_.empty() ? nullptr : &far_,
-                         open_.empty() ? nullptr : &open_, occupied_,
-                         near_box_ ? &*near_box_ : nullptr},
-                  views, config_, coarseness, count_cells);
+  return evaluate(
+      map_, near_,
+      Spaces{&free_, &uniform_, far_.empty() ? nullptr : &far_, open_.empty() ? nullptr : &open_,
+             occupied_, near_box_ ? &*near_box_ : nullptr},
+      views, config_, coarseness, count_cells);
 }
 
 std::span<const MetricRound> metric_race_rounds(GainMethod method) {

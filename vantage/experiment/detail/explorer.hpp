@@ -58,10 +58,10 @@ struct Decision {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();  ///< true pose of the next scan
   int view = -1;
   std::optional<double> predicted, greedy_predicted;
-  std::optional<double> predicted_cells;  ///< the method's prediction in cells seen
-  std::optional<double> alpha;            ///< the a the probabilistic method decided with
+  std::optional<double> predicted_cells;      ///< the method's prediction in cells seen
+  std::optional<double> alpha;                ///< the a the probabilistic method decided with
   std::optional<SurfaceRates> surface_rates;  ///< the surface model's rates it decided with
-  std::string search;                     ///< what decided: a search's name, or "sequence"
+  std::string search;                         ///< what decided: a search's name, or "sequence"
   double seconds = 0.0, candidate_seconds = 0.0, reference_seconds = 0.0;
   double travel = 0.0;
   bool fallback = false;
@@ -130,7 +130,7 @@ class Explorer {
   const ExplorationConfig& config_;
   Mapper& mapper_;
   bool office_;
-  std::optional<ObservabilityFit> fit_;  ///< --alpha auto
+  std::optional<ObservabilityFit> fit_;        ///< --alpha auto
   std::optional<SurfaceRateFit> surface_fit_;  ///< the surface model's rates, always fitted
   sim::World world_;
   sim::GroundTruth truth_;
