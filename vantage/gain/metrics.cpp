@@ -173,36 +173,33 @@ FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
                   }));
 }
 
-/// For a metric of rear side rays (detail::MetricContext::open), the cubes of blocks that hold no
-/// occupied cell, and in `occupied` the box of the occupied cells with a cell to spare on each
-/// side [m]; empty for the others.
-FreeSpace open_space(const GainMap& map, GainMethod method, Eigen::AlignedBox3d& occupied) {
-  occupied.setEmpty();
-  if (method != GainMethod::kRearSideVoxel && method != GainMethod::kRearSideEntropy) {
-    return FreeSpace{};
-  }
+/// The occupied cells' box and cubes that `method` needs (detail::OccupiedCells).
+detail::OccupiedCells occupied_cells(const GainMap& map, GainMethod method) {
+  const bool rear_side =
+      method == GainMethod::kRearSideVoxel || method == GainMethod::kRearSideEntropy;
+  detail::OccupiedCells out;
+  if (!rear_side && !method_traits(method).needs_distances) return out;
   const GridSpec& spec = map.spec();
   const Index3 d = block_dims(spec);
-  std::vector<std::int64_t> label(static_cast<std::size_t>(d.prod()), 0);
+  std::vector<std::int64_t> label(rear_side ? static_cast<std::size_t>(d.prod()) : 0, 0);
+  Eigen::AlignedBox3d box;
+  box.setEmpty();
   Index3 c;
   for (c.z() = 0; c.z() < spec.dims.z(); ++c.z()) {
     for (c.y() = 0; c.y() < spec.dims.y(); ++c.y()) {
       for (c.x() = 0; c.x() < spec.dims.x(); ++c.x()) {
         if (map.value(spec.linear(c)).state != CellState::kOccupied) continue;
-        occupied.extend(spec.center(c));
+        box.extend(spec.center(c));
+        if (!rear_side) continue;
         label[static_cast<std::size_t>(
             (c.x() >> FreeSpace::kShift) +
             d.x() * ((c.y() >> FreeSpace::kShift) + d.y() * (c.z() >> FreeSpace::kShift)))] = -1;
       }
     }
   }
-  if (!occupied.isEmpty()) {
-    // NOTE: a cell's centre and 1.5 cells to spare: every point of the cell and then a cell more
-    // for the rounding of the walk's cell indices.
-    const Eigen::Vector3d spare = Eigen::Vector3d::Constant(1.5 * spec.resolution);
-    occupied = Eigen::AlignedBox3d(occupied.min() - spare, occupied.max() + spare);
-  }
-  return cubes_of(d, label);
+  out.box = box;
+  if (rear_side) out.open = cubes_of(d, label);
+  return out;
 }
 
 /// Throws when `config` names no metric.
@@ -223,32 +220,8 @@ std::vector<float> distances_for(const GainMap& map, const GainConfig& config) {
 /// The cubes the jumping walk crosses (detail::MetricContext); all null: the reference walk.
 struct Spaces {
   const FreeSpace *free = nullptr, *uniform = nullptr, *far = nullptr, *open = nullptr;
-  Eigen::AlignedBox3d occupied{};  // with open (detail::MetricContext::occupied)
-  const Eigen::AlignedBox3d* near_box = nullptr;  // detail::MetricContext::near_box
+  const Eigen::AlignedBox3d* occupied = nullptr;  // detail::MetricContext::occupied
 };
-
-/// For a metric that reads distances, the box [m] of every cell within D (kProximityCells) of an
-/// occupied cell: the occupied cells' centres, and D + 1.5 cells to spare (a cell's centre within
-/// D on every axis, half a cell to its faces, a cell for the rounding of the walk's indices);
-/// empty when no cell is occupied. Unset for the other metrics.
-std::optional<Eigen::AlignedBox3d> near_box(const GainMap& map, const GainConfig& config) {
-  if (!method_traits(config.method).needs_distances) return std::nullopt;
-  const GridSpec& spec = map.spec();
-  Eigen::AlignedBox3d box;
-  box.setEmpty();
-  Index3 c;
-  for (c.z() = 0; c.z() < spec.dims.z(); ++c.z()) {
-    for (c.y() = 0; c.y() < spec.dims.y(); ++c.y()) {
-      for (c.x() = 0; c.x() < spec.dims.x(); ++c.x()) {
-        if (map.value(spec.linear(c)).state == CellState::kOccupied) box.extend(spec.center(c));
-      }
-    }
-  }
-  if (box.isEmpty()) return box;
-  const Eigen::Vector3d spare =
-      Eigen::Vector3d::Constant((kProximityCells + 1.5) * spec.resolution);
-  return Eigen::AlignedBox3d(box.min() - spare, box.max() + spare);
-}
 
 /// The metric's rays at `coarseness` times the pitch `config` asks for, by the jumping walk over
 /// `spaces` (the reference walk when they are null).
@@ -267,8 +240,7 @@ std::vector<ViewGain> evaluate(const GainMap& map, const std::vector<float>& nea
                                   .occupied = spaces.occupied,
                                   .count_cells = count_cells,
                                   .coarseness = coarseness,
-                                  .surface_rates = config.surface_rates,
-                                  .near_box = spaces.near_box};
+                                  .surface_rates = config.surface_rates};
   return method_traits(config.method).metric(ctx, views, config.num_threads);
 }
 
@@ -293,19 +265,18 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       uniform_(uniform_free_space(map_)),
       near_(distances_for(map_, config)),
       far_(far_space(map_, near_)),
-      open_(open_space(map_, config.method, occupied_)),
-      near_box_(near_box(map_, config)) {}
+      occupied_(occupied_cells(map_, config.method)) {}
 
 std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int coarseness,
                                              bool count_cells) const {
   if (coarseness < 1) {
     throw std::invalid_argument(cat("MetricEvaluator: coarseness ", coarseness, " is not >= 1"));
   }
-  return evaluate(
-      map_, near_,
-      Spaces{&free_, &uniform_, far_.empty() ? nullptr : &far_, open_.empty() ? nullptr : &open_,
-             occupied_, near_box_ ? &*near_box_ : nullptr},
-      views, config_, coarseness, count_cells);
+  return evaluate(map_, near_,
+                  Spaces{&free_, &uniform_, far_.empty() ? nullptr : &far_,
+                         occupied_.open.empty() ? nullptr : &occupied_.open,
+                         occupied_.box ? &*occupied_.box : nullptr},
+                  views, config_, coarseness, count_cells);
 }
 
 std::span<const MetricRound> metric_race_rounds(GainMethod method) {

@@ -69,6 +69,21 @@ struct MetricRound {
 /// tests/gain/metrics_race_scenes_test.cpp (docs/model.md, "The metrics at speed").
 std::span<const MetricRound> metric_race_rounds(GainMethod method);
 
+namespace detail {
+
+/// What a metric whose rays must pass near an occupied cell to change it needs of the occupied
+/// cells (detail::reach_cells in detail/metric_rays.hpp), found in one pass over the grid.
+struct OccupiedCells {
+  /// The box of their centres [m], empty when none is (MetricContext::occupied): for the rear
+  /// side metrics and those that read distances; unset for the others.
+  std::optional<Eigen::AlignedBox3d> box;
+  /// For the rear side metrics, the cubes of blocks that hold none (MetricContext::open); else
+  /// empty.
+  FreeSpace open;
+};
+
+}  // namespace detail
+
 /// metric_view_gains on one map for several sets of views and ray pitches: the snapshot, its free
 /// cubes and the distances are built once (a decision that evaluates views in rounds, the swept
 /// search's metric race, docs/decision.md).
@@ -92,12 +107,8 @@ class MetricEvaluator {
   GainMap map_;
   FreeSpace free_, uniform_;
   std::vector<float> near_;
-  FreeSpace far_;    // empty when the metric reads no distances
-  Eigen::AlignedBox3d occupied_;  // the box of the occupied cells, with open_
-  FreeSpace open_;               // empty but for the metrics of rear side rays
-  // For the metrics that read distances, the box of every cell within D of an occupied one
-  // (detail::MetricContext::near_box); unset for the others.
-  std::optional<Eigen::AlignedBox3d> near_box_;
+  FreeSpace far_;  // empty when the metric reads no distances
+  detail::OccupiedCells occupied_;
 };
 
 /// The reference the evaluation above is held to (tests/gain/metrics_test.cpp): the same rays,

@@ -17,14 +17,14 @@
 /// (the jumping walk crosses cubes of those too when it need not count the unobserved cells):
 ///   static constexpr QuietCells kQuiet;
 /// A metric may say that only the unobserved cells within D (kProximityCells) of an occupied cell
-/// change it (optional; false by default); when the walk need not count the unobserved cells, a
-/// ray that misses the box of those cells (MetricContext::near_box) is then not walked:
+/// change it (optional; false by default):
 ///   static constexpr bool kNearRays;
-/// A metric may say that a ray changes it only when it ends on a rear side (optional; false by
-/// default); when the walk need not count the unobserved cells, it then probes each ray first
-/// across cubes of blocks with no occupied cell (MetricContext::open) and walks in full only those
-/// that do:
+/// or that a ray changes it only when it ends on a rear side (optional; false by default); when
+/// the walk need not count the unobserved cells, it then probes each ray first across cubes of
+/// blocks with no occupied cell (MetricContext::open) and walks in full only those that do:
 ///   static constexpr bool kRearSideRays;
+/// Either way, when the walk need not count the unobserved cells, a ray that passes no occupied
+/// cell within that reach (reach_cells) is not walked (MetricContext::occupied).
 ///
 /// One walk feeds it (`view_rays`), in two ways: the reference hands the metric every cell of
 /// every ray; the jumping walk (docs/model.md "The metrics at speed") casts only the rays that
@@ -40,6 +40,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <span>
 #include <type_traits>
 #include <vector>
@@ -114,9 +115,9 @@ struct MetricContext {
   /// The cubes of blocks that hold no occupied cell, probed across by a metric of rear side rays
   /// (the file's note) when the unobserved cells need not be counted; nullptr: none.
   const FreeSpace* open = nullptr;
-  /// With `open`: the box [m] of the occupied cells with a cell to spare on each side; a ray that
-  /// misses it ends on no occupied cell.
-  Eigen::AlignedBox3d occupied{};
+  /// For a metric of rear side or near rays (reach_cells), the box [m] of the occupied cells'
+  /// centres, empty when none is; nullptr: none given, every ray is walked.
+  const Eigen::AlignedBox3d* occupied = nullptr;
   /// Whether ViewGain::cells counts the unobserved cells reached; false: 0, and a metric whose
   /// quiet cells include unobserved ones crosses their cubes in one step.
   bool count_cells = true;
@@ -125,9 +126,6 @@ struct MetricContext {
   int coarseness = 1;
   /// The surface model's chances (GainConfig::surface_rates).
   SurfaceRates surface_rates = kSurfacePrior;
-  /// For a metric of near rays (the file's note), the box [m] that holds every cell within D of
-  /// an occupied cell, with a cell to spare; nullptr: none given, every ray is walked.
-  const Eigen::AlignedBox3d* near_box = nullptr;
 };
 
 /// The mean area a cell shows a ray, the cube's mean projection (a quarter of its surface,
@@ -170,17 +168,6 @@ constexpr bool free_inert() {
   }
 }
 
-/// Whether only the cells near an occupied one change `Metric` (the file's note); false unless it
-/// says so.
-template <typename Metric>
-constexpr bool near_rays() {
-  if constexpr (requires { Metric::kNearRays; }) {
-    return Metric::kNearRays;
-  } else {
-    return false;
-  }
-}
-
 /// Whether only rays that end on a rear side change `Metric` (the file's note); false unless it
 /// says so.
 template <typename Metric>
@@ -189,6 +176,20 @@ constexpr bool rear_side_rays() {
     return Metric::kRearSideRays;
   } else {
     return false;
+  }
+}
+
+/// How near an occupied cell's centre a ray must pass, on every axis, to change `Metric` (the
+/// file's note) [cells]: 0 for rear side rays (they end on one), D for near rays (the cells they
+/// credit lie within D of one); negative when any ray may change it.
+template <typename Metric>
+constexpr double reach_cells() {
+  if constexpr (rear_side_rays<Metric>()) {
+    return 0.0;
+  } else if constexpr (requires { Metric::kNearRays; }) {
+    return Metric::kNearRays ? kProximityCells : -1.0;
+  } else {
+    return -1.0;
   }
 }
 
@@ -333,6 +334,19 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
   const std::span<const GainMap::Value> values = ctx.map.values();
   int row_lo = image.first, row_hi = image.rows, col_lo = image.first, col_hi = image.cols;
   if (free != nullptr) image.rays_on_grid(spec, row_lo, row_hi, col_lo, col_hi);
+  // The box a ray must meet to change the metric: the occupied cells' centres, its reach and 1.5
+  // cells to spare (half a cell to a cell's faces, a cell for the rounding of the walk's indices).
+  std::optional<Eigen::AlignedBox3d> reach;
+  if constexpr (reach_cells<Metric>() >= 0.0) {
+    if (!ctx.count_cells && ctx.occupied != nullptr) {
+      reach = *ctx.occupied;
+      if (!reach->isEmpty()) {
+        const Eigen::Vector3d spare =
+            Eigen::Vector3d::Constant((reach_cells<Metric>() + 1.5) * spec.resolution);
+        reach = Eigen::AlignedBox3d(reach->min() - spare, reach->max() + spare);
+      }
+    }
+  }
   return with_codes(ctx.map, [&](const auto* codes) {
     ViewGain result;
     for (int row = row_lo; row < row_hi; row += image.step) {
@@ -340,24 +354,11 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
         const Eigen::Vector3d dir = image.direction(row, col);
         metric.begin_ray();
         const Eigen::Vector3d to = o + image.max_range * dir;
-        if constexpr (rear_side_rays<Metric>()) {
-          if (!ctx.count_cells && ctx.open != nullptr) {
-            const auto [s_in, s_out] =
-                clip_to_box(ctx.occupied.min(), ctx.occupied.max(), o, to - o);
-            if (std::max(s_in, 0.0) > std::min(s_out, 1.0)) {  // the segment misses the box
-              metric.end_ray(false, credit);
-              continue;
-            }
-          }
-        }
-        if constexpr (near_rays<Metric>()) {
-          if (!ctx.count_cells && ctx.near_box != nullptr) {
-            const auto [s_in, s_out] =
-                clip_to_box(ctx.near_box->min(), ctx.near_box->max(), o, to - o);
-            if (ctx.near_box->isEmpty() || std::max(s_in, 0.0) > std::min(s_out, 1.0)) {
-              metric.end_ray(false, credit);  // the segment misses every cell near a surface
-              continue;
-            }
+        if (reach.has_value()) {
+          const auto [s_in, s_out] = clip_to_box(reach->min(), reach->max(), o, to - o);
+          if (reach->isEmpty() || std::max(s_in, 0.0) > std::min(s_out, 1.0)) {
+            metric.end_ray(false, credit);  // the segment passes no occupied cell near enough
+            continue;
           }
         }
         GridWalk walk(spec, o, to);
