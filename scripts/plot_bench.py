@@ -576,6 +576,100 @@ def gap_shares(trials):
     return shares, {k: (a / b if b > 1e-12 else None) for k, (a, b) in pooled.items()}
 
 
+def pooled_surface_table(trials, budget, ref="greedy"):
+    """Per method over the pairs (scene, start) where every method ran: mean AAC, its sum over
+    `ref`'s, the pooled share of the gap between greedy and the greedy oracle closed, mean scans
+    to each level (budget + 1 where not reached) and travel, each with the two-sided Wilcoxon p of
+    the paired differences from `ref`'s (RESULTS.md's issue-37 tables)."""
+    by = {}
+    for m in trials:
+        by.setdefault(label(m["method"], m["setting"]), {})[(m["scene"], m["trial"])] = m
+    if "greedy" not in by or ref not in by:
+        return []
+    keys = set.intersection(*(set(d) for d in by.values()))
+    if not keys:
+        return []
+    g, o = by[ref], by.get("greedy-oracle")
+    total = lambda d, f: sum(f(d[k]) for k in keys)
+    aac, travel = (lambda m: m["aac"]), (lambda m: m["travel"])
+    to = lambda lv: (lambda m: m[("scans_to", lv)] or budget + 1)
+    ga, ra, rt = total(by["greedy"], aac), total(g, aac), total(g, travel)
+    lines = [f"### Every method over the same pairs, against {ref} (scenes pooled)", "",
+             f"{len(keys)} pairs (scene, start). × {ref}'s = the ratio of the sums; p = two-sided",
+             f"Wilcoxon signed-rank test of the paired differences from {ref}'s; gap closed =",
+             "(greedy's AAC - the method's) / (greedy's - the oracle's), pooled; scans to X% =",
+             f"mean, {budget + 1} where not reached.", "",
+             f"| method | AAC [scans] | × {ref}'s | p | gap closed | " +
+             " | ".join(f"scans to {round(100 * lv)}% | p" for lv in SURFACE_LEVELS) +
+             f" | travel [m] | × {ref}'s | p | final |",
+             "|---|---|---|---|---|" + "---|---|" * len(SURFACE_LEVELS) + "---|---|---|---|"]
+
+    def p_of(d, f):
+        p = wilcoxon_p([f(d[k]) - f(g[k]) for k in sorted(keys)])
+        return "-" if d is g or p is None else f"{p:.2g}"
+
+    for name in sorted(by, key=lambda n: total(by[n], aac)):
+        d = by[name]
+        gap = (f"{(ga - total(d, aac)) / (ga - total(o, aac)):.2f}"
+               if o is not None and ga != total(o, aac) else "-")
+        levels = " | ".join(f"{total(d, to(lv)) / len(keys):.2f} | {p_of(d, to(lv))}"
+                            for lv in SURFACE_LEVELS)
+        lines.append(f"| {name} | {total(d, aac) / len(keys):.3f} | {total(d, aac) / ra:.3f} |"
+                     f" {p_of(d, aac)} | {gap} | {levels} | {total(d, travel) / len(keys):.2f} |"
+                     f" {total(d, travel) / rt:.3f} | {p_of(d, travel)} |"
+                     f" {100 * total(d, lambda m: m['final']) / len(keys):.1f}% |")
+    return lines + [""]
+
+
+def new_coverage_prediction(rows, visible_cells):
+    """How each prediction recorded for the view a run took foretells the new covered cells of
+    its scan (scans 2 on, the runs of the surface model, whose rows carry all three on the same
+    poses): predicted_gain (the surface gain), greedy_predicted_gain (greedy's count) and
+    predicted_cells (the unobserved-voxel count). Per prediction: the one scale that fits it best
+    (the median of actual / predicted) and the median error factor after it,
+    exp(median |log(actual / (scale predicted))|)."""
+    runs = {}
+    for r in rows:
+        if r["method"] == "surface" and r.get("surface_coverage"):
+            runs.setdefault((r["scene"], r["trial"]), {})[int(r["scan"])] = r
+    logs = {"predicted_gain": [], "greedy_predicted_gain": [], "predicted_cells": []}
+    for (scene, _), by_scan in runs.items():
+        for s in sorted(by_scan):
+            if s - 1 not in by_scan or scene not in visible_cells:
+                continue
+            new = (float(by_scan[s]["surface_coverage"]) -
+                   float(by_scan[s - 1]["surface_coverage"])) * visible_cells[scene]
+            for column, values in logs.items():
+                v = float(by_scan[s].get(column) or 0.0)
+                if new >= 1 and v > 0:
+                    values.append(math.log(new / v))
+    if not logs["predicted_gain"]:
+        return []
+    lines = ["### Predicting a scan's new coverage (the surface model's runs)", "",
+             "| prediction for the view taken | scans | scale | median error factor after it |",
+             "|---|---|---|---|"]
+    names = {"predicted_gain": "the surface gain", "greedy_predicted_gain": "greedy's count",
+             "predicted_cells": "the unobserved-voxel count"}
+    for column, values in logs.items():
+        mid = median(values)
+        spread = median([abs(x - mid) for x in values])
+        lines.append(f"| {names[column]} | {len(values)} | {math.exp(mid):.3g} |"
+                     f" {math.exp(spread):.3f} (±{100 * (math.exp(spread) - 1):.0f} %) |")
+    return lines + [""]
+
+
+def visible_cells_of(out):
+    """Per scene, the visible surface cells of the sweep's yardstick files (DIR/yardstick/)."""
+    cells = {}
+    folder = os.path.join(out, "yardstick")
+    if os.path.isdir(folder):
+        for name in os.listdir(folder):
+            if name.endswith(".json"):
+                with open(os.path.join(folder, name)) as f:
+                    cells[name[:-5]] = json.load(f)["visible_cells"]
+    return cells
+
+
 def surface_summary(trials, budget, set_cover_rows, tolerance=1):
     covered = ("a cell covered once a point lies in it" if tolerance == 0 else
                "a cell covered once a point lies in it or in one of its 26 neighbours")
@@ -730,6 +824,10 @@ def candidate_set(out):
 def main(argv):
     global LEVELS
     args = argv[1:]
+    against = []
+    if len(args) == 3 and args[1] == "--against":
+        against = args[2].split(",")
+        args = args[:1]
     if len(args) == 3 and args[1] == "--levels":
         try:
             LEVELS = tuple(float(x) / 100 for x in args[2].split(","))
@@ -739,7 +837,7 @@ def main(argv):
             sys.exit(f"plot_bench.py: --levels must lie in (0, 100], got '{args[2]}'")
         args = args[:1]
     if len(args) != 1:
-        sys.exit("usage: plot_bench.py DIR [--levels 90,95]")
+        sys.exit("usage: plot_bench.py DIR [--levels 90,95 | --against METHOD,...]")
     out = args[0]
     rows = load(os.path.join(out, "scans.csv"))
     scenes = sorted({r["scene"] for r in rows})
@@ -757,6 +855,9 @@ def main(argv):
         extra = surface_summary(surface, budget, read_set_cover(out),
                                 # NOTE: a sweep from before the setting counted within one cell
                                 sweep_setting(out, "coverage_tolerance", 1))
+        for ref in ["greedy"] + against:
+            extra += pooled_surface_table(surface, budget, ref)
+        extra += new_coverage_prediction(rows, visible_cells_of(out))
         plot_coverage_travel(out, surface, candidate_set(out))
     summary(out, scenes, g, extra + paired_summary(trials, budget))
 

@@ -109,3 +109,17 @@ def test_a_sweep_without_surface_columns_has_no_surface_part(tmp_path, plot_benc
     plot_bench.main(["plot_bench.py", str(tmp_path)])
     assert "Surface coverage by scan points" not in (tmp_path / "summary.md").read_text()
     assert not (tmp_path / "coverage_travel.png").exists()
+
+
+def test_the_pooled_table_gives_each_method_over_the_same_pairs_against_greedy(sweep):
+    summary = (sweep / "summary.md").read_text()
+    part = summary.split("### Every method over the same pairs, against greedy")[1]
+    row = next([c.strip() for c in line.strip("|").split("|")] for line in part.splitlines()
+               if line.startswith("| latombe |"))
+    # AAC 0.98 [scans], 0.98 / 1.05 of greedy's, a third of the gap; 80 % at scan 3 as greedy,
+    # 90 % at 4 as greedy, 95 % never (5); travel 3 m against greedy's 6; final 92 %.
+    assert row[1:3] == ["0.980", "0.933"]
+    assert row[4] == "0.33"
+    assert [row[5], row[7], row[9]] == ["3.00", "4.00", "5.00"]
+    assert row[11:13] == ["3.00", "0.500"]
+    assert row[14] == "92.0%"
