@@ -45,6 +45,7 @@
 #include <type_traits>
 #include <vector>
 
+#include "vantage/gain/detail/ray_image.hpp"
 #include "vantage/gain/free_space.hpp"
 #include "vantage/gain/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
@@ -127,11 +128,6 @@ struct MetricContext {
   /// The surface model's chances (GainConfig::surface_rates).
   SurfaceRates surface_rates = kSurfacePrior;
 };
-
-/// The mean area a cell shows a ray, the cube's mean projection (a quarter of its surface,
-/// Cauchy) [cells^2]: a lattice of parallel rays `a` cells apart crosses about min(1, kCellShadow
-/// / a^2) of the cells it passes.
-inline constexpr double kCellShadow = 1.5;
 
 /// Which cells besides free ones change nothing for a metric after the first of them on a ray.
 enum class QuietCells {
@@ -222,101 +218,108 @@ bool ends_on_rear_side(GridWalk walk, const GridSpec& spec, const Code* codes,
   }
 }
 
-/// A view's pinhole image of rays: neighbouring rays `spacing` cells apart at the farthest corner
-/// of the grid, every subsample-th along each axis cast.
-struct RayImage {
-  Eigen::Vector3d origin;
-  Eigen::Matrix3d R;
-  double tan_h, tan_v, su, sv;
-  int rows, cols, first, step;
-  double max_range, min_r2;
-  bool all_in_range;  ///< every cell's centre lies at least the min range from the origin
-  /// With coarser rays (coarseness k > 1): RayCell::weight at squared distance r2 from the origin
-  /// [m^2] is clamp(weight_scale * r2, 1, k^2), k^2 times the squared spacing of the metric's own
-  /// rays there [cells^2] over kCellShadow; 0 with the metric's own rays.
-  double weight_scale = 0.0, most_weight = 1.0;
-
-  RayImage(const MetricContext& ctx, const Frustum& view) {
-    const GridSpec& spec = ctx.map.spec();
-    const SensorFov& fov = view.fov();
-    origin = view.origin();
-    R = view.T_world_sensor().linear();
-    double depth = 0.0;
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d p((corner & 1) ? spec.max_corner().x() : spec.origin.x(),
-                              (corner & 2) ? spec.max_corner().y() : spec.origin.y(),
-                              (corner & 4) ? spec.max_corner().z() : spec.origin.z());
-      depth = std::max(depth, (p - origin).norm());
-    }
-    depth = std::clamp(depth, spec.resolution, fov.max_range);
-    const double du = ctx.spacing * spec.resolution / depth;
-    tan_h = std::tan(fov.h_fov / 2.0);
-    tan_v = std::tan(fov.v_fov / 2.0);
-    cols = std::max(1, static_cast<int>(std::ceil(2.0 * tan_h / du)));
-    rows = std::max(1, static_cast<int>(std::ceil(2.0 * tan_v / du)));
-    su = 2.0 * tan_h / cols;
-    sv = 2.0 * tan_v / rows;
-    step = ctx.subsample * ctx.coarseness;
-    first = step / 2;
-    if (ctx.coarseness > 1) {
-      const double k2 = static_cast<double>(ctx.coarseness) * ctx.coarseness;
-      // NOTE: the metric's own rays lie ctx.subsample * su apart in the image, about as many
-      // cells apart at distance r as that times r / resolution.
-      const double own = ctx.subsample * std::max(su, sv) / spec.resolution;
-      weight_scale = k2 * own * own / kCellShadow;
-      most_weight = k2;
-    }
-    max_range = fov.max_range;
-    min_r2 = fov.min_range * fov.min_range;
-    // NOTE: cell centres lie in the grid's box, so none is nearer than the box itself.
-    const Eigen::Vector3d gap =
-        (spec.origin - origin).cwiseMax(origin - spec.max_corner()).cwiseMax(0.0);
-    all_in_range = gap.squaredNorm() >= min_r2;
-  }
-  /// The rays cast (every one, whether it meets the grid or not).
-  double count() const {
-    const auto along = [&](int n) { return n > first ? (n - first + step - 1) / step : 0; };
-    return static_cast<double>(along(rows)) * static_cast<double>(along(cols));
-  }
-  /// Narrows [row_lo, row_hi) x [col_lo, col_hi), rays of the image, to those whose image
-  /// coordinates fall in the bounding rectangle of the grid box's projection, with a ray to spare
-  /// on each side; every other ray misses the grid. Unchanged when the box reaches behind the
-  /// sensor's image plane.
-  void rays_on_grid(const GridSpec& spec, int& row_lo, int& row_hi, int& col_lo,
-                    int& col_hi) const {
-    row_lo = col_lo = first;
-    row_hi = rows;
-    col_hi = cols;
-    double u_lo = std::numeric_limits<double>::infinity(), u_hi = -u_lo, v_lo = u_lo, v_hi = -u_lo;
-    for (int corner = 0; corner < 8; ++corner) {
-      const Eigen::Vector3d p((corner & 1) ? spec.max_corner().x() : spec.origin.x(),
-                              (corner & 2) ? spec.max_corner().y() : spec.origin.y(),
-                              (corner & 4) ? spec.max_corner().z() : spec.origin.z());
-      const Eigen::Vector3d q = R.transpose() * (p - origin);
-      if (!(q.x() > 0.0)) return;
-      u_lo = std::min(u_lo, q.y() / q.x());
-      u_hi = std::max(u_hi, q.y() / q.x());
-      v_lo = std::min(v_lo, q.z() / q.x());
-      v_hi = std::max(v_hi, q.z() / q.x());
-    }
-    // Ray k of an axis lies at -tan + (k + 0.5) pitch; the first ray of the lattice first + j step
-    // at or below k.
-    const auto index = [&](double at, double tan, double pitch) {
-      return static_cast<int>(std::floor((at + tan) / pitch - 0.5));
-    };
-    const auto lattice_up = [&](int k) {
-      return k <= first ? first : first + (k - first + step - 1) / step * step;
-    };
-    row_lo = lattice_up(std::max(0, index(v_lo, tan_v, sv) - 1));
-    row_hi = std::min(rows, index(v_hi, tan_v, sv) + 2);
-    col_lo = lattice_up(std::max(0, index(u_lo, tan_h, su) - 1));
-    col_hi = std::min(cols, index(u_hi, tan_h, su) + 2);
-  }
-  Eigen::Vector3d direction(int row, int col) const {
-    return (R * Eigen::Vector3d(1.0, -tan_h + (col + 0.5) * su, -tan_v + (row + 0.5) * sv))
-        .normalized();
-  }
+/// How one ray's walk ended (walk_ray).
+struct RayEnd {
+  bool rear_side = false;  ///< it ended on an occupied cell right after an unobserved one
+  bool reached = false;    ///< it reached the target cell it was walked to
 };
+
+/// Walks one ray of `image` from the walk's first cell, handing every cell to `metric` in order
+/// (the file's note), crossing the cubes the metric allows; counts the unobserved cells reached
+/// into `result` when the context asks. With a `target` cell, stops in it (RayEnd::reached) or
+/// once the walk has passed it on an axis, where a walk, moving in one octant, never comes back.
+template <typename Metric, typename Code>
+RayEnd walk_ray(const MetricContext& ctx, const RayImage& image, const Code* codes, GridWalk& walk,
+                Metric& metric, Stamp& credit, Stamp& seen, ViewGain& result,
+                const Index3* target = nullptr) {
+  const GridSpec& spec = ctx.map.spec();
+  const FreeSpace* free = ctx.free;
+  const std::span<const GainMap::Value> values = ctx.map.values();
+  const float far = std::numeric_limits<float>::infinity();
+  const int octant = walk.octant();
+  double visibility = 1.0;
+  bool previous_unknown = false;
+  for (;;) {
+    if (target != nullptr) {
+      for (int a = 0; a < 3; ++a) {
+        const int ahead =
+            ((octant >> a) & 1) ? walk.cell()[a] - (*target)[a] : (*target)[a] - walk.cell()[a];
+        if (ahead > 0) return {};  // passed it
+      }
+    }
+    const std::size_t linear = walk.linear();
+    const GainMap::Value& v = values[codes[linear]];
+    double r2 = 0.0;
+    if (!image.all_in_range || image.weight_scale > 0.0) {
+      r2 = (spec.center(walk.cell()) - image.origin).squaredNorm();
+    }
+    const bool in_range = image.all_in_range || r2 >= image.min_r2;
+    const double weight = image.weight_scale > 0.0
+                              ? std::clamp(image.weight_scale * r2, 1.0, image.most_weight)
+                              : 1.0;
+    // NOTE: the distance read for unobserved cells only (RayCell::near): otherwise 4 bytes
+    // a cell from a table four times the codes' size; 10-20 % of the CPU time of
+    // proximity count and area factor on BM_MetricDecision187.
+    const bool unobserved = v.state == CellState::kUnobserved;
+    metric.cell(RayCell{linear, v, visibility,
+                        unobserved && !ctx.near.empty() ? ctx.near[linear] : far, in_range, weight},
+                credit);
+    if (target != nullptr && walk.cell() == *target) return {false, true};
+    if (v.state == CellState::kOccupied) return {previous_unknown, false};
+    previous_unknown = unobserved;
+    if (ctx.count_cells && previous_unknown && in_range && seen.take(linear)) {
+      result.cells += weight;
+    }
+    visibility *= 1.0 - v.p;  // eq. M1
+    if constexpr (quiet_cells<Metric>() == QuietCells::kFar) {
+      const bool quiet =
+          v.state == CellState::kFree || (unobserved && ctx.near[linear] > kProximityCells);
+      if (!ctx.count_cells && ctx.far != nullptr && quiet && ctx.far->cross(walk, spec)) {
+        if (!spec.contains(walk.cell())) return {};  // left the grid
+        continue;
+      }
+    }
+    if (free_inert<Metric>() && free != nullptr && v.state == CellState::kFree &&
+        free->cross(walk, spec)) {
+      if (!spec.contains(walk.cell())) return {};  // left the grid
+      continue;
+    }
+    if (free_dims<Metric>() && ctx.uniform != nullptr && v.state == CellState::kFree) {
+      const Index3 from = walk.cell();
+      if (ctx.uniform->cross(walk, spec)) {
+        // NOTE: the cells crossed between are free and of this cell's value: the visibility
+        // the reference's steps leave, one factor at a time, so to the last bit.
+        const int between = (walk.cell() - from).cwiseAbs().sum() - 1;
+        for (int k = 0; k < between; ++k) visibility *= 1.0 - v.p;
+        if (!spec.contains(walk.cell())) return {};  // left the grid
+        continue;
+      }
+    }
+    if (walk.at_end()) return {};
+    walk.advance();
+    if (walk.ends_outside() && !spec.contains(walk.cell())) return {};  // left the grid
+  }
+}
+
+/// The box a ray of `Metric` must meet to change it when the context need not count the
+/// unobserved cells (reach_cells): the occupied cells' centres, the reach and 1.5 cells to spare
+/// (half a cell to a cell's faces, a cell for the rounding of the walk's indices); none when every
+/// ray may change it.
+template <typename Metric>
+std::optional<Eigen::AlignedBox3d> reach_box(const MetricContext& ctx) {
+  if constexpr (reach_cells<Metric>() >= 0.0) {
+    if (!ctx.count_cells && ctx.occupied != nullptr) {
+      Eigen::AlignedBox3d reach = *ctx.occupied;
+      if (!reach.isEmpty()) {
+        const Eigen::Vector3d spare =
+            Eigen::Vector3d::Constant((reach_cells<Metric>() + 1.5) * ctx.map.spec().resolution);
+        reach = Eigen::AlignedBox3d(reach.min() - spare, reach.max() + spare);
+      }
+      return reach;
+    }
+  }
+  return std::nullopt;
+}
 
 /// Casts one view's rays and feeds them to `metric`; returns the metric's value and the count of
 /// unobserved cells reached. With the context's free cubes, the jumping walk: only the rays that
@@ -327,26 +330,11 @@ template <typename Metric>
 ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
                    Stamp& seen) {
   const GridSpec& spec = ctx.map.spec();
-  const FreeSpace* free = ctx.free;
-  const RayImage image(ctx, view);
+  const RayImage image(ctx.map.spec(), ctx.spacing, ctx.subsample, ctx.coarseness, view);
   const Eigen::Vector3d& o = image.origin;
-  const float far = std::numeric_limits<float>::infinity();
-  const std::span<const GainMap::Value> values = ctx.map.values();
   int row_lo = image.first, row_hi = image.rows, col_lo = image.first, col_hi = image.cols;
-  if (free != nullptr) image.rays_on_grid(spec, row_lo, row_hi, col_lo, col_hi);
-  // The box a ray must meet to change the metric: the occupied cells' centres, its reach and 1.5
-  // cells to spare (half a cell to a cell's faces, a cell for the rounding of the walk's indices).
-  std::optional<Eigen::AlignedBox3d> reach;
-  if constexpr (reach_cells<Metric>() >= 0.0) {
-    if (!ctx.count_cells && ctx.occupied != nullptr) {
-      reach = *ctx.occupied;
-      if (!reach->isEmpty()) {
-        const Eigen::Vector3d spare =
-            Eigen::Vector3d::Constant((reach_cells<Metric>() + 1.5) * spec.resolution);
-        reach = Eigen::AlignedBox3d(reach->min() - spare, reach->max() + spare);
-      }
-    }
-  }
+  if (ctx.free != nullptr) image.rays_on_grid(spec, row_lo, row_hi, col_lo, col_hi);
+  const std::optional<Eigen::AlignedBox3d> reach = reach_box<Metric>(ctx);
   return with_codes(ctx.map, [&](const auto* codes) {
     ViewGain result;
     for (int row = row_lo; row < row_hi; row += image.step) {
@@ -368,70 +356,13 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
         }
         if constexpr (rear_side_rays<Metric>()) {
           if (!ctx.count_cells && ctx.open != nullptr &&
-              !ends_on_rear_side(walk, spec, codes, values, *ctx.open)) {
+              !ends_on_rear_side(walk, spec, codes, ctx.map.values(), *ctx.open)) {
             metric.end_ray(false, credit);
             continue;
           }
         }
-        double visibility = 1.0;
-        bool previous_unknown = false, rear_side = false;
-        for (;;) {
-          const std::size_t linear = walk.linear();
-          const GainMap::Value& v = values[codes[linear]];
-          double r2 = 0.0;
-          if (!image.all_in_range || image.weight_scale > 0.0) {
-            r2 = (spec.center(walk.cell()) - o).squaredNorm();
-          }
-          const bool in_range = image.all_in_range || r2 >= image.min_r2;
-          const double weight = image.weight_scale > 0.0
-                                    ? std::clamp(image.weight_scale * r2, 1.0, image.most_weight)
-                                    : 1.0;
-          // NOTE: the distance read for unobserved cells only (RayCell::near): otherwise 4 bytes
-          // a cell from a table four times the codes' size; 10-20 % of the CPU time of
-          // proximity count and area factor on BM_MetricDecision187.
-          const bool unobserved = v.state == CellState::kUnobserved;
-          metric.cell(
-              RayCell{linear, v, visibility,
-                      unobserved && !ctx.near.empty() ? ctx.near[linear] : far, in_range, weight},
-              credit);
-          if (v.state == CellState::kOccupied) {
-            rear_side = previous_unknown;
-            break;
-          }
-          previous_unknown = unobserved;
-          if (ctx.count_cells && previous_unknown && in_range && seen.take(linear)) {
-            result.cells += weight;
-          }
-          visibility *= 1.0 - v.p;  // eq. M1
-          if constexpr (quiet_cells<Metric>() == QuietCells::kFar) {
-            const bool quiet =
-                v.state == CellState::kFree || (unobserved && ctx.near[linear] > kProximityCells);
-            if (!ctx.count_cells && ctx.far != nullptr && quiet && ctx.far->cross(walk, spec)) {
-              if (!spec.contains(walk.cell())) break;  // left the grid
-              continue;
-            }
-          }
-          if (free_inert<Metric>() && free != nullptr && v.state == CellState::kFree &&
-              free->cross(walk, spec)) {
-            if (!spec.contains(walk.cell())) break;  // left the grid
-            continue;
-          }
-          if (free_dims<Metric>() && ctx.uniform != nullptr && v.state == CellState::kFree) {
-            const Index3 from = walk.cell();
-            if (ctx.uniform->cross(walk, spec)) {
-              // NOTE: the cells crossed between are free and of this cell's value: the visibility
-              // the reference's steps leave, one factor at a time, so to the last bit.
-              const int between = (walk.cell() - from).cwiseAbs().sum() - 1;
-              for (int k = 0; k < between; ++k) visibility *= 1.0 - v.p;
-              if (!spec.contains(walk.cell())) break;  // left the grid
-              continue;
-            }
-          }
-          if (walk.at_end()) break;
-          walk.advance();
-          if (walk.ends_outside() && !spec.contains(walk.cell())) break;  // left the grid
-        }
-        metric.end_ray(rear_side, credit);
+        metric.end_ray(walk_ray(ctx, image, codes, walk, metric, credit, seen, result).rear_side,
+                       credit);
       }
     }
     result.gain = metric.value(image.count());
