@@ -362,6 +362,53 @@ TEST(Metrics, CoarserRaysEstimateTheValue) {
   EXPECT_THROW(MetricEvaluator(s.grid, config).gains(s.views, 0), std::invalid_argument);
 }
 
+// A metric whose value is a sum of cell credits (the surface model, the proximity count), listed
+// cell by cell (MetricEvaluator::cells, which walks only the rays through each cell) sums to its
+// value over the cells it may credit, on every view of the scene above, at both ray pitches; a
+// sample of the cells lists the same credits, and the list is the same on one thread and two.
+TEST(Metrics, ACellSumListedCellByCellSumsToTheValue) {
+  const SceneLike s;
+  for (const GainMethod m : {GainMethod::kSurface, GainMethod::kProximityCount}) {
+    for (const GainEvaluation evaluation : {GainEvaluation::kAuto, GainEvaluation::kExact}) {
+      GainConfig config;
+      config.method = m;
+      config.evaluation = evaluation;
+      config.surface_rates = {0.6, 0.2, 0.08, 0.04, 0.004};
+      config.num_threads = 2;
+      const std::string what = cat(to_string(m), ", ", to_string(evaluation));
+      const MetricEvaluator evaluator(s.grid, config);
+      ASSERT_TRUE(evaluator.lists_cells()) << what;
+      const std::vector<std::uint32_t> all = evaluator.creditable();
+      ASSERT_FALSE(all.empty()) << what;
+      const std::vector<ViewGain> values = evaluator.gains(s.views, 1, /*count_cells=*/false);
+      const std::vector<ViewCells> lists = evaluator.cells(s.views, all);
+      std::vector<std::uint32_t> half;
+      for (const std::uint32_t i : all) {
+        if (i % 2 == 0) half.push_back(i);
+      }
+      config.num_threads = 1;
+      const std::vector<ViewCells> sampled = MetricEvaluator(s.grid, config).cells(s.views, half);
+      for (std::size_t v = 0; v < s.views.size(); ++v) {
+        EXPECT_GT(values[v].gain, 0.0) << what << ", view " << v;
+        EXPECT_NEAR(lists[v].sum(), values[v].gain, 1e-9 * values[v].gain)
+            << what << ", view " << v;
+        EXPECT_LE(lists[v].targets, all.size()) << what;
+        std::vector<double> expected;
+        for (std::size_t k = 0; k < lists[v].cells.size(); ++k) {
+          if (lists[v].cells[k] % 2 == 0) expected.push_back(lists[v].seen[k]);
+        }
+        EXPECT_EQ(sampled[v].seen, expected) << what << ", view " << v;
+      }
+    }
+  }
+  GainConfig config;
+  config.method = GainMethod::kUnobservedVoxel;
+  const MetricEvaluator other(s.grid, config);
+  EXPECT_FALSE(other.lists_cells());
+  EXPECT_TRUE(other.creditable().empty());
+  EXPECT_THROW(other.cells(s.views, std::vector<std::uint32_t>{0}), std::invalid_argument);
+}
+
 TEST(Metrics, NamesParseBack) {
   for (const GainMethod m : kMetrics) {
     EXPECT_TRUE(is_volumetric_metric(m));

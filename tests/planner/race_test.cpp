@@ -102,6 +102,87 @@ TEST(Race, AToleranceEndsANearTieOnASample) {
   EXPECT_GE(exact[loose.winner].cells, (1.0 - 0.005) * best);
 }
 
+// Samples boosted by cell (cells_by_sample): a cell of boost o is in the sample of b bits exactly
+// when its hash's top max(0, b - o) bits are zero, each sample holds the next smaller, and the
+// smallest is the first expected to hold at most the size asked for.
+TEST(Race, BoostedSamplesHoldACellOfBoostOBitsEarly) {
+  const OccupancyGrid grid = slab_grid();
+  std::vector<std::uint32_t> cells;
+  std::vector<std::uint8_t> boost(grid.size(), 0);
+  for (std::uint32_t i = 0; i < grid.size(); i += 3) {
+    cells.push_back(i);
+    boost[i] = static_cast<std::uint8_t>(i % 4);
+  }
+  const std::vector<std::vector<std::uint32_t>> levels = cells_by_sample(cells, 2000, boost);
+  const int smallest = static_cast<int>(levels.size()) - 1;
+  ASSERT_GT(smallest, 3);
+  double expected = 0.0;
+  for (const std::uint32_t i : cells)
+    expected += std::ldexp(1.0, -std::max(0, smallest - boost[i]));
+  EXPECT_LE(expected, 2000.0);
+  for (int b = 0; b <= smallest; ++b) {
+    std::vector<std::uint32_t> sample, want;
+    for (int k = b; k <= smallest; ++k) {
+      sample.insert(sample.end(), levels[k].begin(), levels[k].end());
+    }
+    std::sort(sample.begin(), sample.end());
+    for (const std::uint32_t i : cells) {
+      if (in_cell_sample(i, std::max(0, b - boost[i]))) want.push_back(i);
+    }
+    EXPECT_EQ(sample, want) << b;
+  }
+}
+
+// The survival reading raced on samples boosted by cell, the far side of the slab's shadow sampled
+// 8 times as often: on the full lists the exact sums; from a sample the same winner; stopped before
+// a sample that adds more than 5 000 cells, it leaves the two near-tied views to the caller; asked
+// for 10^9 cells of difference before a finalist drops, it goes to the full lists.
+TEST(Race, RulesBoostStopAndLeastTerms) {
+  constexpr std::size_t kAll = std::numeric_limits<std::size_t>::max();
+  const OccupancyGrid grid = slab_grid();
+  const GainMap map(grid, 1);
+  const ClassMap classes(grid);
+  const std::vector<Frustum> views{view_from(-0.4), view_from(0.300), view_from(0.303)};
+  const std::vector<std::size_t> first{0, 1, 2, 3};
+  const std::vector<double> factor{1.0, 1.0, 1.0};
+  GainConfig gain;
+  gain.method = GainMethod::kSurvival;
+  gain.alpha = 0.99;
+  gain.num_threads = 1;
+  const std::vector<ViewGain> exact =
+      count_view_gains(map, nullptr, views, CountRule::kSurvivalCells, gain);
+  const std::vector<double> scores{exact[0].cells, exact[1].cells, exact[2].cells};
+  std::vector<std::uint32_t> unobserved;
+  std::vector<std::uint8_t> boost(grid.size(), 0);
+  for (std::uint32_t i = 0; i < grid.size(); ++i) {
+    if (classes.state(i) != CellState::kUnobserved) continue;
+    unobserved.push_back(i);
+    if (grid.spec().center(grid.spec().unravel(i)).x() > 0.0) boost[i] = 3;
+  }
+  const detail::TargetLister list = [&](std::span<const Frustum> raced,
+                                        std::span<const std::uint32_t> cells) {
+    return exact_view_cells(classes, raced, gain, cells);
+  };
+  const detail::Race full = detail::race_candidates(cells_by_sample(unobserved, kAll, boost), views,
+                                                    first, factor, list, {.boost = boost});
+  EXPECT_TRUE(full.exact);
+  for (std::size_t k = 0; k < scores.size(); ++k)
+    EXPECT_NEAR(full.scores[k], scores[k], 1e-9 * scores[k]) << k;
+  const std::vector<std::vector<std::uint32_t>> levels = cells_by_sample(unobserved, 4096, boost);
+  const detail::Race sampled =
+      detail::race_candidates(levels, views, first, factor, list, {.boost = boost});
+  EXPECT_EQ(sampled.winner, choose_best(scores));
+  const detail::Race stopped = detail::race_candidates(levels, views, first, factor, list,
+                                                       {.most_new_cells = 5000, .boost = boost});
+  EXPECT_FALSE(stopped.exact);
+  EXPECT_EQ(stopped.alive, (std::vector<std::size_t>{1, 2}));
+  EXPECT_TRUE(stopped.winner == 1 || stopped.winner == 2);
+  const detail::Race patient = detail::race_candidates(levels, views, first, factor, list,
+                                                       {.least_terms = 1000000000, .boost = boost});
+  EXPECT_TRUE(patient.exact);
+  EXPECT_EQ(patient.winner, choose_best(scores));
+}
+
 // The paper's model raced on its per-target v_M (the swept search's lister for it): on the full
 // lists, the exact evaluation's argmax by cells and its sums.
 TEST(Race, ThePaperModelsRaceOnTheFullListsIsTheExactArgmax) {

@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cstdint>
 #include <stdexcept>
@@ -160,17 +161,35 @@ std::vector<std::uint32_t> unobserved_sample(const ClassMap& map, int bits) {
 
 std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const ClassMap& map,
                                                              std::size_t max_size) {
+  std::vector<std::uint32_t> cells;
+  for_each_unobserved(map, [&](std::size_t i) { cells.push_back(static_cast<std::uint32_t>(i)); });
+  return cells_by_sample(cells, max_size);
+}
+
+std::vector<std::vector<std::uint32_t>> cells_by_sample(std::span<const std::uint32_t> cells,
+                                                        std::size_t max_size,
+                                                        std::span<const std::uint8_t> boost) {
   constexpr int kTop = 63;
   std::vector<std::vector<std::uint32_t>> lists(kTop + 1);
-  std::size_t unobserved = 0;
-  for_each_unobserved(map, [&](std::size_t i) {
-    // NOTE: in the sample of b bits exactly when the hash's top b bits are zero.
-    const int zeros = std::min(std::countl_zero(mix64(i)), kTop);
-    lists[static_cast<std::size_t>(zeros)].push_back(static_cast<std::uint32_t>(i));
-    ++unobserved;
-  });
+  std::array<std::size_t, kMostBoost + 1> boosted{};  // cells per boost
+  for (const std::uint32_t i : cells) {
+    // NOTE: in the sample of b bits exactly when the hash's top b - o bits are zero.
+    const int o = boost.empty() ? 0 : boost[i];
+    const int zeros = std::min(std::countl_zero(mix64(i)) + o, kTop);
+    lists[static_cast<std::size_t>(zeros)].push_back(i);
+    ++boosted[static_cast<std::size_t>(o)];
+  }
+  // The expected size of the sample of b bits [cells].
+  const auto expected = [&](int b) {
+    double n = 0.0;
+    for (int o = 0; o <= kMostBoost; ++o) {
+      n += std::ldexp(static_cast<double>(boosted[static_cast<std::size_t>(o)]),
+                      -std::max(0, b - o));
+    }
+    return n;
+  };
   int bits = 0;
-  while (bits < kTop && (unobserved >> bits) > max_size) ++bits;
+  while (bits < kTop && expected(bits) > static_cast<double>(max_size)) ++bits;
   // The smallest sample's list holds every cell of it: the lists past it folded in, in order.
   std::vector<std::uint32_t>& smallest = lists[static_cast<std::size_t>(bits)];
   for (std::size_t k = static_cast<std::size_t>(bits) + 1; k < lists.size(); ++k) {

@@ -38,6 +38,16 @@ std::vector<std::uint32_t> unobserved_sample(const ClassMap& map, int bits);
 /// sample of b bits; lists k ... b together are the sample of k bits. Each list ascending.
 std::vector<std::vector<std::uint32_t>> unobserved_by_sample(const ClassMap& map,
                                                              std::size_t max_size);
+/// The most a cell's sample may be boosted (cells_by_sample).
+inline constexpr int kMostBoost = 7;
+
+/// The same nested samples of `cells` (linear indices, ascending). With `boost` (per cell of the
+/// map, at most kMostBoost), a cell of boost o enters them o bits early: it is in the sample of b
+/// bits when the top max(0, b - o) bits of its hash are zero, and the smallest sample is the first
+/// expected to hold at most `max_size` cells.
+std::vector<std::vector<std::uint32_t>> cells_by_sample(std::span<const std::uint32_t> cells,
+                                                        std::size_t max_size,
+                                                        std::span<const std::uint8_t> boost = {});
 
 /// The same on the grid, which is only read.
 std::vector<ViewGain> exact_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,

@@ -4,6 +4,7 @@
 #include <array>
 #include <stdexcept>
 
+#include "vantage/gain/detail/metric_cells.hpp"
 #include "vantage/gain/detail/metric_rays.hpp"
 #include "vantage/gain/metrics/area_factor.hpp"
 #include "vantage/gain/metrics/average_entropy.hpp"
@@ -18,6 +19,7 @@
 namespace vantage {
 namespace {
 
+using detail::all_view_cells;
 using detail::all_views;
 
 constexpr MethodTraits target_model(GainMethod method, std::string_view name, TargetRay ray,
@@ -25,10 +27,23 @@ constexpr MethodTraits target_model(GainMethod method, std::string_view name, Ta
   return {method, name, MethodKind::kTargetModel, ray, has_objective, counts, false, nullptr};
 }
 
-constexpr MethodTraits metric(GainMethod method, std::string_view name, MetricFn evaluate,
+/// A metric's row, what it asks of the evaluation read off its type (detail/metric_rays.hpp).
+template <typename Metric>
+constexpr MethodTraits metric(GainMethod method, std::string_view name,
                               bool needs_distances = false) {
-  return {method, name,  MethodKind::kMetric, TargetRay::kNone, false,
-          false,  needs_distances, evaluate};
+  MetricCellsFn cells = nullptr;
+  if constexpr (detail::cell_sum<Metric>()) cells = &all_view_cells<Metric>;
+  return {method,
+          name,
+          MethodKind::kMetric,
+          TargetRay::kNone,
+          false,
+          false,
+          needs_distances,
+          &all_views<Metric>,
+          cells,
+          detail::free_dims<Metric>(),
+          detail::quiet_cells<Metric>() == detail::QuietCells::kFar};
 }
 
 // NOTE: the rows' order is the order names are listed in messages.
@@ -37,14 +52,14 @@ constexpr std::array kMethods = {
     target_model(GainMethod::kProbabilistic, "probabilistic", TargetRay::kPaper, true, false),
     target_model(GainMethod::kSurvival, "survival", TargetRay::kSurvival, true, false),
     target_model(GainMethod::kGreedy, "greedy", TargetRay::kUnblocked, false, true),
-    metric(GainMethod::kOcclusionAware, "occlusion-aware", &all_views<OcclusionAware>),
-    metric(GainMethod::kUnobservedVoxel, "unobserved-voxel", &all_views<UnobservedVoxel>),
-    metric(GainMethod::kRearSideVoxel, "rear-side-voxel", &all_views<RearSideVoxel>),
-    metric(GainMethod::kRearSideEntropy, "rear-side-entropy", &all_views<RearSideEntropy>),
-    metric(GainMethod::kProximityCount, "proximity-count", &all_views<ProximityCount>, true),
-    metric(GainMethod::kAverageEntropy, "average-entropy", &all_views<AverageEntropy>),
-    metric(GainMethod::kAreaFactor, "area-factor", &all_views<AreaFactor>, true),
-    metric(GainMethod::kSurface, "surface", &all_views<Surface>, true),
+    metric<OcclusionAware>(GainMethod::kOcclusionAware, "occlusion-aware"),
+    metric<UnobservedVoxel>(GainMethod::kUnobservedVoxel, "unobserved-voxel"),
+    metric<RearSideVoxel>(GainMethod::kRearSideVoxel, "rear-side-voxel"),
+    metric<RearSideEntropy>(GainMethod::kRearSideEntropy, "rear-side-entropy"),
+    metric<ProximityCount>(GainMethod::kProximityCount, "proximity-count", true),
+    metric<AverageEntropy>(GainMethod::kAverageEntropy, "average-entropy"),
+    metric<AreaFactor>(GainMethod::kAreaFactor, "area-factor", true),
+    metric<Surface>(GainMethod::kSurface, "surface", true),
 };
 
 }  // namespace

@@ -5,6 +5,7 @@
 /// target predictor in detail/target_predictors.hpp's shape, or a metric under gain/metrics/) and
 /// one row in methods.cpp.
 
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -40,6 +41,12 @@ enum class TargetRay {
 using MetricFn = std::vector<ViewGain> (*)(const detail::MetricContext&, std::span<const Frustum>,
                                            int num_threads);
 
+/// A metric's credits cell by cell on a list of cells (detail/metric_cells.hpp).
+using MetricCellsFn = std::vector<ViewCells> (*)(const detail::MetricContext&,
+                                                 std::span<const Frustum>,
+                                                 std::span<const std::uint32_t> cells,
+                                                 int num_threads);
+
 /// What the library asks of a gain method.
 struct MethodTraits {
   GainMethod method;
@@ -55,6 +62,14 @@ struct MethodTraits {
   /// A metric that reads each cell's distance to the nearest occupied cell.
   bool needs_distances;
   MetricFn metric;  ///< a metric's evaluation; nullptr for a target model
+  /// A metric's credits cell by cell, when its value is a sum of them (detail::cell_sum), so that
+  /// the swept search races it on samples of cells; nullptr for the others.
+  MetricCellsFn cells = nullptr;
+  /// A metric whose rays cross cubes of free cells of one value (MetricContext::uniform).
+  bool crosses_uniform = false;
+  /// A metric whose rays cross cubes of free cells and unobserved ones far from every occupied
+  /// cell (MetricContext::far).
+  bool crosses_far = false;
 };
 
 /// The traits of `method`.

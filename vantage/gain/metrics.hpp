@@ -63,13 +63,16 @@ struct MetricRound {
 };
 
 /// The rounds of `method`'s race before the last, which evaluates the views left exactly; empty
-/// when the metric's coarser rays rank too poorly to race (the rear side metrics and the proximity
-/// count, whose value sits on few rays: the race would need most views to keep its choice), so that
-/// every view is evaluated exactly. Sized on the oracle states of
+/// when the metric's coarser rays rank too poorly to race (the rear side metrics, the proximity
+/// count and the surface model, whose value sits on few rays: the race would need most views to
+/// keep its choice), so that every view is evaluated exactly, or raced cell by cell
+/// (MetricEvaluator::cells). Sized on the oracle states of
 /// tests/gain/metrics_race_scenes_test.cpp (docs/model.md, "The metrics at speed").
 std::span<const MetricRound> metric_race_rounds(GainMethod method);
 
 namespace detail {
+
+struct Spaces;
 
 /// What a metric whose rays must pass near an occupied cell to change it needs of the occupied
 /// cells (detail::reach_cells in detail/metric_rays.hpp), found in one pass over the grid.
@@ -102,13 +105,36 @@ class MetricEvaluator {
   std::vector<ViewGain> gains(std::span<const Frustum> views, int coarseness = 1,
                               bool count_cells = true) const;
 
+  /// Whether the metric's value is a sum of what each cell is credited (the surface model and
+  /// the proximity count; detail/metric_cells.hpp): cells() then lists it cell by cell.
+  bool lists_cells() const;
+  /// The cells such a metric may credit, ascending: the unobserved cells within D of an occupied
+  /// cell; empty for another metric.
+  const std::vector<std::uint32_t>& creditable() const { return creditable_; }
+  /// Per cell of the map, how many bits earlier a race's samples take it (cells_by_sample's
+  /// boost): a creditable cell 3 less its distance class (surface_class), so that a cell face to
+  /// face with a surface is sampled 8 times as often as one 4 cells off, as both metrics credit it
+  /// more (the surface model by its fitted rates, the proximity count by D - d); 0 for the
+  /// others.
+  std::vector<std::uint8_t> sample_boost() const;
+  /// Every view's credits on `cells` (linear indices, ascending) at the metric's own pitch: the
+  /// cells credited more than 0 with their credits, summing over creditable() to gains()' value
+  /// up to the order of the additions. The same for any thread count. Throws
+  /// std::invalid_argument when the metric's value is not such a sum.
+  std::vector<ViewCells> cells(std::span<const Frustum> views,
+                               std::span<const std::uint32_t> cells) const;
+
  private:
+  /// The cubes and box the jumping walk crosses.
+  detail::Spaces spaces() const;
+
   GainConfig config_;
   GainMap map_;
-  FreeSpace free_, uniform_;
+  FreeSpace free_, uniform_;  // uniform_ empty when the metric crosses none
   std::vector<float> near_;
-  FreeSpace far_;  // empty when the metric reads no distances
+  FreeSpace far_;  // empty when the metric crosses none
   detail::OccupiedCells occupied_;
+  std::vector<std::uint32_t> creditable_;
 };
 
 /// The reference the evaluation above is held to (tests/gain/metrics_test.cpp): the same rays,

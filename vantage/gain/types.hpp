@@ -6,7 +6,9 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include "vantage/gain/ray_model.hpp"
 
@@ -103,6 +105,18 @@ struct ViewGain {
     targets += other.targets;
     return *this;
   }
+};
+
+/// One view's unobserved targets with a value above 0, in ascending linear index: their v_M
+/// (view_cells.hpp), or a metric's credits (detail/metric_cells.hpp).
+struct ViewCells {
+  std::vector<std::uint32_t> cells;  ///< linear indices of the targets, ascending
+  std::vector<double> seen;          ///< v_M of each, in (0, 1] [cells]; or its credit
+  std::size_t targets = 0;           ///< unobserved cells inside the frustum, seen or not
+
+  /// The sum of `seen` in ascending cell order [cells]; equal to ViewGain::cells of the exact
+  /// evaluation up to the order of the additions.
+  double sum() const;
 };
 
 }  // namespace vantage

@@ -16,17 +16,6 @@
 
 namespace vantage {
 
-/// One view's unobserved targets with a visibility above 0, in ascending linear index.
-struct ViewCells {
-  std::vector<std::uint32_t> cells;  ///< linear indices of the targets, ascending
-  std::vector<double> seen;          ///< v_M of each, in (0, 1] [cells]
-  std::size_t targets = 0;           ///< unobserved cells inside the frustum, seen or not
-
-  /// The sum of `seen` in ascending cell order [cells]; equal to ViewGain::cells of the exact
-  /// evaluation up to the order of the additions.
-  double sum() const;
-};
-
 /// Every view's per-target visibilities under `config.method`, survival or greedy (v_M = 1 when
 /// nothing occupied lies before the target, else 0): each unobserved cell whose centre lies in
 /// the frustum, on its own ray from the view's origin, walked as the exact evaluation walks it

@@ -14,6 +14,7 @@ struct ProximityCount {
   static constexpr bool kFreeInert = true;
   static constexpr detail::QuietCells kQuiet = detail::QuietCells::kFar;  // they credit nothing
   static constexpr bool kNearRays = true;
+  static constexpr bool kCellSum = true;  // detail/metric_cells.hpp
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {

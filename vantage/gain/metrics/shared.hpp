@@ -35,7 +35,8 @@ inline constexpr double kAreaOccplane = 0.8;
 double area_factor(double x, double alpha);
 
 /// Per cell, the Euclidean distance [cells] between its centre and the nearest occupied cell's,
-/// where it is at most `radius`; +infinity elsewhere (0 in occupied cells).
-std::vector<float> occupied_distance(const GainMap& map, double radius);
+/// where it is at most `radius`; +infinity elsewhere (0 in occupied cells). On `num_threads`
+/// threads (0: all cores); the same for any number.
+std::vector<float> occupied_distance(const GainMap& map, double radius, int num_threads = 0);
 
 }  // namespace vantage

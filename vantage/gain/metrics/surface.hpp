@@ -25,12 +25,13 @@ namespace vantage {
 struct Surface {
   static constexpr bool kFreeInert = true;
   static constexpr bool kNearRays = true;  // the far class dims, but a ray of it alone credits 0
+  static constexpr bool kCellSum = true;   // detail/metric_cells.hpp
   explicit Surface(const detail::MetricContext& ctx) : rates(ctx.surface_rates) {}
   SurfaceRates rates;
   double sum = 0.0;
   double v = 1.0;
   void begin_ray() { v = 1.0; }
-  void cell(const RayCell& c, Stamp& s) {
+  [[gnu::always_inline]] void cell(const RayCell& c, Stamp& s) {
     if (!unknown(c)) return;
     const std::size_t k = surface_class(c.near);
     const double r = rates[k];

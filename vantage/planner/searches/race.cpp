@@ -1,6 +1,7 @@
 #include "vantage/planner/searches/race.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <utility>
@@ -35,25 +36,50 @@ Targets merged(std::span<const ViewCells> lists) {
   return sums;
 }
 
-/// The sum and the sum of squares over the union of two candidates' targets of
+/// Per boost value o (the cells sampled 2^o times as often, race_candidates), a sum.
+using ByBoost = std::array<double, kMostBoost + 1>;
+
+/// The boost of `cell`: 0 without boosts.
+std::uint8_t boost_of(std::span<const std::uint8_t> boost, std::uint32_t cell) {
+  return boost.empty() ? std::uint8_t{0} : boost[cell];
+}
+
+/// Per boost value, the sum and the sum of squares over the union of two candidates' targets of
 /// fa * a_i - fb * b_i (a target one lacks counts 0 there).
-std::pair<double, double> difference(const Targets& a, double fa, const Targets& b, double fb) {
-  double sum = 0.0, sq = 0.0;
+struct Difference {
+  ByBoost sum{}, sq{};
+  std::size_t terms = 0;  ///< targets where the two differ
+};
+Difference difference(const Targets& a, double fa, const Targets& b, double fb,
+                      std::span<const std::uint8_t> boost) {
+  Difference out;
+  ByBoost& sum = out.sum;
+  ByBoost& sq = out.sq;
   std::size_t i = 0, j = 0;
   while (i < a.size() || j < b.size()) {
     double d = 0.0;
+    std::uint32_t cell;
     if (j == b.size() || (i < a.size() && a[i].first < b[j].first)) {
+      cell = a[i].first;
       d = fa * a[i++].second;
     } else if (i == a.size() || b[j].first < a[i].first) {
+      cell = b[j].first;
       d = -fb * b[j++].second;
     } else {
+      cell = a[i].first;
       d = fa * a[i++].second - fb * b[j++].second;
     }
-    sum += d;
-    sq += d * d;
+    const std::uint8_t o = boost_of(boost, cell);
+    sum[o] += d;
+    sq[o] += d * d;
+    if (d != 0.0) ++out.terms;
   }
-  return {sum, sq};
+  return out;
 }
+
+/// The Horvitz-Thompson weight at the sample of `bits` of a cell of boost `o`: one over the
+/// chance that the sample holds it.
+double weight(int bits, int o) { return std::ldexp(1.0, std::max(0, bits - o)); }
 
 /// Two lists of targets in one, ascending by index (they hold no index in common).
 Targets united(const Targets& a, const Targets& b) {
@@ -68,8 +94,8 @@ Targets united(const Targets& a, const Targets& b) {
 Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
                      std::span<const Frustum> frusta, std::span<const std::size_t> first,
                      std::span<const double> factor, const TargetLister& list,
-                     double tolerance) {
-  constexpr double kStandardErrors = 3.0;
+                     const RaceRules& rules) {
+  const std::span<const std::uint8_t> boost = rules.boost;
   const std::size_t n = first.size() - 1;
   std::vector<std::size_t> alive(n);
   for (std::size_t k = 0; k < n; ++k) alive[k] = k;
@@ -87,14 +113,16 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
     }
     starts.push_back(views.size());
     const std::vector<ViewCells> lists = list(views, levels[static_cast<std::size_t>(bits)]);
-    const double rate = std::ldexp(1.0, bits);  // Horvitz-Thompson
     std::vector<double> scores;
     for (std::size_t a = 0; a < alive.size(); ++a) {
       Targets& mine = targets[alive[a]];
       mine = united(mine, merged(std::span(lists).subspan(starts[a], starts[a + 1] - starts[a])));
-      double sum = 0.0;
-      for (const auto& [cell, seen] : mine) sum += seen;
-      scores.push_back(rate * factor[alive[a]] * sum);
+      ByBoost sum{};
+      for (const auto& [cell, seen] : mine) sum[boost_of(boost, cell)] += seen;
+      // NOTE: a power of two times the sum: without boosts, 2^bits times it to the last bit.
+      double score = 0.0;
+      for (int o = 0; o <= kMostBoost; ++o) score += weight(bits, o) * factor[alive[a]] * sum[o];
+      scores.push_back(score);
       race.scores[alive[a]] = scores.back();
     }
     race.bits = bits;
@@ -109,17 +137,33 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
     std::vector<std::size_t> next;
     for (std::size_t a = 0; a < alive.size(); ++a) {
       if (a != lead) {
-        const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]],
-                                          targets[alive[a]], factor[alive[a]]);
-        const double gap = rate * sum, error = std::sqrt(rate * (rate - 1.0) * sq);
-        const double slack = tolerance * scores[lead];
-        if (gap + slack > kStandardErrors * error && gap + slack > 0.0) continue;
+        const auto [sum, sq, terms] = difference(targets[alive[lead]], factor[alive[lead]],
+                                                 targets[alive[a]], factor[alive[a]], boost);
+        double gap = 0.0, variance = 0.0;
+        for (int o = 0; o <= kMostBoost; ++o) {
+          const double w = weight(bits, o);
+          gap += w * sum[o];
+          variance += w * (w - 1.0) * sq[o];
+        }
+        const double error = std::sqrt(variance);
+        const double slack = rules.tolerance * scores[lead];
+        if (terms >= rules.least_terms && gap + slack > rules.standard_errors * error &&
+            gap + slack > 0.0) {
+          continue;
+        }
       }
       next.push_back(alive[a]);
     }
+    const std::size_t leader = alive[lead];  // never drops out
     alive = std::move(next);
     if (alive.size() == 1) {
       race.winner = alive.front();
+      return race;
+    }
+    if (rules.most_new_cells > 0 &&
+        levels[static_cast<std::size_t>(bits - 1)].size() > rules.most_new_cells) {
+      race.winner = leader;
+      race.alive = std::move(alive);
       return race;
     }
   }
@@ -133,7 +177,7 @@ Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
       [&](std::span<const Frustum> views, std::span<const std::uint32_t> cells) {
         return exact_view_cells(map, views, config, cells);
       },
-      tolerance);
+      RaceRules{.tolerance = tolerance});
 }
 
 }  // namespace vantage::detail

@@ -27,6 +27,10 @@ struct Race {
   std::vector<double> scores;
   int bits = 0;        ///< the last sample: one unobserved cell in 2^bits
   bool exact = false;  ///< the race reached the full lists: `winner` is the exact argmax
+  /// When it stopped short of the full lists with more than one finalist left (`most_new_cells`),
+  /// those (indices among the finalists, ascending); `winner` is then the leader on the last
+  /// sample. Else empty.
+  std::vector<std::size_t> alive;
 };
 
 /// Lists the targets of `views` among `cells` (unobserved, ascending) with their values, as
@@ -34,17 +38,33 @@ struct Race {
 using TargetLister = std::function<std::vector<ViewCells>(std::span<const Frustum> views,
                                                           std::span<const std::uint32_t> cells)>;
 
+/// How a race decides (race_candidates).
+struct RaceRules {
+  /// A finalist drops out when the leader's score, less `standard_errors` standard errors of
+  /// their difference, exceeds its score less `tolerance` times the leader's: 0 asks for the
+  /// exact argmax (statistically, before the full lists), 0.005 for a winner within 0.5 % of the
+  /// best.
+  double tolerance = 0.0;
+  double standard_errors = 3.0;
+  /// ... and only once their difference rests on at least this many targets.
+  std::size_t least_terms = 0;
+  /// > 0: the race stops before a sample that adds more targets than this, leaving the finalists
+  /// still in it to the caller (Race::alive).
+  std::size_t most_new_cells = 0;
+  /// Per cell of the map, the boost of the samples (cells_by_sample, at most kMostBoost): a cell
+  /// of boost o is in the sample of b bits with chance 2^-max(0, b - o), and weighed by its
+  /// inverse; empty: none.
+  std::span<const std::uint8_t> boost = {};
+};
+
 /// Races the finalists whose views are `frusta[first[k] .. first[k + 1])`, each scored by the sum
 /// of its views' target values from `list` times `factor[k]`, on the nested samples `levels`
-/// (unobserved_by_sample: `levels[b]` the cells new in the sample of one in 2^b), from the
-/// smallest. A finalist drops out when the leader's score, less three standard errors of their
-/// difference, exceeds its score less `tolerance` times the leader's: 0 asks for the exact argmax
-/// (statistically, at three standard errors, before the full lists), 0.005 for a winner within
-/// 0.5 % of the best. Deterministic; the same for any thread count.
+/// (unobserved_by_sample, cells_by_sample: `levels[b]` the cells new in the sample of one in 2^b),
+/// from the smallest, by `rules`. Deterministic; the same for any thread count.
 Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
                      std::span<const Frustum> frusta, std::span<const std::size_t> first,
                      std::span<const double> factor, const TargetLister& list,
-                     double tolerance = 0.0);
+                     const RaceRules& rules = {});
 
 /// The race of the survival reading's or greedy's v_M (`config.method`, exact_view_cells) from the
 /// smallest sample expected to hold at most `max_sample` unobserved cells.
