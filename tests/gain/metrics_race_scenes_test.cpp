@@ -1,8 +1,10 @@
 // The oracle of the metrics' race (issue 36, item 4; docs/model.md, "The metrics at speed"): the
 // swept search, which ranks every view on a metric's coarser rays and evaluates only the leaders
 // at the metric's own pitch, chooses the view the exhaustive search chooses, which evaluates every
-// view at the metric's pitch. Every raced metric (metric_race_rounds; the others are evaluated in
-// full by the swept search too), the 187 hemisphere views of the issue-26 sweeps
+// view at the metric's pitch; a metric raced cell by cell (the surface model, the proximity count)
+// a view within kSweptTolerance of its value, statistically. Every raced metric
+// (metric_race_rounds, MethodTraits::cells; the rear side metrics are evaluated in full by the
+// swept search too), the 187 hemisphere views of the issue-26 sweeps
 // (radii 0.9, 1.1 and 1.3 m, 0.3 m apart) on the four built-in table tops and two generated piles
 // of primitives, after 1 to 8 scans from the scene's ring (every seventh ring view in turn).
 
@@ -30,6 +32,9 @@ constexpr int kScans = 8;
 
 /// Every raced metric's decision on `grid` among `cands`: the swept search's against the
 /// exhaustive one's, which evaluates every view at the metric's own pitch.
+/// How many decisions raced cell by cell chose a view below kSweptTolerance of the best.
+int below_tolerance = 0;
+
 void check_state(const std::string& state, const OccupancyGrid& grid,
                  const std::vector<Candidate>& cands) {
   for (const MethodTraits& method : gain_methods()) {
@@ -70,10 +75,14 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
       const std::size_t best = exhaustive.best;
       EXPECT_EQ(plan.search, DecisionSearch::kSwept) << what;
       if (cell_sum) {
-        // NOTE: raced on samples of the cells it credits, to within kSweptTolerance of the best.
-        EXPECT_GE(exhaustive.scores[plan.best], (1.0 - kSweptTolerance) * exhaustive.scores[best])
-            << what << ": chose a view of "
-            << exhaustive.scores[plan.best] / exhaustive.scores[best] << " of the best's value";
+        // NOTE: raced on samples of the cells it credits, to within kSweptTolerance of the best
+        // at three standard errors: statistically, so that over a scene's 32 such decisions one
+        // may fall below it, none below twice it (docs/decision.md, "A metric raced cell by
+        // cell").
+        const double share = exhaustive.scores[plan.best] / exhaustive.scores[best];
+        if (share < 1.0 - kSweptTolerance) ++below_tolerance;
+        EXPECT_GE(share, 1.0 - 2.0 * kSweptTolerance)
+            << what << ": chose a view of " << share << " of the best's value";
       } else {
         EXPECT_EQ(plan.best, best)
             << what << ": chose a view of "
@@ -93,6 +102,7 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
 
 /// Scans `scene` from its ring, every seventh view in turn, and checks the state after each scan.
 void check_scene(const std::string& name, const sim::Scene& scene) {
+  below_tolerance = 0;
   const sim::World world(scene);
   HemisphereConfig hemisphere;
   hemisphere.center = scene.mount.target;
@@ -110,6 +120,7 @@ void check_scene(const std::string& name, const sim::Scene& scene) {
     integrate_scan(grid, Scan{scan.points_world(), scan.view()}, IntegrationConfig{});
     check_state(cat(name, " after ", k + 1, " scans"), grid, cands);
   }
+  EXPECT_LE(below_tolerance, 1) << name;
 }
 
 class MetricRace : public ::testing::TestWithParam<const char*> {};

@@ -48,7 +48,6 @@ std::uint8_t boost_of(std::span<const std::uint8_t> boost, std::uint32_t cell) {
 /// fa * a_i - fb * b_i (a target one lacks counts 0 there).
 struct Difference {
   ByBoost sum{}, sq{};
-  std::size_t terms = 0;  ///< targets where the two differ
 };
 Difference difference(const Targets& a, double fa, const Targets& b, double fb,
                       std::span<const std::uint8_t> boost) {
@@ -72,7 +71,6 @@ Difference difference(const Targets& a, double fa, const Targets& b, double fb,
     const std::uint8_t o = boost_of(boost, cell);
     sum[o] += d;
     sq[o] += d * d;
-    if (d != 0.0) ++out.terms;
   }
   return out;
 }
@@ -102,6 +100,7 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
   Race race;
   race.scores.assign(n, 0.0);
   std::vector<Targets> targets(n);  // per finalist, on the sample so far
+  ByBoost largest{};                // per boost, the largest value listed so far
   // NOTE: each sample doubles the last and holds it: only the new cells are cast.
   for (int bits = static_cast<int>(levels.size()) - 1;; --bits) {
     std::vector<Frustum> views;
@@ -113,6 +112,22 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
     }
     starts.push_back(views.size());
     const std::vector<ViewCells> lists = list(views, levels[static_cast<std::size_t>(bits)]);
+    for (const ViewCells& l : lists) {
+      for (std::size_t k = 0; k < l.cells.size(); ++k) {
+        double& m = largest[boost_of(boost, l.cells[k])];
+        m = std::max(m, std::abs(l.seen[k]));
+      }
+    }
+    // The unseen target (RaceRules::unseen): the largest value of a boost at its weight, times the
+    // largest factor.
+    double unseen = 0.0;
+    if (rules.unseen) {
+      double most_factor = 0.0;
+      for (const std::size_t k : alive) most_factor = std::max(most_factor, factor[k]);
+      for (int o = 0; o <= kMostBoost; ++o) {
+        unseen = std::max(unseen, weight(bits, o) * most_factor * largest[o]);
+      }
+    }
     std::vector<double> scores;
     for (std::size_t a = 0; a < alive.size(); ++a) {
       Targets& mine = targets[alive[a]];
@@ -137,20 +152,17 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
     std::vector<std::size_t> next;
     for (std::size_t a = 0; a < alive.size(); ++a) {
       if (a != lead) {
-        const auto [sum, sq, terms] = difference(targets[alive[lead]], factor[alive[lead]],
-                                                 targets[alive[a]], factor[alive[a]], boost);
+        const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]],
+                                          targets[alive[a]], factor[alive[a]], boost);
         double gap = 0.0, variance = 0.0;
         for (int o = 0; o <= kMostBoost; ++o) {
           const double w = weight(bits, o);
           gap += w * sum[o];
           variance += w * (w - 1.0) * sq[o];
         }
-        const double error = std::sqrt(variance);
+        const double error = std::sqrt(variance + unseen * unseen);
         const double slack = rules.tolerance * scores[lead];
-        if (terms >= rules.least_terms && gap + slack > rules.standard_errors * error &&
-            gap + slack > 0.0) {
-          continue;
-        }
+        if (gap + slack > rules.standard_errors * error && gap + slack > 0.0) continue;
       }
       next.push_back(alive[a]);
     }

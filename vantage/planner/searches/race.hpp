@@ -46,8 +46,11 @@ struct RaceRules {
   /// best.
   double tolerance = 0.0;
   double standard_errors = 3.0;
-  /// ... and only once their difference rests on at least this many targets.
-  std::size_t least_terms = 0;
+  /// Whether the error of a difference counts one more target the sample may have missed: the
+  /// largest value a target of any boost has been listed with, at that boost's weight, times the
+  /// largest factor. For values that sit on few targets, where a sample that misses the large ones
+  /// gives an estimate and an error both too small.
+  bool unseen = false;
   /// > 0: the race stops before a sample that adds more targets than this, leaving the finalists
   /// still in it to the caller (Race::alive).
   std::size_t most_new_cells = 0;
