@@ -33,6 +33,10 @@ constexpr double kSweptStepWeight = 1.5, kSweptRaySteps = 70.0;
 /// What a decision holds a candidate (its frustum, gains, scores, ranking, its row of the
 /// results), with room to spare [bytes].
 constexpr double kBytesPerCandidate = 2048.0;
+/// What a metric's evaluation holds a grid cell beside the grid (MetricEvaluator): its snapshot's
+/// code (1 to 4 B), and for a metric that reads distances the distance to the nearest occupied
+/// cell (4 B) and, for those it may credit, the cell's index (4 B); at most [bytes].
+constexpr double kMetricBytesPerCell = 4.0, kDistanceBytesPerCell = 8.0;
 /// A target of a per-cell list: its cell (4 B), its visibility (8 B) and the sequence's dense
 /// index of it (4 B) and of its union (4 B) [bytes].
 constexpr double kBytesPerListedCell = 20.0;
@@ -153,6 +157,16 @@ DecisionCost cost_of(const ViewCost& v, std::size_t views, std::size_t candidate
   return cost;
 }
 
+/// `cost` with what the method's evaluation holds per cell of the grid `spec`.
+DecisionCost with_grid_bytes(DecisionCost cost, const GridSpec& spec, const PlannerConfig& config) {
+  const MethodTraits& traits = method_traits(config.method.gain);
+  if (traits.metric == nullptr || sequence_of(config).active()) return cost;
+  const double per_cell =
+      kMetricBytesPerCell + (traits.needs_distances ? kDistanceBytesPerCell : 0.0);
+  cost.bytes += per_cell * static_cast<double>(spec.num_cells());
+  return cost;
+}
+
 }  // namespace
 
 DecisionCost estimate_decision(const GridSpec& spec, std::span<const Candidate> candidates,
@@ -166,7 +180,8 @@ DecisionCost estimate_decision(const GridSpec& spec, std::span<const Candidate> 
   const ViewCost mean = mean_view_cost(
       spec, views.size(), [&](std::size_t i) -> const Frustum& { return *views[i]; },
       config.swept_rays);
-  return cost_of(mean, views.size(), candidates.size(), config, unobserved);
+  return with_grid_bytes(cost_of(mean, views.size(), candidates.size(), config, unobserved), spec,
+                         config);
 }
 
 DecisionCost estimate_decision(const GridSpec& spec, std::span<const Eigen::Isometry3d> poses,
@@ -174,7 +189,8 @@ DecisionCost estimate_decision(const GridSpec& spec, std::span<const Eigen::Isom
                                double unobserved) {
   const ViewCost mean = mean_view_cost(
       spec, poses.size(), [&](std::size_t i) { return Frustum(poses[i], fov); }, config.swept_rays);
-  return cost_of(mean, poses.size(), poses.size(), config, unobserved);
+  return with_grid_bytes(cost_of(mean, poses.size(), poses.size(), config, unobserved), spec,
+                         config);
 }
 
 double unobserved_share(const OccupancyGrid& grid) {
