@@ -25,8 +25,8 @@ configure: deps
 build: configure
 	@cmake --build --preset $(PRESET)
 
-# The main job: explore the default table-top scene with the default method (the survival reading
-# of the paper's model, a fitted online), 10 scans.
+# The main job: explore the default table-top scene with the default method (latombe+surface: the
+# surface model, its rates fitted online, ranked by travel), 10 scans.
 demo: build
 	@rm -rf results/demo
 	$(VANTAGE) explore --out results/demo

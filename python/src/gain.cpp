@@ -93,7 +93,8 @@ void bind_gain(py::module_& m) {
            py::arg("ray_spacing") = GainConfig{}.ray_spacing, py::arg("num_threads") = 0,
            "method 'probabilistic', 'survival', 'greedy' or a metric's name; evaluation 'auto' or "
            "'exact' (a metric's every third or every ray); alpha in (0, 1]; epsilon (early stop) "
-           "in [0, 0.5); ray_spacing [cells] in (0, 1] for the metrics' rays; num_threads 0 = all cores (results do not depend on it). ValueError "
+           "in [0, 0.5); ray_spacing [cells] in (0, 1] for the metrics' rays; num_threads 0 = all "
+           "cores (results do not depend on it). ValueError "
            "naming the field when one is bad.")
       .def_property_readonly(
           "method", [](const GainConfig& c) { return std::string(to_string(c.method)); },

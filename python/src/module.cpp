@@ -55,6 +55,7 @@ PYBIND11_MODULE(_vantage, m) {
       "The budget set_budget set: {'max_memory': bytes (0: what is available), 'max_work': s}.");
   vantage::python::bind_map(m);
   vantage::python::bind_gain(m);
+  vantage::python::bind_planner_config(m);
   vantage::python::bind_plan(m);
   vantage::python::bind_sim(m);
 }

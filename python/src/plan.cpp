@@ -37,10 +37,21 @@ struct RankedPlan {
 };
 
 RankedPlan decide(const OccupancyGrid& grid, const DoubleArray& candidates, const SensorFov& fov,
-                  const PlannerConfig& config, std::uint64_t seed) {
+                  const std::optional<PlannerConfig>& given, std::uint64_t seed,
+                  const std::optional<Eigen::Isometry3d>& robot) {
+  const PlannerConfig config = given.value_or(default_planner_config(robot.has_value()));
   config.validate();
+  if (uses_travel(config.method) && !robot) {
+    throw std::invalid_argument(cat("method ", to_string(config.method),
+                                    " weighs travel and needs the robot's pose: give robot "
+                                    "(its sensor's 4 x 4 T_world_sensor)"));
+  }
   std::vector<Candidate> views;
-  for (const Frustum& view : to_views(candidates, fov, "candidates")) views.push_back({view});
+  // NOTE: as `vantage plan`: travel is the straight line from the robot.
+  for (const Frustum& view : to_views(candidates, fov, "candidates")) {
+    const double travel = robot ? (view.origin() - robot->translation()).norm() : 0.0;
+    views.push_back({view, travel});
+  }
   check_decision_on(grid, views, config, python_budget());  // before any of it is computed
   RankedPlan out;
   {
@@ -49,48 +60,6 @@ RankedPlan decide(const OccupancyGrid& grid, const DoubleArray& candidates, cons
   }
   out.ranking = out.plan.ranking();
   return out;
-}
-
-/// PlannerConfig(...): the library's one builder (PlanningSettings, as the CLI's), then the
-/// GainConfig given, if one is (its method follows from `method`); without one, the method's own
-/// a, as `vantage plan` takes it.
-PlannerConfig make_planner_config(const std::string& method, const std::optional<GainConfig>& gain,
-                                  double lambda, bool greedy_reference,
-                                  const std::optional<std::string>& objective,
-                                  const std::optional<std::string>& search, int sample, int horizon,
-                                  double travel_weight, int swept_rays, bool predict_chosen) {
-  PlanningSettings settings;
-  settings.method = method;
-  settings.objective = objective.value_or("");
-  settings.search = search.value_or("");
-  if (gain) {
-    settings.evaluation = std::string(to_string(gain->evaluation));
-    settings.epsilon = gain->epsilon;
-    settings.threads = gain->num_threads;
-  }
-  settings.lambda = lambda;
-  settings.sample = sample;
-  settings.horizon = horizon;
-  settings.travel_weight = travel_weight;
-  settings.swept_rays = swept_rays;
-  PlannerConfig config;
-  try {
-    config = settings.planner_config(kTableTopAlpha);
-  } catch (const SettingError& e) {
-    throw std::invalid_argument(cat(e.setting(), ": ", e.what()));
-  }
-  if (gain) config.gain = *gain;
-  config.greedy_reference = greedy_reference;
-  config.predict_chosen = predict_chosen;
-  config.validate();
-  return config;
-}
-
-/// What PlannerConfig() and the calls that take a config default to: `vantage plan`'s, the
-/// survival reading by cells with the search that serves it fastest.
-PlannerConfig default_planner_config() {
-  return make_planner_config("survival", std::nullopt, PlannerConfig{}.lambda, false, std::nullopt,
-                             std::nullopt, 1, 1, 0.0, PlannerConfig{}.swept_rays, true);
 }
 
 /// The mapping settings `vantage plan` derives from a manifest with these options.
@@ -138,13 +107,16 @@ void def_mapper_init(py::class_<Mapper>& mapper, const char* start, const char* 
 py::tuple plan_recorded(const std::vector<DoubleArray>& clouds, const DoubleArray& poses,
                         const SensorFov& fov, const GridSpec& spec, const DoubleArray& candidates,
                         const std::string& frame, bool table_segmentation, bool icp,
-                        const std::string& integration, PlannerConfig config, std::uint64_t seed) {
+                        const std::string& integration, std::optional<PlannerConfig> given,
+                        std::uint64_t seed) {
   const CloudFrame cloud_frame = parse_cloud_frame(frame);
   const std::vector<Eigen::Isometry3d> T_world_cloud = to_poses(poses, "poses");
   if (T_world_cloud.size() != clouds.size()) {
     throw std::invalid_argument(cat("got ", clouds.size(), " clouds but ", T_world_cloud.size(),
                                     " poses; give one pose per cloud"));
   }
+  if (clouds.empty()) throw std::invalid_argument("give at least one cloud");
+  PlannerConfig config = given.value_or(default_planner_config(true));
   request_plan_reference(config);  // as `vantage plan`
   check_grid_memory(spec, mapping_cost(config.gain.num_threads), "the plan's grid");
   Mapper mapper(
@@ -152,18 +124,20 @@ py::tuple plan_recorded(const std::vector<DoubleArray>& clouds, const DoubleArra
   Eigen::Isometry3d T_cloud_sensor = Eigen::Isometry3d::Identity();
   T_cloud_sensor.linear() = R_cloud_sensor(cloud_frame);
   const Eigen::Matrix3d R_sensor_cloud = R_cloud_sensor(cloud_frame).transpose();
+  Eigen::Isometry3d robot = Eigen::Isometry3d::Identity();
   for (std::size_t i = 0; i < clouds.size(); ++i) {
     const std::string name = cat("clouds[", i, "]");
     PointCloud points = to_cloud(clouds[i], name.c_str());
     for (Eigen::Vector3d& p : points) p = R_sensor_cloud * p;
     try {
       py::gil_scoped_release release;
-      mapper.add_scan(points, T_world_cloud[i] * T_cloud_sensor, fov);
+      robot = mapper.add_scan(points, T_world_cloud[i] * T_cloud_sensor, fov).T_world_sensor;
     } catch (const std::invalid_argument& e) {
       throw std::invalid_argument(cat(name, ": ", e.what()));
     }
   }
-  return py::make_tuple(mapper.grid(), decide(mapper.grid(), candidates, fov, config, seed));
+  // NOTE: as `vantage plan`, the robot stands where the last cloud was taken (after ICP).
+  return py::make_tuple(mapper.grid(), decide(mapper.grid(), candidates, fov, config, seed, robot));
 }
 
 py::dict manifest_dict(const Manifest& manifest) {
@@ -281,52 +255,6 @@ void bind_plan(py::module_& m) {
       "The grid `vantage plan` maps a region of interest into: whole cells on the lattice "
       "through the world origin (OctoMap's) that hold the box [m].");
 
-  py::class_<PlannerConfig>(m, "PlannerConfig", "Settings of the next-best-view decision.")
-      .def(
-          py::init(&make_planner_config), py::arg("method") = "survival",
-          py::arg("gain") = std::nullopt, py::arg("lambda_") = PlannerConfig{}.lambda,
-          py::arg("greedy_reference") = false, py::arg("objective") = std::nullopt,
-          py::arg("search") = std::nullopt, py::arg("sample") = 1, py::arg("horizon") = 1,
-          py::arg("travel_weight") = 0.0, py::arg("swept_rays") = PlannerConfig{}.swept_rays,
-          py::arg("predict_chosen") = true,
-          "method: a name as `vantage explore --method` takes ('survival', the default as in "
-          "`vantage plan`, 'probabilistic', 'greedy', 'random', 'latombe', 'yamauchi', "
-          "'sequence' or a metric); gain: a GainConfig (its method follows from `method`; "
-          "default None: the method's own a, as `vantage plan`); lambda_: latombe's travel penalty "
-          "[1/m]; greedy_reference: also predict every candidate's greedy gain; objective: "
-          "'bits' or 'cells' (default: the method's own); search: 'swept', 'pruned' or "
-          "'exhaustive' (docs/decision.md; default None: the fastest that serves the method, as "
-          "`vantage plan`); sample: a sequence's values on one unobserved cell in `sample` "
-          "(1: exact); horizon, travel_weight: plan that many views ahead and tour them "
-          "(docs/decision.md, 'Planning a sequence') [views, 1/m]; swept_rays: the "
-          "swept search's rays across a view's image in its first round, in [1, 4096]; "
-          "predict_chosen: False leaves the chosen view's full prediction in bits, which on a "
-          "large grid takes longer than the decision, out of it (`vantage plan --no-prediction`).")
-      .def_property_readonly(
-          "method", [](const PlannerConfig& c) { return std::string(to_string(c.method)); },
-          "How the next view is chosen.")
-      .def_readonly("gain", &PlannerConfig::gain, "The GainConfig of the gain evaluation.")
-      .def_readonly("lambda_", &PlannerConfig::lambda, "Latombe's travel penalty [1/m].")
-      .def_readonly("greedy_reference", &PlannerConfig::greedy_reference,
-                    "Whether every candidate's greedy gain is predicted too.")
-      .def_property_readonly(
-          "search",
-          [](const PlannerConfig& c) {
-            return sequence_of(c).active() ? std::string("sequence")
-                                           : std::string(to_string(resolve_search(c)));
-          },
-          "The search that decides: the one given, or the fastest that serves the method.")
-      .def_property_readonly(
-          "objective", [](const PlannerConfig& c) { return std::string(to_string(c.objective)); },
-          "What the method ranks by: bits or cells.")
-      .def_property_readonly(
-          "horizon", [](const PlannerConfig& c) { return sequence_of(c).horizon; },
-          "Views planned ahead (the sequence method's default when it is not told).")
-      .def_readonly("swept_rays", &PlannerConfig::swept_rays,
-                    "The swept search's rays across a view's image in its first round.")
-      .def_readonly("predict_chosen", &PlannerConfig::predict_chosen,
-                    "Whether the chosen view's full prediction in bits follows the decision.");
-
   py::class_<RankedPlan>(m, "Plan", "The decision and everything behind it.")
       .def_property_readonly(
           "best", [](const RankedPlan& p) { return p.plan.best; }, "Index of the chosen view.")
@@ -368,10 +296,21 @@ void bind_plan(py::module_& m) {
         return out + cat(", seconds=", p.plan.seconds, ")");
       });
 
-  m.def("plan_next_view", &decide, py::arg("grid"), py::arg("candidates"), py::arg("fov"),
-        py::arg("config") = default_planner_config(), py::arg("seed") = 1,
-        "Scores K x 4 x 4 candidate sensor poses seen with `fov` on the grid and chooses one "
-        "(eq. 1; ties to the lower index, 'random' uses `seed`). Returns a Plan.");
+  m.def(
+      "plan_next_view",
+      [](const OccupancyGrid& grid, const DoubleArray& candidates, const SensorFov& fov,
+         const std::optional<PlannerConfig>& config, std::uint64_t seed,
+         const std::optional<Eigen::Matrix4d>& robot) {
+        return decide(grid, candidates, fov, config, seed,
+                      robot ? std::optional(to_pose(*robot, "robot")) : std::nullopt);
+      },
+      py::arg("grid"), py::arg("candidates"), py::arg("fov"), py::arg("config") = std::nullopt,
+      py::arg("seed") = 1, py::arg("robot") = std::nullopt,
+      "Scores K x 4 x 4 candidate sensor poses seen with `fov` on the grid and chooses one "
+      "(ties to the lower index, 'random' uses `seed`). `robot`: the robot's sensor pose now, "
+      "4 x 4 T_world_sensor, whence each candidate's travel, the straight line [m]. `config` "
+      "None: `vantage plan`'s default, latombe+surface, or surface without `robot`. Returns a "
+      "Plan.");
 
   py::class_<MapperUpdate>(m, "MapperUpdate", "What adding one scan to a Mapper did.")
       .def_property_readonly(
@@ -427,12 +366,12 @@ void bind_plan(py::module_& m) {
   m.def("plan", &plan_recorded, py::arg("clouds"), py::arg("poses"), py::arg("fov"),
         py::arg("spec"), py::arg("candidates"), py::arg("frame") = "x_forward",
         py::arg("table_segmentation") = false, py::arg("icp") = false,
-        py::arg("integration") = "paper", py::arg("config") = default_planner_config(),
-        py::arg("seed") = 1,
+        py::arg("integration") = "paper", py::arg("config") = std::nullopt, py::arg("seed") = 1,
         "Real scans in, next view out, as `vantage plan` does: maps the clouds (N x 3 arrays in "
         "the cloud frame `frame`, 'x_forward' or 'optical') at their 4 x 4 poses T_world_cloud "
-        "into a fresh grid of `spec`, then scores the candidate sensor poses (x forward). "
-        "Returns (grid, plan).");
+        "into a fresh grid of `spec`, then scores the candidate sensor poses (x forward), the "
+        "robot at the last cloud's sensor pose; `config` None: `vantage plan`'s default, "
+        "latombe+surface. Returns (grid, plan).");
   m.def(
       "read_manifest",
       [](const std::filesystem::path& path, std::optional<int> every,

@@ -77,7 +77,10 @@ def test_same_candidates_gains_and_ranking_as_the_cli(planned):
         assert plan.scores[i] == c["score"], i
         assert c["greedy_gain"] is None  # the swept search computes no greedy reference
     assert plan.greedy_gains == []
-    assert (cli["method"], cli["search"]) == ("survival", plan.search) == ("survival", "swept")
+    # The default around objects with the robot's pose known (the last cloud's): the surface
+    # model ranked by travel, as the CLI's.
+    assert (cli["method"], cli["search"]) == ("latombe+surface", plan.search)
+    assert plan.search == "swept"
     assert plan.gains[plan.best].gain > 0.0  # the chosen view's bits, predicted in full
 
 
@@ -94,10 +97,26 @@ def test_evaluate_views_gives_the_plan_gains(planned):
 
 
 def test_the_chosen_views_prediction_can_be_left_out(planned):
-    # `vantage plan --no-prediction`: the same choice, and no bits predicted for it.
-    manifest, candidates, grid, plan, _ = planned
-    config = vt.PlannerConfig(predict_chosen=False)
+    # `vantage plan --no-prediction`: the same choice, and no bits predicted for it (the survival
+    # reading's, which follow its decision by cells).
+    manifest, candidates, grid, _, _ = planned
+    config = vt.PlannerConfig(method="survival", predict_chosen=False)
     assert vt.PlannerConfig().predict_chosen and not config.predict_chosen
+    full = vt.plan_next_view(grid, candidates, manifest["fov"], vt.PlannerConfig(method="survival"))
     decided = vt.plan_next_view(grid, candidates, manifest["fov"], config)
-    assert decided.best == plan.best
-    assert decided.gains[decided.best].gain == 0.0 and plan.gains[plan.best].gain > 0.0
+    assert decided.best == full.best
+    assert decided.gains[decided.best].gain == 0.0 and full.gains[full.best].gain > 0.0
+
+
+def test_travel_needs_the_robot(planned):
+    # Without `robot` the default weighs no travel (the surface model alone); a method that weighs
+    # travel is refused, naming what is missing; with it, the CLI's default and choice.
+    manifest, candidates, grid, plan, cli = planned
+    assert vt.PlannerConfig().method == "surface"
+    latombe = vt.PlannerConfig(method="latombe+surface")
+    with pytest.raises(ValueError, match="robot"):
+        vt.plan_next_view(grid, candidates, manifest["fov"], latombe)
+    robot = np.eye(4)
+    robot[:3, 3] = cli["robot"]["sensor"]["position"]
+    weighed = vt.plan_next_view(grid, candidates, manifest["fov"], latombe, robot=robot)
+    assert weighed.best == plan.best == cli["next_best_view"]["index"]

@@ -20,7 +20,7 @@ plan "$work/data/south.yaml" --map "$work/step1/map.ot" --out "$work/step2" >"$w
 plan "$work/data" --out "$work/all" --no-plots >/dev/null
 cmp "$work/step2/map.ot" "$work/all/map.ot" || fail "map.ot of the loop differs from the one-go map"
 [[ -s "$work/step2/map.png" ]] || fail "plan drew no map.png"
-grep -q "predicted gain \[bits\]" "$work/step2.txt" || fail "the table names no unit"
+grep -q "predicted gain \[cells\]" "$work/step2.txt" || fail "the table names no unit"
 grep -q "yaw \[deg\]" "$work/step2.txt" || fail "the table shows no yaw"
 # issue 27: a hair below zero prints as 0, never "-0.000" (the robot's pitch here).
 if grep -qE -- "-0\.0*([^0-9]|$)" "$work/step2.txt"; then
@@ -47,7 +47,9 @@ if key(loop) != key(once):
     fail("planning from step 1's map.ot plus the new cloud ranks or scores differently")
 if loop["next_best_view"]["index"] != once["next_best_view"]["index"]:
     fail("the loop chose another view")
-if loop["version"] != 4 or loop["units"]["predicted_gain"] != "bits":
+# The default, latombe+surface: the surface a scan adds, in cells.
+if loop["version"] != 4 or loop["method"] != "latombe+surface" or \
+        loop["units"]["predicted_gain"] != "cells":
     fail(f"plan.json's version/units: {loop.get('version')} {loop.get('units')}")
 
 yamauchi, latombe, greedy = load("yamauchi"), load("latombe"), load("greedy")

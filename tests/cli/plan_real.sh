@@ -30,8 +30,8 @@ for name in milk mug; do
   # NOTE: more threads than cores: TBB's own warning must not leak (nothing on stderr at all).
   threads=$([[ $name == mug ]] && echo 1000 || echo 2)
   # NOTE: the pruned search proves its choice: the swept default is held to it below.
-  "$vantage" plan "$work/$name.yaml" --threads "$threads" --search pruned --no-plots \
-    --out "$work/$name" >"$work/$name.txt" 2>"$work/$name.err"
+  "$vantage" plan "$work/$name.yaml" --threads "$threads" --method survival --search pruned \
+    --no-plots --out "$work/$name" >"$work/$name.txt" 2>"$work/$name.err"
   [[ ! -s "$work/$name.err" ]] || fail "$name: stderr: $(cat "$work/$name.err")"
   grep -q "(pose from the table)" "$work/$name.txt" || fail "$name: no pose from the table"
   grep -q "non-finite skipped" "$work/$name.txt" || fail "$name: the NaN points skipped are not said"
@@ -133,8 +133,8 @@ PY
 # The default search, swept for these methods (issue 25), on the Kinect frame and on FR-079
 # (Latombe): the pruned search's choice and exact score; the others estimated, without greedy's
 # reference; its times recorded.
-"$vantage" plan "$work/milk.yaml" --threads 2 --no-plots --out "$work/milk_swept" \
-  >"$work/milk_swept.txt"
+"$vantage" plan "$work/milk.yaml" --threads 2 --method survival --no-plots \
+  --out "$work/milk_swept" >"$work/milk_swept.txt"
 # By cells, the table shows no gain in bits for the views not chosen ('-'), only their estimates.
 grep -Eq '^ +2 .* - ~ +[0-9]' "$work/milk_swept.txt" || {
   echo "FAIL: milk_swept: the second row does not mark its gain in bits as not predicted"
@@ -167,7 +167,8 @@ for pruned, swept in (("milk", "milk_swept"), ("fr079_latombe", "fr079_swept")):
 PY
 # Decided only (--no-prediction), plots on: the chosen view's bits are null in plan.json, the
 # decision and its view are the default's, and the map's picture is drawn.
-"$vantage" plan "$work/milk.yaml" --threads 2 --no-prediction --out "$work/milk_decided" \
+"$vantage" plan "$work/milk.yaml" --threads 2 --method survival --no-prediction \
+  --out "$work/milk_decided" \
   >/dev/null 2>"$work/milk_decided.err" || fail "milk_decided: $(cat "$work/milk_decided.err")"
 [[ -s "$work/milk_decided/map.png" ]] || fail "milk_decided: no map.png"
 /usr/bin/python3 - "$work" <<'PY'
@@ -180,4 +181,23 @@ if b["next_best_view"]["index"] != a["index"] or b["next_best_view"]["predicted_
 if b["seconds"]["prediction"] != 0:
     sys.exit(f"FAIL: milk_decided: seconds {b['seconds']}")
 PY
+# The default (latombe+surface, the robot at the frame's pose from the table) on both frames:
+# it too looks at the table's far side, across the objects, with the surface it expects to add
+# in cells and its travel recorded.
+for name in milk mug; do
+  "$vantage" plan "$work/$name.yaml" --threads 2 --no-plots --out "$work/${name}_default" \
+    >/dev/null
+  /usr/bin/python3 - "$work/${name}_default/plan.json" "$name" <<'PY'
+import json, sys
+plan = json.load(open(sys.argv[1]))
+best = plan["next_best_view"]
+if (plan["method"], plan["search"], plan["units"]["score"]) != ("latombe+surface", "swept", "cells"):
+    sys.exit(f"FAIL: {sys.argv[2]} default: {plan['method']} {plan['search']} {plan['units']}")
+x, y, z, w = best["sensor"]["quaternion_xyzw"]
+forward_x = 1 - 2 * (y * y + z * z)
+if not (best["sensor"]["position"][0] > 0 and forward_x < 0 and best["travel"] > 0
+        and best["predicted_gain"] > 0):
+    sys.exit(f"FAIL: {sys.argv[2]} default: {best}")
+PY
+done
 echo "ok: milk, mug and fr079 planned"

@@ -25,7 +25,7 @@ check() {  # NAME OBJECTIVE SCORE_UNIT GAIN_UNIT [plan options...]
   "$vantage" plan "$work/milk.yaml" --threads 2 --no-plots --out "$work/$name" "$@" >"$work/$name.txt"
   grep -q "score \[$score\]" "$work/$name.txt" || fail "$name: the table's score is not in $score"
   /usr/bin/python3 - "$work/$name" "$objective" "$score" "$gain" <<'PY'
-import json, re, sys
+import json, math, re, sys
 folder, objective, score, gain = sys.argv[1:]
 plan = json.load(open(f"{folder}/plan.json"))
 text = open(f"{folder}.txt").read()
@@ -43,7 +43,12 @@ if not line or int(line[1]) != best["index"] or line[3] != score \
         or abs(float(line[2]) - best["score"]) > 0.051:
     fail(f"the terminal says {line and line[0]}, plan.json {best['index']} {best['score']} {score}")
 want = {"cells": best["predicted_cells"], "bits": best["predicted_gain"]}.get(score)
-if want is not None and best["score"] != want:
+if plan["method"] == "latombe+surface":
+    # The surface a scan adds [cells], discounted by the travel at --lambda's default 0.5 /m.
+    want = best["predicted_gain"] * math.exp(-0.5 * best["travel"])
+    if not (abs(best["score"] - want) <= 1e-9 * want and best["travel"] > 0):
+        fail(f"score {best['score']} is not the surface gain x exp(-0.5 travel) {want}")
+elif want is not None and best["score"] != want:
     fail(f"score {best['score']} is not the {score} prediction {want}")
 sensor = plan["sensor"]
 got = (sensor["horizontal_fov_deg"], sensor["vertical_fov_deg"], sensor["min_range_m"],
@@ -52,11 +57,14 @@ if any(abs(a - b) > 1e-9 for a, b in zip(got, (60, 45, 0.4, 3.0))) or plan["clou
     fail(f"sensor {sensor}, clouds {plan['clouds']}")
 PY
 }
-check survival cells cells bits
+check default cells cells cells  # latombe+surface: the surface a scan adds, discounted by travel
+grep -q "(latombe+surface method, swept search)" "$work/default.txt" ||
+  fail "the default is not latombe+surface: $(grep "next best view" "$work/default.txt")"
+check survival cells cells bits --method survival
 # A first cloud has nothing to register against: said so, not "ICP kept the pose".
 grep -q "(first cloud: nothing to register against)" "$work/survival.txt" ||
   fail "the first cloud's registration: $(head -1 "$work/survival.txt")"
-check survival_bits bits bits bits --objective bits
+check survival_bits bits bits bits --method survival --objective bits
 check probabilistic bits bits bits --method probabilistic
 check probabilistic_cells cells cells bits --method probabilistic --objective cells --alpha 0.9
 check greedy cells cells cells --method greedy
@@ -68,8 +76,10 @@ if grep -q "took all" "$work/explore.txt"; then fail "explore says: $(grep "took
 import csv, json, sys
 folder = sys.argv[1]
 run = json.load(open(f"{folder}/run.json"))
-if run["objective"] != "cells" or run["units"]["score"] != "cells" or run["units"]["predicted_gain"] != "bits":
-    sys.exit(f"FAIL: explore: objective {run['objective']}, units {run['units']}")
+# The default around a table top: latombe+surface, in cells.
+if run["config"]["method"] != "latombe+surface" or run["objective"] != "cells" \
+        or run["units"]["score"] != "cells" or run["units"]["predicted_gain"] != "cells":
+    sys.exit(f"FAIL: explore: {run['config']['method']}, objective {run['objective']}, units {run['units']}")
 if set(run["sensor"]) != {"horizontal_fov_deg", "vertical_fov_deg", "min_range_m", "max_range_m"}:
     sys.exit(f"FAIL: explore: sensor {run['sensor']}")
 rows = list(csv.DictReader(open(f"{folder}/scans.csv")))

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "test_scene.hpp"
+#include "vantage/experiment/planning_settings.hpp"
 #include "vantage/experiment/results.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/io/cloud_io.hpp"
@@ -230,6 +231,22 @@ TEST(Exploration, RejectsBadSettings) {
   config.scans = 2;
   config.start = 99;
   EXPECT_THROW(explore(scene, config, mapper), std::invalid_argument);
+}
+
+// Settings that name no method take the default for their task and pose; one named stands.
+TEST(PlanningSettings, NoMethodIsTheDefaultForTheTask) {
+  PlanningSettings settings;
+  EXPECT_EQ(to_string(settings.planner_config().method), "latombe+surface");
+  settings.knows_pose = false;
+  EXPECT_EQ(to_string(settings.planner_config().method), "surface");
+  settings.task = ViewTask::kExploration;
+  const PlannerConfig office = settings.planner_config(kOfficeAlpha);
+  EXPECT_EQ(office.method, PlannerMethod::kSurvival);
+  EXPECT_EQ(office.objective, GainObjective::kCells);
+  settings.method = "greedy";
+  EXPECT_EQ(settings.planner_config().method, PlannerMethod::kGreedy);
+  settings.method = "fancy";
+  EXPECT_THROW(settings.planner_config(), SettingError);
 }
 
 }  // namespace

@@ -303,5 +303,18 @@ TEST(PlannerMethod, IsAGainRankedOneWay) {
   EXPECT_GE(weighed_views, 1u);
 }
 
+// The planner a user gets when naming none: around objects the surface model ranked by travel,
+// or alone where no pose gives a travel; exploring a building the survival reading
+// (docs/decision.md, "The default planner").
+TEST(PlannerMethod, TheDefaultFollowsTheTaskAndThePose) {
+  EXPECT_EQ(to_string(default_planner_method(ViewTask::kObjects, true)), "latombe+surface");
+  EXPECT_EQ(to_string(default_planner_method(ViewTask::kObjects, false)), "surface");
+  for (const bool pose : {true, false}) {
+    EXPECT_EQ(default_planner_method(ViewTask::kExploration, pose), PlannerMethod::kSurvival);
+    // NOTE: a default that weighs travel only where a pose gives one.
+    EXPECT_TRUE(!uses_travel(default_planner_method(ViewTask::kObjects, pose)) || pose);
+  }
+}
+
 }  // namespace
 }  // namespace vantage

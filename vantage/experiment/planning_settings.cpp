@@ -22,6 +22,11 @@ auto as_setting(const char* name, F&& f) -> decltype(f()) {
 
 }  // namespace
 
+PlannerMethod PlanningSettings::planner_method() const {
+  if (method.empty()) return default_planner_method(task, knows_pose);
+  return as_setting("method", [&] { return parse_planner_method(method); });
+}
+
 AlphaSetting PlanningSettings::alpha_setting(double literal) const {
   if (alpha.empty()) return {false, literal};
   return as_setting("alpha", [&] { return parse_alpha_setting(alpha, literal); });
@@ -29,7 +34,7 @@ AlphaSetting PlanningSettings::alpha_setting(double literal) const {
 
 PlannerConfig PlanningSettings::planner_config(double literal_alpha) const {
   PlannerConfig config;
-  config.method = as_setting("method", [&] { return parse_planner_method(method); });
+  config.method = planner_method();
   config.objective = objective.empty()
                          ? natural_objective(config.method)
                          : as_setting("objective", [&] { return parse_gain_objective(objective); });

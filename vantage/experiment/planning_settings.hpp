@@ -27,7 +27,11 @@ class SettingError : public std::invalid_argument {
 
 /// The settings; each empty text means "the method's own" (or the search's default).
 struct PlanningSettings {
-  std::string method = "probabilistic";
+  /// A method's name (parse_planner_method); empty: the default one for `task`, and for
+  /// whether the robot's pose is known (default_planner_method).
+  std::string method;
+  ViewTask task = ViewTask::kObjects;
+  bool knows_pose = true;
   std::string alpha;      ///< a number, "auto", or empty: the caller's literal default
   std::string objective;  ///< bits, cells, or empty: the method's own (natural_objective)
   std::string evaluation = "auto";
@@ -42,6 +46,8 @@ struct PlanningSettings {
   int sample = 1;                               ///< the sequence's values on one cell in N
   int swept_rays = PlannerConfig{}.swept_rays;  ///< the swept search's rays across a view
 
+  /// The method named, or the default one (`method` empty); throws SettingError.
+  PlannerMethod planner_method() const;
   /// `alpha` as a setting; without it `literal` (the scene kind's a), also auto's prior. Throws
   /// SettingError.
   AlphaSetting alpha_setting(double literal = kTableTopAlpha) const;

@@ -47,7 +47,8 @@ struct GainUnits {
   std::string_view predicted_gain;  ///< the method's own gain: bits, cells or metric
   std::string_view score;           ///< what it ranks by: bits, cells, metric or -m (yamauchi)
   /// What the gain ranks by: the probabilistic and survival methods' objective (bits or
-  /// cells); cells for the methods that count cells; metric for the field's metrics.
+  /// cells); cells for the methods that count cells and the surface model (the surface a scan
+  /// adds); metric for the field's other metrics.
   std::string_view objective;
 };
 

@@ -91,6 +91,11 @@ GainObjective natural_objective(PlannerMethod method) {
   return uses_survival_reading(method) ? GainObjective::kCells : GainObjective::kBits;
 }
 
+PlannerMethod default_planner_method(ViewTask task, bool knows_pose) {
+  if (task == ViewTask::kExploration) return PlannerMethod::kSurvival;
+  return {GainMethod::kSurface, knows_pose ? Ranking::kTravel : Ranking::kBest};
+}
+
 bool ranks_by_gain(PlannerMethod method) {
   return method.ranking != Ranking::kRandom && method.ranking != Ranking::kNearest;
 }

@@ -49,6 +49,22 @@ inline constexpr PlannerMethod PlannerMethod::kYamauchi{GainMethod::kGreedy, Ran
 inline constexpr PlannerMethod PlannerMethod::kSequence{GainMethod::kSurvival, Ranking::kSequence};
 
 std::string to_string(PlannerMethod method);
+
+/// What the views are for, which picks the planner a user gets when naming none.
+enum class ViewTask {
+  kObjects,      ///< see the objects on a table: views around them (ring, sphere, hemisphere)
+  kExploration,  ///< explore a building: stops at its frontiers (the office)
+};
+
+/// The planner a user gets when naming none (explore, bench tabletop, plan, Python). Around
+/// objects, `latombe+surface`: the surface model ranked by Latombe's travel discount, the best by
+/// scan-point coverage and travel on the ring and the hemisphere over 54 table tops (RESULTS.md,
+/// "The surface model"); without the robot's pose there is no travel to weigh, and it is
+/// `surface`. Exploring a building, `survival`: the surface model credits only cells near the
+/// surface already known, and ranked by travel it keeps the robot near it (office-small-cluttered,
+/// 3 stops: 11.8 % coverage against the survival reading's 20.1 %; docs/decision.md, "The default
+/// planner").
+PlannerMethod default_planner_method(ViewTask task, bool knows_pose);
 /// Whether the method predicts with the survival reading of the visibility (survival, sequence):
 /// its a is a chance per unobserved cell, fitted online by default, and it ranks by cells.
 bool uses_survival_reading(PlannerMethod method);

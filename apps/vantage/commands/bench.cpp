@@ -28,7 +28,9 @@ namespace fs = std::filesystem;
 
 struct BenchOptions {
   std::vector<std::string> scenes = {"tabletop-1", "tabletop-2", "tabletop-3", "tabletop-4"};
-  std::vector<std::string> methods = {"probabilistic", "greedy", "random"};
+  /// The default planner beside the paper's three (§5.1).
+  std::vector<std::string> methods = {to_string(default_planner_method(ViewTask::kObjects, true)),
+                                      "probabilistic", "greedy", "random"};
   std::string alphas;      ///< empty: each method's own, as explore runs it
   std::string objectives;  ///< empty: each method's own
   int trials = 10;

@@ -45,10 +45,10 @@ struct ExploreOptions {
   double max_work = kDefaultMaxWorkSeconds;  // [s] of a decision's estimated work
 };
 
-fs::path default_out(const ExploreOptions& o) {
+fs::path default_out(const ExploreOptions& o, PlannerMethod method) {
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
   return fs::path("results") / fmt::format("explore-{}-{}-{:%Y%m%d-%H%M%S}", o.scene,
-                                           o.planning.method, fmt::localtime(now));
+                                           to_string(method), fmt::localtime(now));
 }
 
 void print_scan(const ScanRecord& r, int total, bool ranks_by_bits) {
@@ -90,6 +90,7 @@ void run(const ExploreOptions& o) {
   // NOTE: the greedy oracle is the experiment layer's (it knows the world), not a planner method:
   // greedy's settings stand in for it (docs/yardstick.md).
   PlanningOptions planning = o.planning;
+  planning.task = office ? ViewTask::kExploration : ViewTask::kObjects;
   config.greedy_oracle = planning.method == kGreedyOracleName;
   if (config.greedy_oracle) planning.method = std::string(to_string(PlannerMethod::kGreedy));
   config.planner = planning.planner_config(paper);
@@ -116,7 +117,7 @@ void run(const ExploreOptions& o) {
   o.candidates.apply(config);
   from_options([&] { config.validate(); });
 
-  const fs::path out = o.out.empty() ? default_out(o) : fs::path(o.out);
+  const fs::path out = o.out.empty() ? default_out(o, config.planner.method) : fs::path(o.out);
   if (fs::exists(out) && !fs::is_empty(out)) {
     throw std::invalid_argument(fmt::format("--out {} exists and is not empty", out.string()));
   }
@@ -137,7 +138,8 @@ void run(const ExploreOptions& o) {
     fmt::print(
         "exploring {} with {} ({} evaluation, {} search{}), {} scans from start {}, "
         "seed {}\n",
-        scene.name, o.planning.method, o.planning.evaluation,
+        scene.name, config.greedy_oracle ? o.planning.method : to_string(config.planner.method),
+        o.planning.evaluation,
         sequence_of(config.planner).active() ? "sequence"
                                              : to_string(resolve_search(config.planner)),
         has_observability(config.planner.method)
@@ -173,7 +175,6 @@ void add_explore_command(CLI::App& app) {
       "explore", "Explore a simulated scene scan by scan, choosing each next view (the main job)");
   cmd->add_option("--scene,-s", o->scene, "built-in scene name or scene YAML file")
       ->capture_default_str();
-  o->planning.method = "survival";
   o->planning.add_to(*cmd);
   cmd->get_option("--alpha")
       ->description(fmt::format(

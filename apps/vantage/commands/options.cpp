@@ -48,7 +48,9 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
                  "another gain as RANKING+GAIN (latombe+survival); explore and bench "
                  "on a table top also take greedy-oracle (the view whose true hits add the most "
                  "surface, docs/yardstick.md)")
-      ->capture_default_str();
+      ->default_str(
+          "latombe+surface around a table top (surface when plan has no robot pose), survival "
+          "exploring an office or from frontier candidates");
   cmd.add_option("--alpha,-a", alpha,
                  "observability parameter a of the probabilistic and survival methods, in (0, 1], "
                  "or 'auto': fitted to the run's own predictions and outcomes")

@@ -77,7 +77,12 @@ void run(const PlanOptions& o) {
     throw UsageError(
         "--alpha auto fits a over an exploration's scans (explore, bench); plan takes a number");
   }
-  PlannerConfig planner = o.planning.planner_config();
+  // NOTE: the default planner weighs travel from the robot's pose: --pose, or a manifest's last
+  // cloud's.
+  PlanningOptions planning = o.planning;
+  planning.task = o.candidates == "frontier" ? ViewTask::kExploration : ViewTask::kObjects;
+  planning.knows_pose = !o.pose.empty() || !o.input.empty();
+  PlannerConfig planner = planning.planner_config();
   planner.predict_chosen = o.predict;
   request_plan_reference(planner);
   const GainUnits units = gain_units(planner);
@@ -339,7 +344,6 @@ void add_plan_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--range", o->range, "min,max range without a manifest [m]")
       ->capture_default_str();
-  o->planning.method = "survival";
   o->planning.add_to(*cmd);
   cmd->add_option("--pose", o->pose,
                   "the robot's sensor pose now, x,y,z,roll,pitch,yaw [m, deg], for the travel of "
