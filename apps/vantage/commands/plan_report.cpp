@@ -8,6 +8,7 @@
 
 #include "commands/plan.hpp"
 #include "shell.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/map_files.hpp"
 #include "vantage/io/ply_export.hpp"
@@ -163,10 +164,17 @@ void report_plan(const PlanReport& report) {
                score_header.size());
   }
   if (any_estimated) {
+    // NOTE: a metric whose value sums cell credits is raced cell by cell from the start, its
+    // estimates those of the race's samples (docs/decision.md, "A metric raced cell by cell").
+    const bool cell_race = method_traits(planner.method.gain).cells != nullptr;
     fmt::print("{}\n",
                plan.search == DecisionSearch::kPruned
                    ? "~ not evaluated: the pruned search's upper bound on this view's gain "
                      "and score, below the chosen view's score"
+               : cell_race
+                   ? "~ not evaluated in full: the swept search's estimate of this view's "
+                     "gain and score on the sample of cells its race stopped at, listed after "
+                     "the views evaluated in full"
                    : "~ not evaluated in full: the swept search's estimate of this view's "
                      "gain and score, listed after the views evaluated in full (its rays "
                      "weigh a cell by the part of its volume they sweep, so an estimate may "
