@@ -61,9 +61,8 @@ enum class ViewTask {
 /// scan-point coverage and travel on the ring and the hemisphere over 54 table tops (RESULTS.md,
 /// "The surface model"); without the robot's pose there is no travel to weigh, and it is
 /// `surface`. Exploring a building, `survival`: the surface model credits only cells near the
-/// surface already known, and ranked by travel it keeps the robot near it (office-small-cluttered,
-/// 3 stops: 11.8 % coverage against the survival reading's 20.1 %; docs/decision.md, "The default
-/// planner").
+/// surface already known, and ranked by travel it keeps the robot near it, leaving more of the
+/// building unknown (three offices, 3 stops: docs/decision.md, "The default planner").
 PlannerMethod default_planner_method(ViewTask task, bool knows_pose);
 /// Whether the method predicts with the survival reading of the visibility (survival, sequence):
 /// its a is a chance per unobserved cell, fitted online by default, and it ranks by cells.
