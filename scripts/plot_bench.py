@@ -738,6 +738,7 @@ def surface_summary(trials, budget, set_cover_rows, tolerance=1):
                      f" {f'{median(diffs):.2f}' if diffs else '-'} |"
                      f" {'-' if p is None else f'{p:.2g}'} |")
     lines.append("")
+    lines += oracle_against_greedy(trials, budget)
     if set_cover_rows:
         lines += ["## The set-cover bound", "",
                   "Per scene, start and level of the visible surface (scripts/set_cover.py, on the",
@@ -760,6 +761,33 @@ def surface_summary(trials, budget, set_cover_rows, tolerance=1):
                          f" {r['greedy_tour_m'] or '-'} |")
         lines.append("")
     return lines
+
+
+def oracle_against_greedy(trials, budget):
+    """Issue 36's check over a sweep: the cases (scene, start, level) where the greedy oracle
+    needed more scans than greedy to reach the level, a run that never does counted as
+    budget + 1, and where either never reached it."""
+    oracle = {(m["scene"], m["trial"]): m for m in trials if m["method"] == ORACLE}
+    pairs = [(m, oracle[(m["scene"], m["trial"])]) for m in trials
+             if m["method"] == "greedy" and (m["scene"], m["trial"]) in oracle]
+    if not pairs:
+        return []
+    behind, never = [], {"greedy": 0, ORACLE: 0}
+    for g, o in pairs:
+        for lv in SURFACE_LEVELS:
+            gs, os_ = (x[("scans_to", lv)] or budget + 1 for x in (g, o))
+            never["greedy"] += gs > budget
+            never[ORACLE] += os_ > budget
+            if os_ > gs:
+                behind.append(f"{g['scene']} start {g['trial']} to {round(100 * lv)}% "
+                              f"({os_ if os_ <= budget else 'never'} against {gs})")
+    cases = len(pairs) * len(SURFACE_LEVELS)
+    levels = ", ".join(f"{round(100 * lv)}%" for lv in SURFACE_LEVELS)
+    return ["### The greedy oracle against greedy, case by case", "",
+            f"Cases (scene, start, level of {levels}): {cases}. The oracle needed more scans than"
+            f" greedy in {len(behind)} of them" + (": " + "; ".join(behind) if behind else "") + ".",
+            f"Never reached within {budget} scans: greedy {never['greedy']}, the oracle"
+            f" {never[ORACLE]} of the {cases}.", ""]
 
 
 def pareto(points):

@@ -65,7 +65,8 @@ def pooled_ratio(mine, greedy, key):
 
 def table(pts):
     greedy = next((t for name, lam, t in pts if name == "greedy" and lam is None), [])
-    lines = ["| method | lambda [1/m] | trials | AAC [scans] | × greedy's | travel [m] | × greedy's |",
+    lines = ["| method | lambda [1/m] | trials | AAC [scans] | × greedy's | travel [m] |"
+             " × greedy's |",
              "|---|---|---|---|---|---|---|"]
     for name, lam, trials in sorted(pts, key=lambda p: (p[1] is not None, p[0], p[1] or 0)):
         n = len(trials)
@@ -88,9 +89,9 @@ def plot(pts, path):
         xy.append((travel, auc, name, lam))
     for name in sorted({p[2] for p in xy}):
         mine = sorted((p for p in xy if p[2] == name), key=lambda p: p[3] or 0)
+        colour = plot_bench.COLOURS.get(name) or plot_bench.COLOURS.get(name.split("+")[0], "0.4")
         ax.plot([p[0] for p in mine], [p[1] for p in mine], "o-" if len(mine) > 1 else "o",
-                color=plot_bench.COLOURS.get(name) or plot_bench.COLOURS.get(name.split("+")[0], "0.4"),
-                label=name)
+                color=colour, label=name)
         for travel, auc, _, lam in mine:
             if lam is not None:
                 ax.annotate(f"λ={lam:g}", (travel, auc), fontsize=7, xytext=(4, 3),

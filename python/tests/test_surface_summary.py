@@ -123,3 +123,23 @@ def test_the_pooled_table_gives_each_method_over_the_same_pairs_against_greedy(s
     assert [row[5], row[7], row[9]] == ["3.00", "4.00", "5.00"]
     assert row[11:13] == ["3.00", "0.500"]
     assert row[14] == "92.0%"
+
+
+def test_the_oracle_against_greedy_case_by_case(sweep):
+    # Scans to 80/90/95 %: greedy 3, 4 and never; the oracle 2, 3 and 4: never behind greedy.
+    summary = (sweep / "summary.md").read_text()
+    part = summary.split("### The greedy oracle against greedy, case by case")[1]
+    assert "Cases (scene, start, level of 80%, 90%, 95%): 18." in part
+    assert "more scans than greedy in 0 of them." in part
+    assert "Never reached within 4 scans: greedy 6, the oracle 0 of the 18." in part
+
+
+def test_an_oracle_behind_greedy_is_named(plot_bench):
+    def trial(method, to80):
+        m = {"scene": "pile-12-s0001", "trial": "1", "method": method}
+        m.update({("scans_to", lv): None for lv in plot_bench.SURFACE_LEVELS})
+        m[("scans_to", 0.80)] = to80
+        return m
+    lines = plot_bench.oracle_against_greedy([trial("greedy", 2), trial("greedy-oracle", 3)], 4)
+    assert ("greedy in 1 of them: pile-12-s0001 start 1 to 80% (3 against 2).") in lines[2]
+    assert lines[3] == "Never reached within 4 scans: greedy 2, the oracle 2 of the 3."
