@@ -1,0 +1,125 @@
+#!/usr/bin/python3
+"""Every method's choices judged by the truth alone (issue 36, docs/yardstick.md "Choices by the
+truth"): the views each trial of a table-top sweep took, in order, scored by their noise-free hit
+sets (DIR/yardstick/SCENE.json, the yardstick's own) rather than by the registered scans, so that
+what a planner chose is measured apart from how registration went. The greedy oracle's order on
+the same hit sets (set_cover.py's greedy_views) is the reference it is built to beat.
+
+Usage: views_by_truth.py DIR
+Reads DIR/scans.csv and DIR/yardstick/*.json; prints a Markdown table per method: trials, the
+area above the true coverage curve over scans 1..N [scans] and its ratio to greedy's (pooled over
+the same trials), the mean scans to 80, 90 and 95 % of V (N + 1 where not reached), and the cases
+(trial, level) where the greedy oracle's order on the truth needs more scans than the method's
+views.
+"""
+
+import csv
+import os
+import sys
+from collections import defaultdict
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+
+import set_cover  # noqa: E402  (the yardstick's hit sets and the greedy oracle's order)
+
+LEVELS = (0.80, 0.90, 0.95)
+
+
+def curve(truth, start, views):
+    """The true coverage (share of V) after the start's scan and after each view in turn."""
+    hit = set(truth["starts"][start])
+    out = [len(hit) / truth["visible_cells"]]
+    for v in views:
+        hit |= truth["views"][v]
+        out.append(len(hit) / truth["visible_cells"])
+    return out
+
+
+def scans_to(cov, level, budget):
+    """The first scan (1-based) whose coverage reaches `level`; budget + 1 when none does."""
+    for k, c in enumerate(cov[:budget]):
+        if c >= level - 1e-12:
+            return k + 1
+    return budget + 1
+
+
+def trials(out):
+    """(scene, method, setting, trial) -> the views taken after the start, in scan order."""
+    runs = defaultdict(list)
+    with open(os.path.join(out, "scans.csv"), newline="") as f:
+        for r in csv.DictReader(f):
+            key = (r["scene"], r["method"], r.get("alpha", ""), r.get("objective", ""),
+                   int(r["trial"]))
+            runs[key].append((int(r["scan"]), int(r["view"])))
+    return {k: [v for s, v in sorted(rows) if s > 1] for k, rows in runs.items()}
+
+
+def measures(out):
+    """Per trial: its method label, scene, trial, AAC and scans to each level, by the truth;
+    beside it the greedy oracle's order on the truth from the same start (label 'truth-greedy')."""
+    truths = {}
+    rows = []
+    runs = trials(out)
+    budget = max((len(v) + 1 for v in runs.values()), default=0)
+    for (scene, method, alpha, objective, trial), views in sorted(runs.items()):
+        if scene not in truths:
+            path = os.path.join(out, "yardstick", f"{scene}.json")
+            if not os.path.exists(path):
+                continue
+            truths[scene] = set_cover.load_truth(path)
+        truth = truths[scene]
+        start = trial % len(truth["starts"])
+        name = method if not alpha else f"{method} (a={alpha}" + (
+            f", {objective})" if objective else ")")
+        oracle = [v for v, _ in set_cover.greedy_oracle(truth, start)]
+        for label, order in ((name, views), ("truth-greedy", oracle)):
+            cov = curve(truth, start, order)[:budget]
+            cov += [cov[-1]] * (budget - len(cov))
+            rows.append({"label": label, "scene": scene, "trial": trial,
+                         "aac": sum(1 - c for c in cov),
+                         **{lv: scans_to(cov, lv, budget) for lv in LEVELS}})
+    return rows, budget
+
+
+def table(rows, budget):
+    oracle = {(r["scene"], r["trial"]): r for r in rows if r["label"] == "truth-greedy"}
+    greedy = {(r["scene"], r["trial"]): r for r in rows if r["label"] == "greedy"}
+    lines = ["| method | trials | AAC by the truth [scans] | × greedy's | " +
+             " | ".join(f"scans to {round(100 * lv)}%" for lv in LEVELS) +
+             " | the oracle's order behind it (cases) |",
+             "|---|---|---|---|" + "---|" * len(LEVELS) + "---|"]
+    labels = sorted({r["label"] for r in rows if r["label"] != "truth-greedy"})
+    for label in ["truth-greedy"] + labels:
+        mine = [r for r in rows if r["label"] == label]
+        if label == "truth-greedy":
+            # NOTE: one order per scene and start, whatever the methods.
+            mine = list(oracle.values())
+        n = len(mine)
+        pairs = [(r["aac"], greedy[(r["scene"], r["trial"])]["aac"]) for r in mine
+                 if (r["scene"], r["trial"]) in greedy]
+        ratio = (sum(a for a, _ in pairs) / sum(g for _, g in pairs)
+                 if pairs and len(pairs) == n and sum(g for _, g in pairs) > 0 else None)
+        behind = sum(oracle[(r["scene"], r["trial"])][lv] > r[lv] for r in mine for lv in LEVELS)
+        lines.append(f"| {label} | {n} | {sum(r['aac'] for r in mine) / n:.3f} | "
+                     f"{'-' if ratio is None else f'{ratio:.3f}'} | " +
+                     " | ".join(f"{sum(r[lv] for r in mine) / n:.2f}" for lv in LEVELS) +
+                     f" | {behind} of {n * len(LEVELS)} |")
+    return lines
+
+
+def main(argv):
+    if len(argv) != 2:
+        sys.exit("usage: views_by_truth.py DIR")
+    out = argv[1]
+    if not os.path.exists(os.path.join(out, "scans.csv")):
+        sys.exit(f"views_by_truth.py: no {out}/scans.csv")
+    rows, budget = measures(out)
+    if not rows:
+        sys.exit(f"views_by_truth.py: no trial of {out}/scans.csv has a yardstick file")
+    print(f"Scans 1..{budget} (the start's included); truth-greedy = the greedy oracle's order on"
+          " the noise-free hit sets from the same start.\n")
+    print("\n".join(table(rows, budget)))
+
+
+if __name__ == "__main__":
+    main(sys.argv)
