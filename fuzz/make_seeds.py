@@ -3,6 +3,7 @@
 format. The files are checked in; rerun after changing this script. Usage: fuzz/make_seeds.py"""
 import os
 import struct
+import subprocess
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -294,6 +295,19 @@ def mcap_seeds():
     chunk = record(6, struct.pack("<QQQI", 0, 0, len(inner), 0) + string("") +
                    struct.pack("<Q", len(inner)) + inner)
     write("mcap", "chunked.mcap", magic + header + chunk + footer + magic)
+    # The same chunk compressed by the zstd and lz4 command-line tools (frames as libzstd and
+    # liblz4 write them), and a zstd chunk that claims 4 GB uncompressed: the reader must refuse it
+    # without allocating the claim (a finding of 2026-11-28).
+    for compression, tool in (("zstd", ["zstd", "-q", "-c"]), ("lz4", ["lz4", "-q", "-c"])):
+        try:
+            packed = subprocess.run(tool, input=inner, capture_output=True, check=True).stdout
+        except (OSError, subprocess.CalledProcessError):
+            print(f"make_seeds: no {tool[0]} tool; its MCAP seeds are left as they are")
+            continue
+        for name, size in ((f"{compression}.mcap", len(inner)), (f"{compression}-lying-size.mcap", 4_177_461_442)):
+            chunk = record(6, struct.pack("<QQQI", 0, 0, size, 0) + string(compression) +
+                           struct.pack("<Q", len(packed)) + packed)
+            write("mcap", name, magic + header + chunk + footer + magic)
 
 
 if __name__ == "__main__":
