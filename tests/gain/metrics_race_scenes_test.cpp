@@ -6,7 +6,8 @@
 // (metric_race_rounds, MethodTraits::cells; the rear side metrics are evaluated in full by the
 // swept search too), the 187 hemisphere views of the issue-26 sweeps
 // (radii 0.9, 1.1 and 1.3 m, 0.3 m apart) on the four built-in table tops and two generated piles
-// of primitives, after 1 to 8 scans from the scene's ring (every seventh ring view in turn).
+// of primitives, after 1, 3, 5 and 7 scans from the scene's ring (every seventh ring view in turn;
+// every other state, so that the six scenes keep CI within its 30 minutes).
 
 #include <gtest/gtest.h>
 
@@ -28,7 +29,7 @@
 namespace vantage {
 namespace {
 
-constexpr int kScans = 8;
+constexpr int kScans = 7;
 
 /// Every raced metric's decision on `grid` among `cands`: the swept search's against the
 /// exhaustive one's, which evaluates every view at the metric's own pitch.
@@ -100,7 +101,8 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
   }
 }
 
-/// Scans `scene` from its ring, every seventh view in turn, and checks the state after each scan.
+/// Scans `scene` from its ring, every seventh view in turn, and checks the state after every other
+/// scan.
 void check_scene(const std::string& name, const sim::Scene& scene) {
   below_tolerance = 0;
   const sim::World world(scene);
@@ -118,7 +120,7 @@ void check_scene(const std::string& name, const sim::Scene& scene) {
     const Eigen::Isometry3d& pose = ring[static_cast<std::size_t>(7 * k) % ring.size()];
     const sim::SimulatedScan scan = world.scan(pose, 2000 + static_cast<std::uint64_t>(k));
     integrate_scan(grid, Scan{scan.points_world(), scan.view()}, IntegrationConfig{});
-    check_state(cat(name, " after ", k + 1, " scans"), grid, cands);
+    if (k % 2 == 0) check_state(cat(name, " after ", k + 1, " scans"), grid, cands);
   }
   EXPECT_LE(below_tolerance, 1) << name;
 }
