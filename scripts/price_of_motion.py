@@ -89,7 +89,10 @@ def plot(pts, path):
         xy.append((travel, auc, name, lam))
     for name in sorted({p[2] for p in xy}):
         mine = sorted((p for p in xy if p[2] == name), key=lambda p: p[3] or 0)
-        colour = plot_bench.COLOURS.get(name) or plot_bench.COLOURS.get(name.split("+")[0], "0.4")
+        # RANKING+GAIN takes its gain's colour, so that it is not taken for the ranking's own
+        # method (latombe+surface beside latombe); a gain without one, its own from the cycle.
+        colour = (plot_bench.COLOURS.get(name) or plot_bench.COLOURS.get(name.split("+")[-1])
+                  or f"C{sorted({p[2] for p in xy}).index(name) % 10}")
         ax.plot([p[0] for p in mine], [p[1] for p in mine], "o-" if len(mine) > 1 else "o",
                 color=colour, label=name)
         for travel, auc, _, lam in mine:
