@@ -304,7 +304,8 @@ def mcap_seeds():
         except (OSError, subprocess.CalledProcessError):
             print(f"make_seeds: no {tool[0]} tool; its MCAP seeds are left as they are")
             continue
-        for name, size in ((f"{compression}.mcap", len(inner)), (f"{compression}-lying-size.mcap", 4_177_461_442)):
+        for name, size in ((f"{compression}.mcap", len(inner)),
+                           (f"{compression}-lying-size.mcap", 4_177_461_442)):
             chunk = record(6, struct.pack("<QQQI", 0, 0, size, 0) + string(compression) +
                            struct.pack("<Q", len(packed)) + packed)
             write("mcap", name, magic + header + chunk + footer + magic)

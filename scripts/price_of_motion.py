@@ -87,12 +87,12 @@ def plot(pts, path):
         travel = sum(m["travel"] for m in trials) / n
         auc = sum(m["auc"] for m in trials) / n
         xy.append((travel, auc, name, lam))
-    for name in sorted({p[2] for p in xy}):
+    for index, name in enumerate(sorted({p[2] for p in xy})):
         mine = sorted((p for p in xy if p[2] == name), key=lambda p: p[3] or 0)
         # RANKING+GAIN takes its gain's colour, so that it is not taken for the ranking's own
         # method (latombe+surface beside latombe); a gain without one, its own from the cycle.
         colour = (plot_bench.COLOURS.get(name) or plot_bench.COLOURS.get(name.split("+")[-1])
-                  or f"C{sorted({p[2] for p in xy}).index(name) % 10}")
+                  or f"C{index % 10}")
         ax.plot([p[0] for p in mine], [p[1] for p in mine], "o-" if len(mine) > 1 else "o",
                 color=colour, label=name)
         for travel, auc, _, lam in mine:
