@@ -48,8 +48,11 @@ std::vector<float> occupied_distance(const GainMap& map, double radius, int num_
     float distance;
   };
   const std::ptrdiff_t sy = spec.dims.x(), sz = sy * spec.dims.y();
+  // The ball's offsets by ascending z; those of z = dz from first[dz + r] to first[dz + r + 1].
   std::vector<Offset> ball;
+  std::vector<std::size_t> first;
   for (int z = -r; z <= r; ++z) {
+    first.push_back(ball.size());
     for (int y = -r; y <= r; ++y) {
       for (int x = -r; x <= r; ++x) {
         const double d = std::sqrt(static_cast<double>(x * x + y * y + z * z));
@@ -58,33 +61,40 @@ std::vector<float> occupied_distance(const GainMap& map, double radius, int num_
       }
     }
   }
-  std::vector<std::uint32_t> occupied;  // ascending, so by slice
-  for (std::size_t i = 0; i < map.size(); ++i) {
-    if (map.value(i).state == CellState::kOccupied)
-      occupied.push_back(static_cast<std::uint32_t>(i));
-  }
+  first.push_back(ball.size());
   // NOTE: each occupied cell stamps the ball of `radius` around it; the minimum does not depend
-  // on the order. Slabs of slices in parallel, each written by one task from the occupied cells
-  // within r slices of it: the same for any thread count.
+  // on the order. Slabs of slices in parallel: each first lists its occupied cells, then writes
+  // its own slices from the occupied cells within r slices of it, each stamping only the part of
+  // its ball in the slab: the same for any thread count.
   constexpr int kSlab = 8;
   const int slabs = (spec.dims.z() + kSlab - 1) / kSlab;
+  std::vector<std::vector<std::uint32_t>> occupied(static_cast<std::size_t>(slabs));
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(0, slabs, [&](int slab) {
+      const std::size_t from = static_cast<std::size_t>(slab * kSlab) * static_cast<std::size_t>(sz);
+      const std::size_t to = std::min(map.size(), from + kSlab * static_cast<std::size_t>(sz));
+      std::vector<std::uint32_t>& mine = occupied[static_cast<std::size_t>(slab)];
+      for (std::size_t i = from; i < to; ++i) {
+        if (map.value(i).state == CellState::kOccupied) mine.push_back(static_cast<std::uint32_t>(i));
+      }
+    });
+    tbb::parallel_for(0, slabs, [&](int slab) {
       const int z0 = slab * kSlab, z1 = std::min(spec.dims.z(), z0 + kSlab);
-      const auto from = std::lower_bound(occupied.begin(), occupied.end(),
-                                         static_cast<std::uint32_t>(std::max(0, z0 - r) * sz));
-      const auto to =
-          std::lower_bound(occupied.begin(), occupied.end(),
-                           static_cast<std::uint32_t>(std::min(spec.dims.z(), z1 + r) * sz));
-      for (auto it = from; it != to; ++it) {
-        const Index3 c = spec.unravel(*it);
-        const bool inside = (c.array() >= r).all() && (c.array() < spec.dims.array() - r).all();
-        for (const Offset& o : ball) {
-          const int z = c.z() + o.d.z();
-          if (z < z0 || z >= z1) continue;
-          if (!inside && !spec.contains(Index3(c + o.d))) continue;
-          float& slot = near[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(*it) + o.linear)];
-          slot = std::min(slot, o.distance);
+      const int reach = (r + kSlab - 1) / kSlab;
+      for (int other = std::max(0, slab - reach); other <= std::min(slabs - 1, slab + reach);
+           ++other) {
+        for (const std::uint32_t i : occupied[static_cast<std::size_t>(other)]) {
+          const Index3 c = spec.unravel(i);
+          const int dz_lo = std::max(-r, z0 - c.z()), dz_hi = std::min(r, z1 - 1 - c.z());
+          if (dz_lo > dz_hi) continue;
+          const bool inside = (c.array() >= r).all() && (c.array() < spec.dims.array() - r).all();
+          const std::size_t k_end = first[static_cast<std::size_t>(dz_hi + r + 1)];
+          for (std::size_t k = first[static_cast<std::size_t>(dz_lo + r)]; k < k_end; ++k) {
+            const Offset& o = ball[k];
+            if (!inside && !spec.contains(Index3(c + o.d))) continue;
+            float& slot = near[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + o.linear)];
+            slot = std::min(slot, o.distance);
+          }
         }
       }
     });
