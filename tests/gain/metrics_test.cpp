@@ -208,12 +208,18 @@ TEST(Metrics, AutoCastsFewerRaysButReachesTheRowAlike) {
   }
 }
 
-TEST(Metrics, OccupiedDistanceIsTheEuclideanDistanceWithinTheRadius) {
+// An unobserved grid of `dims` cells `resolution` [m] wide, its corner at the origin.
+OccupancyGrid grid_at_origin(const Index3& dims, double resolution) {
   GridSpec spec;
   spec.origin = Eigen::Vector3d::Zero();
-  spec.resolution = 0.1;
-  spec.dims = {9, 9, 9};
-  OccupancyGrid grid(spec);
+  spec.resolution = resolution;
+  spec.dims = dims;
+  return OccupancyGrid(spec);
+}
+
+TEST(Metrics, OccupiedDistanceIsTheEuclideanDistanceWithinTheRadius) {
+  OccupancyGrid grid = grid_at_origin({9, 9, 9}, 0.1);
+  const GridSpec& spec = grid.spec();
   grid.set_probability(spec.linear(Index3(4, 4, 4)), grid.params().p_max);
   const std::vector<float> d = occupied_distance(GainMap(grid), 3.0);
   EXPECT_EQ(d[spec.linear(Index3(4, 4, 4))], 0.0f);
@@ -225,11 +231,8 @@ TEST(Metrics, OccupiedDistanceIsTheEuclideanDistanceWithinTheRadius) {
 // The distances from the occupied cells, stamped slab by slab in parallel, against every pair of
 // cells measured directly, on a grid of six slabs with occupied cells at its edges and corners.
 TEST(Metrics, OccupiedDistanceIsTheNearestOccupiedCellWithinTheRadiusEverywhere) {
-  GridSpec spec;
-  spec.origin = Eigen::Vector3d::Zero();
-  spec.resolution = 0.1;
-  spec.dims = {13, 11, 44};
-  OccupancyGrid grid(spec);
+  OccupancyGrid grid = grid_at_origin({13, 11, 44}, 0.1);
+  const GridSpec& spec = grid.spec();
   std::mt19937 rng(5);
   std::uniform_int_distribution<int> kind(0, 59);
   std::vector<Index3> occupied;
@@ -479,8 +482,8 @@ TEST(Metrics, ARayProvedBlockedNeverReachesItsCell) {
             const Eigen::Vector3d d = to - image.origin;
             GridWalk walk(spec, image.origin, to);
             if (!walk.entered()) continue;
-            const bool proof = detail::blocked_before(spec, map.values(), codes, near, image.origin,
-                                                      d, d.cwiseInverse(), c);
+            const bool proof =
+                detail::blocked_before(spec, map.values(), codes, near, image.origin, d, c);
             Surface metric = detail::make_metric<Surface>(ctx);
             Stamp credit{credited}, seen{seen_bits};
             ViewGain unused;
@@ -505,11 +508,8 @@ TEST(Metrics, ARayProvedBlockedNeverReachesItsCell) {
 // The proof on rays that run along cell faces and through cell edges, where a walk's tie could go
 // either way: an occupied cell it counts lies across the ray's path whichever way the tie goes.
 TEST(Metrics, ARayAlongCellFacesIsProvedBlockedOnlyThroughACell) {
-  GridSpec spec;
-  spec.origin = Eigen::Vector3d::Zero();
-  spec.resolution = 1.0;
-  spec.dims = {8, 8, 8};
-  OccupancyGrid grid(spec);
+  OccupancyGrid grid = grid_at_origin({8, 8, 8}, 1.0);
+  const GridSpec& spec = grid.spec();
   for (std::size_t i = 0; i < spec.num_cells(); ++i) grid.set_probability(i, 0.5);
   grid.set_probability(spec.linear(Index3(3, 3, 3)), grid.params().p_max);
   const GainMap map(grid, 1);
@@ -518,8 +518,7 @@ TEST(Metrics, ARayAlongCellFacesIsProvedBlockedOnlyThroughACell) {
   const auto proves = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
     const Eigen::Vector3d d = to - from;
     return with_codes(map, [&](const auto* codes) {
-      return detail::blocked_before(spec, map.values(), codes, near, from, d, d.cwiseInverse(),
-                                    target);
+      return detail::blocked_before(spec, map.values(), codes, near, from, d, target);
     });
   };
   // Through the middle of cell (3, 3, 3): blocked.

@@ -82,27 +82,6 @@ inline bool rays_through_cell(const RayImage& image, const GridSpec& spec, const
          range(v_lo, v_hi, image.tan_v, image.sv, image.rows, row_lo, row_hi);
 }
 
-/// Where the line o + s d lies in the box [lo, hi] (clip_to_box's slab test, by the direction's
-/// `inverse`, d's components inverted): [s_in, s_out], empty (s_in > s_out) when it misses it.
-inline std::pair<double, double> clip_by_inverse(const Eigen::Vector3d& lo,
-                                                 const Eigen::Vector3d& hi,
-                                                 const Eigen::Vector3d& o, const Eigen::Vector3d& d,
-                                                 const Eigen::Vector3d& inverse) {
-  constexpr double kInf = std::numeric_limits<double>::infinity();
-  double s_in = -kInf, s_out = kInf;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0.0) {
-      if (o[a] < lo[a] || o[a] > hi[a]) return {kInf, -kInf};
-      continue;
-    }
-    double t0 = (lo[a] - o[a]) * inverse[a], t1 = (hi[a] - o[a]) * inverse[a];
-    if (t0 > t1) std::swap(t0, t1);
-    s_in = std::max(s_in, t0);
-    s_out = std::min(s_out, t1);
-  }
-  return {s_in, s_out};
-}
-
 /// How many cells before a target `blocked_before` looks back along a ray at most.
 inline constexpr int kLookBack = 64;
 
@@ -111,8 +90,7 @@ inline constexpr int kLookBack = 64;
 /// (walk_ray, which ends on the first occupied cell it enters) does not reach the target. An
 /// occupied cell counts only when the segment passes through its cube shrunk by kCellSpare and
 /// leaves that before it enters the target's cube, so that no rounding of the walk's boundaries
-/// can step around it or put it after the target; false proves nothing. `inverse` holds d's
-/// components inverted.
+/// can step around it or put it after the target; false proves nothing.
 ///
 /// The steps back stop after `cells` cells, at the grid's edge, at the origin, and on a free cell
 /// or an unobserved one beyond D of every occupied cell (`near`, occupied_distance): a listed
@@ -124,8 +102,7 @@ inline constexpr int kLookBack = 64;
 template <typename Code>
 bool blocked_before(const GridSpec& spec, std::span<const GainMap::Value> values,
                     const Code* codes, std::span<const float> near, const Eigen::Vector3d& o,
-                    const Eigen::Vector3d& d, const Eigen::Vector3d& inverse, const Index3& target,
-                    int cells = kLookBack) {
+                    const Eigen::Vector3d& d, const Index3& target, int cells = kLookBack) {
   const double res = spec.resolution;
   // Per axis: where the segment, followed backwards, crosses the face behind the current cell
   // (forward, the face it enters by) [s], how far apart those faces lie [s], the step back in
@@ -143,8 +120,8 @@ bool blocked_before(const GridSpec& spec, std::span<const GainMap::Value> values
       continue;
     }
     const double plane = spec.origin[a] + (target[a] + (d[a] > 0.0 ? 0 : 1)) * res;
-    face[a] = (plane - o[a]) * inverse[a];
-    apart[a] = res * std::abs(inverse[a]);
+    face[a] = (plane - o[a]) / d[a];
+    apart[a] = res / std::abs(d[a]);
     back[a] = d[a] > 0.0 ? -1 : 1;
   }
   Index3 c = target;
@@ -165,8 +142,7 @@ bool blocked_before(const GridSpec& spec, std::span<const GainMap::Value> values
     }
     const auto clip = [&](const Index3& cell, double grow) {
       const Eigen::Vector3d lo = spec.origin + cell.cast<double>() * res;
-      return clip_by_inverse(lo.array() - grow * res, (lo.array() + res + grow * res).matrix(), o,
-                             d, inverse);
+      return clip_to_box(lo.array() - grow * res, (lo.array() + res + grow * res).matrix(), o, d);
     };
     const auto [x_in, x_out] = clip(c, -kCellSpare);
     const auto [t_in, t_out] = clip(target, 0.0);
@@ -212,12 +188,11 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
         for (int col = col_lo; col <= col_hi && !reached; col += image.step) {
           const Eigen::Vector3d to = o + image.max_range * image.direction(row, col);
           const Eigen::Vector3d d = to - o;
-          const Eigen::Vector3d inverse = d.cwiseInverse();
           // NOTE: the walk visits the cells the segment passes through (kCellSpare).
-          const auto [s_in, s_out] = clip_by_inverse(lo, hi, o, d, inverse);
+          const auto [s_in, s_out] = clip_to_box(lo, hi, o, d);
           if (std::max(s_in, 0.0) > std::min(s_out, 1.0)) continue;
           // NOTE: most rays to a listed cell end on the surface it lies next to.
-          if (blocked_before(spec, values, codes, ctx.near, o, d, inverse, c)) continue;
+          if (blocked_before(spec, values, codes, ctx.near, o, d, c)) continue;
           GridWalk walk(spec, o, to);
           if (!walk.entered()) continue;
           ViewGain unused;
