@@ -60,8 +60,8 @@ if [[ -n "$cut" ]]; then
   browse --screenshot="$out/whole.png" >/dev/null
   fragment="#cut=$cut&above"
 fi
-browse --dump-dom >"$out/dom.html"
-browse --screenshot="$out/viewer.png" >/dev/null
+# NOTE: one browse for both, the DOM on stdout: each browse renders the page in software anew.
+browse --dump-dom --screenshot="$out/viewer.png" >"$out/dom.html"
 if [[ -n "$cut" ]]; then
   /usr/bin/python3 "$here/check_render.py" "$out/dom.html" "$out/viewer.png" "$out/whole.png"
 else
