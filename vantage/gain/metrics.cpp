@@ -71,11 +71,13 @@ std::vector<float> occupied_distance(const GainMap& map, double radius, int num_
   std::vector<std::vector<std::uint32_t>> occupied(static_cast<std::size_t>(slabs));
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(0, slabs, [&](int slab) {
-      const std::size_t from = static_cast<std::size_t>(slab * kSlab) * static_cast<std::size_t>(sz);
+      const std::size_t from =
+          static_cast<std::size_t>(slab * kSlab) * static_cast<std::size_t>(sz);
       const std::size_t to = std::min(map.size(), from + kSlab * static_cast<std::size_t>(sz));
       std::vector<std::uint32_t>& mine = occupied[static_cast<std::size_t>(slab)];
       for (std::size_t i = from; i < to; ++i) {
-        if (map.value(i).state == CellState::kOccupied) mine.push_back(static_cast<std::uint32_t>(i));
+        if (map.value(i).state == CellState::kOccupied)
+          mine.push_back(static_cast<std::uint32_t>(i));
       }
     });
     tbb::parallel_for(0, slabs, [&](int slab) {

@@ -100,9 +100,9 @@ inline constexpr int kLookBack = 64;
 /// hemisphere run of tabletop-4, 97 % of the rays walked to a listed cell did not reach it
 /// (docs/decision.md, "A metric raced cell by cell").
 template <typename Code>
-bool blocked_before(const GridSpec& spec, std::span<const GainMap::Value> values,
-                    const Code* codes, std::span<const float> near, const Eigen::Vector3d& o,
-                    const Eigen::Vector3d& d, const Index3& target, int cells = kLookBack) {
+bool blocked_before(const GridSpec& spec, std::span<const GainMap::Value> values, const Code* codes,
+                    std::span<const float> near, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
+                    const Index3& target, int cells = kLookBack) {
   const double res = spec.resolution;
   // Per axis: where the segment, followed backwards, crosses the face behind the current cell
   // (forward, the face it enters by) [s], how far apart those faces lie [s], the step back in
