@@ -13,7 +13,6 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -86,7 +85,7 @@ inline bool rays_through_cell(const RayImage& image, const GridSpec& spec, const
 inline constexpr int kLookBack = 64;
 
 /// Whether an occupied cell lies on the segment o + s d (s in [0, 1]) before the cell `target`,
-/// found by stepping back from the target along the segment: a proof that a walk of that segment
+/// found by walking back from the target along the segment: a proof that a walk of that segment
 /// (walk_ray, which ends on the first occupied cell it enters) does not reach the target. An
 /// occupied cell counts only when the segment passes through its cube shrunk by kCellSpare and
 /// leaves that before it enters the target's cube, so that no rounding of the walk's boundaries
@@ -96,57 +95,34 @@ inline constexpr int kLookBack = 64;
 /// or an unobserved one beyond D of every occupied cell (`near`, occupied_distance): a listed
 /// cell lies within D of an occupied one, and most rays to it that do not reach it end on that
 /// surface, a few cells back; past it, in free space or a deep shadow, the walk forward is the
-/// cheaper way to the answer (it crosses free space in cubes). Over the default's 14-scan
-/// hemisphere run of tabletop-4, 97 % of the rays walked to a listed cell did not reach it
-/// (docs/decision.md, "A metric raced cell by cell").
+/// cheaper way to the answer (it crosses free space in cubes; docs/decision.md, "A metric raced
+/// cell by cell").
 template <typename Code>
 bool blocked_before(const GridSpec& spec, std::span<const GainMap::Value> values, const Code* codes,
                     std::span<const float> near, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
                     const Index3& target, int cells = kLookBack) {
-  const double res = spec.resolution;
-  // Per axis: where the segment, followed backwards, crosses the face behind the current cell
-  // (forward, the face it enters by) [s], how far apart those faces lie [s], the step back in
-  // the index and in the linear index.
-  // NOTE: only an occupied cell's own clip decides, so the rounding of these sums cannot.
-  const std::array<std::ptrdiff_t, 3> stride = {
-      1, spec.dims.x(), static_cast<std::ptrdiff_t>(spec.dims.x()) * spec.dims.y()};
-  std::array<double, 3> face, apart;
-  std::array<int, 3> back;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0.0) {
-      face[a] = -std::numeric_limits<double>::infinity();
-      apart[a] = 0.0;
-      back[a] = 0;
-      continue;
-    }
-    const double plane = spec.origin[a] + (target[a] + (d[a] > 0.0 ? 0 : 1)) * res;
-    face[a] = (plane - o[a]) / d[a];
-    apart[a] = res / std::abs(d[a]);
-    back[a] = d[a] > 0.0 ? -1 : 1;
-  }
-  Index3 c = target;
-  std::ptrdiff_t linear = static_cast<std::ptrdiff_t>(spec.linear(target));
-  for (int k = 0; k < cells; ++k) {
-    const int axis =
-        face[0] >= face[1] ? (face[0] >= face[2] ? 0 : 2) : (face[1] >= face[2] ? 1 : 2);
-    if (!(face[axis] > 0.0)) return false;  // back at the origin
-    c[axis] += back[axis];
-    if (c[axis] < 0 || c[axis] >= spec.dims[axis]) return false;  // out of the grid
-    face[axis] -= apart[axis];
-    linear += back[axis] * stride[static_cast<std::size_t>(axis)];
-    const CellState state = values[codes[static_cast<std::size_t>(linear)]].state;
+  const auto clip = [&](const Index3& cell, double grow) {
+    const Eigen::Vector3d lo = spec.origin + cell.cast<double>() * spec.resolution;
+    return clip_to_box(lo.array() - grow * spec.resolution,
+                       (lo.array() + (1.0 + grow) * spec.resolution).matrix(), o, d);
+  };
+  const auto [t_in, t_out] = clip(target, 0.0);
+  if (!(t_in < t_out)) return false;
+  // NOTE: the project's walk, from the middle of the segment's part in the target back to the
+  // origin; only an occupied cell's own clip decides, so the walk's rounding cannot.
+  GridWalk walk(spec, o + 0.5 * (t_in + t_out) * d, o);
+  if (!walk.entered()) return false;
+  for (int k = 0; k < cells && !walk.at_end(); ++k) {
+    walk.advance();
+    if (walk.ends_outside() && !spec.contains(walk.cell())) return false;  // left the grid
+    const CellState state = values[codes[walk.linear()]].state;
     if (state == CellState::kFree) return false;
     if (state == CellState::kUnobserved) {
-      if (!near.empty() && near[static_cast<std::size_t>(linear)] > kProximityCells) return false;
+      if (!near.empty() && near[walk.linear()] > kProximityCells) return false;
       continue;
     }
-    const auto clip = [&](const Index3& cell, double grow) {
-      const Eigen::Vector3d lo = spec.origin + cell.cast<double>() * res;
-      return clip_to_box(lo.array() - grow * res, (lo.array() + res + grow * res).matrix(), o, d);
-    };
-    const auto [x_in, x_out] = clip(c, -kCellSpare);
-    const auto [t_in, t_out] = clip(target, 0.0);
-    if (t_in <= t_out && x_in < x_out && x_out <= t_in && x_in >= 0.0) return true;
+    const auto [x_in, x_out] = clip(walk.cell(), -kCellSpare);
+    if (x_in < x_out && x_out <= t_in && x_in >= 0.0) return true;
   }
   return false;
 }
