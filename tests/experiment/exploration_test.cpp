@@ -112,7 +112,7 @@ TEST(Exploration, TheTableIsSoughtAtTheScenesTableHeight) {
   EXPECT_NEAR(mapper.table.max_table_z, 0.80, 1e-9);
   ExplorationConfig config;
   config.planner.method = PlannerMethod::kGreedy;
-  config.candidates = CandidateSet::kHemisphere;
+  config.candidates = "hemisphere";
   config.scans = 3;
   config.seed = 5;
   config.mapper = mapper;

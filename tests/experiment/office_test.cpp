@@ -85,7 +85,7 @@ TEST(Office, TwoStopsMeetTheTableTopInvariants) {
   EXPECT_GE((scans[1].T_world_sensor.translation() - scans[0].T_world_sensor.translation())
                 .head<2>()
                 .norm(),
-            ExplorationConfig{}.office.min_move - 0.1);
+            OfficeConfig{}.min_move - 0.1);
   ASSERT_TRUE(scans[1].goal.has_value());
   if (!scans[1].fallback) {
     EXPECT_TRUE(

@@ -67,8 +67,16 @@ nlohmann::json trial_settings(const BenchConfig& config) {
       {"observability_alphas", e.observability.alphas},
       {"observability_recency", e.observability.recency},
       {"project_stops", e.office.project_stops},
-      {"candidates", to_string(e.candidates)},
+      {"candidates", e.candidates},
       {"coverage_tolerance", e.coverage_tolerance},
+      {"views", e.views.views},
+      {"view_radius", e.views.radius},
+      {"object",
+       {{"radius", config.objects.object_radius},
+        {"view_radius", config.objects.view_radius},
+        {"views", config.objects.views},
+        {"resolution", config.objects.resolution},
+        {"sensor", config.objects.sensor}}},
       {"hemisphere_spacing", e.hemisphere.spacing},
       {"hemisphere_radii", e.hemisphere.radii},
       {"arm", e.arm ? nlohmann::json{{"base", {e.arm->base.x(), e.arm->base.y(), e.arm->base.z()}},
@@ -113,7 +121,7 @@ sim::Scene trial_scene(const TrialSpec& spec, const BenchConfig& config) {
   for (const sim::PileConfig& pile : bench_piles(config)) {
     if (sim::pile_name(pile) == spec.scene) return sim::pile_scene(pile);
   }
-  return sim::load_scene(spec.source);
+  return sim::load_scene(spec.source, config.objects);
 }
 
 /// The settings a folder's trials were run with, or null when it has none yet.
@@ -240,7 +248,7 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
   for (const TrialSpec& spec : all) {
     if (truths.count(spec.scene) > 0) continue;
     const sim::Scene scene = trial_scene(spec, config);
-    if (scene.kind != sim::SceneKind::kTableTop) {
+    if (scene.kind == sim::SceneKind::kOffice) {
       if (spec.greedy_oracle) {
         throw std::invalid_argument(fmt::format(
             "bench: scene '{}' is an office: the greedy oracle is for table tops", spec.scene));
@@ -350,7 +358,7 @@ void write_yardstick_file(const fs::path& path, const sim::Scene& scene,
   };
   const nlohmann::json file = {
       {"scene", scene.name},
-      {"candidates", to_string(config.candidates)},
+      {"candidates", run_candidate_set(scene, config)},
       {"surface_cells", truth.surface.size()},
       {"visible_cells", truth.visible.size()},
       {"tolerance_cells", truth.tolerance},

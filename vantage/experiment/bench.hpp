@@ -13,6 +13,7 @@
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/sim/generate.hpp"
+#include "vantage/sim/object_scene.hpp"
 
 namespace vantage {
 
@@ -42,6 +43,9 @@ struct BenchConfig {
   /// scene file is written to `DIR/scenes/NAME.yaml`.
   int generated = 0;
   sim::PileConfig pile;  ///< the first generated pile's settings; the others differ in seed
+  /// How a scene named by a mesh file or a built-in model is placed: a single object on its view
+  /// sphere (sim/object_scene.hpp; `vantage bench objects`).
+  sim::ObjectProtocol objects;
   std::vector<PlannerMethod> methods = {PlannerMethod::kProbabilistic, PlannerMethod::kGreedy,
                                         PlannerMethod::kRandom};
   /// a settings for the probabilistic and survival methods (a value, or auto); one trial set

@@ -32,6 +32,7 @@ void BenchConfig::validate() const {
     throw std::invalid_argument(fmt::format("bench.generated must be >= 0, got {}", generated));
   }
   if (generated > 0) pile.validate();
+  objects.validate();
   if (methods.empty() && !greedy_oracle) {
     throw std::invalid_argument("bench.methods must not be empty");
   }
@@ -86,7 +87,7 @@ std::vector<TrialSpec> bench_trials(const BenchConfig& config) {
   // (name, source) of every scene: the named ones loaded to name them, the piles named by rule.
   std::vector<std::pair<std::string, std::string>> scenes;
   for (const std::string& source : config.scenes) {
-    scenes.emplace_back(sim::load_scene(source).name, source);
+    scenes.emplace_back(sim::load_scene(source, config.objects).name, source);
   }
   for (const sim::PileConfig& pile : bench_piles(config)) {
     scenes.emplace_back(sim::pile_name(pile), sim::pile_command(pile));

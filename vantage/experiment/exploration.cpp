@@ -40,13 +40,13 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
     frontier_.max_radius = config.office.max_frontier_radius;
     frontier_.validate();
   } else {
-    const bool arm = config.candidates == CandidateSet::kHemisphere;
-    for (const Eigen::Isometry3d& pose : run_candidates(scene, config)) {
+    const PlacedViews views = run_candidate_views(scene, config);
+    for (const Eigen::Isometry3d& pose : views.poses) {
       ring_.push_back({Frustum(pose, scene.fov())});
       result_.candidates.push_back(pose);
     }
     // NOTE: a sequence's tour between two views costs what the robot's move between them does.
-    planner_.sequence.travel = arm ? TravelRule{} : ring_walk_rule(scene.ring);
+    planner_.sequence.travel = views.travel;
     if (ring_.empty()) {
       throw std::invalid_argument(cat("scene '", scene.name, "' has no candidate views"));
     }
@@ -58,9 +58,7 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
   // NOTE: observable means seen by the whole candidate set together: an arm's hemisphere
   // sees what the scene's ring may not.
   truth_ = sim::compute_ground_truth(world_, config.planner.gain.num_threads,
-                                     config.candidates == CandidateSet::kHemisphere && !office_
-                                         ? std::span<const Eigen::Isometry3d>(result_.candidates)
-                                         : std::span<const Eigen::Isometry3d>());
+                                     std::span<const Eigen::Isometry3d>(result_.candidates));
   result_.observable_cells = truth_.observable.size();
   if (!office_) {
     if (surface_truth == nullptr) {
@@ -371,10 +369,11 @@ ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& conf
   }
   if (scene.kind == sim::SceneKind::kOffice) {
     // NOTE: an office's candidates are frontier stops with sweeps, travel on its floor.
-    if (config.candidates != CandidateSet::kRing) {
+    if (!config.candidates.empty()) {
       throw std::invalid_argument(cat("scene '", scene.name,
-                                      "' is an office: its candidates are "
-                                      "frontier stops, not a hemisphere"));
+                                      "' is an office: its candidates are frontier stops, not "
+                                      "the ",
+                                      config.candidates));
     }
     if (config.greedy_oracle) {
       throw std::invalid_argument(

@@ -23,6 +23,7 @@
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/util/work.hpp"
+#include "vantage/views/candidate_set.hpp"
 #include "vantage/views/hemisphere.hpp"
 
 namespace vantage {
@@ -52,17 +53,9 @@ struct OfficeConfig {
   void validate() const;
 };
 
-/// Table top: where the candidate views come from.
-enum class CandidateSet {
-  kRing,  ///< the scene's ring (§5.1); travel is the walk around the table (ring_walk)
-  /// An arm's views over the table (views/hemisphere.hpp); travel is the sensor's straight-line
-  /// path between views.
-  kHemisphere,
-};
-
-std::string_view to_string(CandidateSet set);
-/// Parses "ring" or "hemisphere"; throws std::invalid_argument naming the value.
-CandidateSet parse_candidate_set(std::string_view name);
+/// The error of a robot's believed pose after each move when not told otherwise: 2 cm, 2 cm,
+/// 2 degrees (x, y, yaw).
+inline const sim::PoseNoise kDefaultPoseNoise{0.02, 0.02, deg2rad(2.0)};
 
 /// Settings of one exploration run.
 struct ExplorationConfig {
@@ -85,7 +78,7 @@ struct ExplorationConfig {
   std::uint64_t seed = 1;  ///< sensor noise, pose noise and random choice
   /// Error of the robot's belief after each move (x, y, yaw), replacing the scene's; the first
   /// scan's pose defines the map frame and is exact. Default: 2 cm, 2 cm, 2 degrees.
-  std::optional<sim::PoseNoise> pose_noise = sim::PoseNoise{0.02, 0.02, deg2rad(2.0)};
+  std::optional<sim::PoseNoise> pose_noise = kDefaultPoseNoise;
   OfficeConfig office;  ///< used by office scenes only
   /// Fit the probabilistic method's a to the run's own outcomes (--alpha auto, the paper's §6):
   /// before each scan, the expected cells seen of its view under every candidate a of
@@ -93,11 +86,16 @@ struct ExplorationConfig {
   /// predicted best so far. Off: planner.gain.alpha throughout.
   bool auto_alpha = false;
   ObservabilityFitConfig observability;
-  CandidateSet candidates = CandidateSet::kRing;  ///< table top: ring or an arm's hemisphere
-  /// kHemisphere: radii, elevations and spacing; the centre is the scene's target (the ring's),
-  /// the base and reach `arm`'s, else the scene's arm's, else unlimited.
+  /// Table top and object: the candidate set's name (views/candidate_sets.hpp: ring, hemisphere,
+  /// sphere, view-sphere); empty: the scene's own (a table top's ring, an object's view sphere).
+  std::string candidates;
+  /// The set's radius and view count (CandidateParams; 0: the set's or the scene's own). The
+  /// hemisphere's radii and spacing are `hemisphere`'s.
+  CandidateParams views;
+  /// The hemisphere's radii, elevations and spacing; the centre is the scene's target (the
+  /// ring's), the base and reach `arm`'s, else the scene's arm's, else unlimited.
   HemisphereConfig hemisphere;
-  std::optional<ArmReach> arm;  ///< kHemisphere: overrides the scene's arm
+  std::optional<ArmReach> arm;  ///< the hemisphere's arm: overrides the scene's
   /// Table top: decide by the greedy oracle instead of `planner` (issue 36, docs/yardstick.md):
   /// among the same open candidates, with the same travel, the view whose true hit set (its
   /// noise-free scan, SurfaceTruth::candidate_hits) adds the most visible surface cells to the
@@ -240,13 +238,20 @@ ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& conf
 ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
                           const ScanCallback& on_scan, const SurfaceTruth* surface_truth);
 
-/// The candidate views of a table-top run: the scene's ring, or its hemisphere
-/// (run_hemisphere) for CandidateSet::kHemisphere.
+/// The candidate set a table-top or object run takes its views from: config.candidates, else the
+/// scene's own (ring; an object's view-sphere).
+std::string run_candidate_set(const sim::Scene& scene, const ExplorationConfig& config);
+
+/// The candidate views of a table-top or object run and the rule of travel between them, from
+/// the registry (views/candidate_sets.hpp): the scene's ring, an arm's hemisphere
+/// (run_hemisphere), a sphere, or an object's view sphere.
+PlacedViews run_candidate_views(const sim::Scene& scene, const ExplorationConfig& config);
+
+/// run_candidate_views' poses.
 std::vector<Eigen::Isometry3d> run_candidates(const sim::Scene& scene,
                                               const ExplorationConfig& config);
 
-/// How a table-top run measures travel between views: the walk around the table (ring), or the
-/// sensor's straight-line path (hemisphere) [m].
+/// run_candidate_views' rule: how the run measures travel between views [m].
 TravelRule run_travel_rule(const sim::Scene& scene, const ExplorationConfig& config);
 
 /// The mapper settings a scene calls for: registration weighed against the explorer's default
@@ -262,7 +267,7 @@ AlphaSetting default_alpha_setting(PlannerMethod method, double paper);
 /// The registration prior of a robot whose believed pose errs by `noise` (sigmas of x, y, yaw).
 perception::PoseSigma odometry_prior(const sim::PoseNoise& noise);
 
-/// The hemisphere a run with CandidateSet::kHemisphere takes its views from: `config.hemisphere`
+/// The hemisphere a run with the hemisphere candidate set takes its views from: `config.hemisphere`
 /// centred on the scene's target, with `config.arm`, else the scene's arm, as its reach.
 HemisphereConfig run_hemisphere(const sim::Scene& scene, const ExplorationConfig& config);
 

@@ -10,6 +10,7 @@
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/yardstick.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/views/candidate_sets.hpp"
 
 namespace vantage {
 
@@ -48,21 +49,18 @@ void ExplorationConfig::validate() const {
   if (arm && !(arm->reach > 0.0)) {
     throw std::invalid_argument(cat("explore.arm.reach must be > 0 m, got ", arm->reach));
   }
+  if (!candidates.empty()) {
+    const CandidateSetRow& row = find_candidate_set(candidates);  // throws naming the sets
+    if (row.needs_map || row.needs_list) {
+      throw std::invalid_argument(cat("explore.candidates: '", candidates,
+                                      "' is not placed around a scene (use ring, hemisphere, "
+                                      "sphere or view-sphere)"));
+    }
+  }
   if (coverage_tolerance < 0 || coverage_tolerance > kMaxCoverageTolerance) {
     throw std::invalid_argument(cat("explore.coverage_tolerance must be 0 or ",
                                     kMaxCoverageTolerance, " cells, got ", coverage_tolerance));
   }
-}
-
-std::string_view to_string(CandidateSet set) {
-  return set == CandidateSet::kHemisphere ? "hemisphere" : "ring";
-}
-
-CandidateSet parse_candidate_set(std::string_view name) {
-  if (name == "ring") return CandidateSet::kRing;
-  if (name == "hemisphere") return CandidateSet::kHemisphere;
-  throw std::invalid_argument(
-      cat("unknown candidate set '", name, "' (expected ring or hemisphere)"));
 }
 
 HemisphereConfig run_hemisphere(const sim::Scene& scene, const ExplorationConfig& config) {
@@ -94,7 +92,7 @@ AlphaSetting default_alpha_setting(PlannerMethod method, double paper) {
 
 MapperConfig default_mapper_config(const sim::Scene& scene) {
   MapperConfig config;
-  config.segment_table = scene.kind == sim::SceneKind::kTableTop;
+  config.segment_table = scene.kind == sim::SceneKind::kTableTop;  // objects float: no table
   for (const sim::Shape& shape : scene.shapes) {
     if (shape.kind != "table") continue;
     // NOTE: seen from above (an arm's views), the floor around the table is the largest
@@ -103,8 +101,7 @@ MapperConfig default_mapper_config(const sim::Scene& scene) {
     config.table.min_table_z = shape.bounds().max().z() - kTableSlack;
     config.table.max_table_z = shape.bounds().max().z() + kTableSlack;
   }
-  config.registration.prior =
-      odometry_prior(ExplorationConfig{}.pose_noise.value_or(scene.pose_noise));
+  config.registration.prior = odometry_prior(kDefaultPoseNoise);
   if (scene.kind == sim::SceneKind::kOffice) {
     // A sweep is registered as a whole, thinned to one point per map cell, against the sweeps so
     // far at the same resolution; Kinect noise of up to 2 cm at 3.5 m.
@@ -140,16 +137,31 @@ std::vector<Frustum> sweep_frusta(const sim::Scene& scene,
   return frusta;
 }
 
+std::string run_candidate_set(const sim::Scene& scene, const ExplorationConfig& config) {
+  if (!config.candidates.empty()) return config.candidates;
+  return scene.kind == sim::SceneKind::kObject ? "view-sphere" : "ring";
+}
+
+PlacedViews run_candidate_views(const sim::Scene& scene, const ExplorationConfig& config) {
+  CandidateSite site;
+  site.target = scene.mount.target;
+  site.region = Eigen::AlignedBox3d(scene.grid.origin, scene.grid.max_corner());
+  if (scene.kind == sim::SceneKind::kTableTop) site.ring = scene.ring;
+  site.sphere = scene.view_sphere;
+  site.arm = config.arm ? config.arm : scene.arm;
+  CandidateParams params = config.views;
+  params.radii = config.hemisphere.radii;
+  params.spacing = config.hemisphere.spacing;
+  return build_candidates(run_candidate_set(scene, config), site, params);
+}
+
 std::vector<Eigen::Isometry3d> run_candidates(const sim::Scene& scene,
                                               const ExplorationConfig& config) {
-  return config.candidates == CandidateSet::kHemisphere
-             ? hemisphere_poses(run_hemisphere(scene, config))
-             : scene.candidate_poses();
+  return run_candidate_views(scene, config).poses;
 }
 
 TravelRule run_travel_rule(const sim::Scene& scene, const ExplorationConfig& config) {
-  return config.candidates == CandidateSet::kHemisphere ? TravelRule{}
-                                                        : detail::ring_walk_rule(scene.ring);
+  return run_candidate_views(scene, config).travel;
 }
 
 }  // namespace vantage

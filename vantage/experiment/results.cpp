@@ -29,7 +29,7 @@ json pose_json(const Eigen::Isometry3d& T) {
           {"quaternion_xyzw", {q.x(), q.y(), q.z(), q.w()}}};
 }
 
-json config_json(const ExplorationConfig& config) {
+json config_json(const ExplorationConfig& config, const sim::Scene& scene) {
   const GainConfig& gain = config.planner.gain;
   const MapperConfig& mapper = config.mapper;
   const perception::RegistrationConfig& reg = mapper.registration;
@@ -49,12 +49,12 @@ json config_json(const ExplorationConfig& config) {
       {"swept_rays", config.planner.swept_rays},
       {"epsilon", gain.epsilon},
       {"lambda", config.planner.lambda},
-      {"candidates", to_string(config.candidates)},
+      {"candidates", scene.kind == sim::SceneKind::kOffice ? std::string("frontier stops")
+                                                           : run_candidate_set(scene, config)},
       // NOTE: what "travel" measures, said where the figures are.
-      {"travel_rule", config.candidates == CandidateSet::kHemisphere
-                          ? "the sensor's straight-line path between views [m]"
-                          : "the walk around the table: the arc between bearings at the ring's "
-                            "radius plus the change in distance from its centre [m]"},
+      {"travel_rule", scene.kind == sim::SceneKind::kOffice
+                          ? "the path driven on the floor [m]"
+                          : run_travel_rule(scene, config).describe()},
       {"sequence",
        {{"horizon", sequence.horizon},
         {"travel_weight_per_m", sequence.travel_weight},
@@ -301,7 +301,7 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
                  {{"origin", {spec.origin.x(), spec.origin.y(), spec.origin.z()}},
                   {"resolution", spec.resolution},
                   {"dims", {spec.dims.x(), spec.dims.y(), spec.dims.z()}}}}}},
-              {"config", config_json(config)},
+              {"config", config_json(config, scene)},
               {"stop_reason", result.stop_reason},
               {"observable_cells", result.observable_cells},
               {"surface_cells", result.surface_cells},
@@ -310,7 +310,7 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
               {"coverage_tolerance_cells", config.coverage_tolerance},
               {"scans", json::array()},
               {"candidates", json::array()}};
-  if (config.candidates == CandidateSet::kHemisphere && scene.kind == sim::SceneKind::kTableTop) {
+  if (scene.kind != sim::SceneKind::kOffice && run_candidate_set(scene, config) == "hemisphere") {
     const HemisphereConfig h = run_hemisphere(scene, config);
     constexpr double kDeg = 180.0 / std::numbers::pi;
     run["config"]["hemisphere"] = {

@@ -59,15 +59,6 @@ struct CompactCells {
 
 }  // namespace
 
-double TravelRule::operator()(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {
-  if (kind == Kind::kStraightLine) return (to - from).norm();
-  const Eigen::Vector2d a = from.head<2>() - center.head<2>();
-  const Eigen::Vector2d b = to.head<2>() - center.head<2>();
-  double turn = std::abs(std::atan2(b.y(), b.x()) - std::atan2(a.y(), a.x()));
-  if (turn > std::numbers::pi) turn = 2.0 * std::numbers::pi - turn;
-  return radius * turn + std::abs(b.norm() - a.norm());
-}
-
 void SequenceConfig::validate() const {
   if (horizon < 1 || horizon > kMaxHorizon) {
     throw std::invalid_argument(

@@ -5,23 +5,9 @@
 
 #include <Eigen/Core>
 
+#include "vantage/views/travel.hpp"
+
 namespace vantage {
-
-/// How far the sensor travels between two views: the rule of the robot that carries it.
-struct TravelRule {
-  enum class Kind {
-    kStraightLine,  ///< an arm: the sensor's straight-line path
-    /// A robot walking around a table: the arc between the two bearings about `center` at
-    /// `radius`, plus the change in distance from `center` (horizontal).
-    kRingWalk,
-  };
-  Kind kind = Kind::kStraightLine;
-  Eigen::Vector3d center = Eigen::Vector3d::Zero();  ///< kRingWalk: the ring's centre [m]
-  double radius = 1.0;                               ///< kRingWalk: the ring's radius [m]
-
-  /// Travel from `from` to `to` [m].
-  double operator()(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
-};
 
 /// Settings of the sequence decision. horizon 1 with travel_weight 0 is the one-view decision.
 struct SequenceConfig {

@@ -267,7 +267,7 @@ std::vector<Viewpoint> ground_truth_viewpoints(const World& world,
                                                std::span<const Eigen::Isometry3d> views) {
   const Scene& scene = world.scene();
   std::vector<Viewpoint> viewpoints;
-  if (scene.kind == SceneKind::kTableTop) {
+  if (scene.kind != SceneKind::kOffice) {
     const std::vector<Eigen::Isometry3d> ring =
         views.empty() ? scene.candidate_poses() : std::vector<Eigen::Isometry3d>{};
     for (const Eigen::Isometry3d& pose : views.empty() ? std::span(ring) : views) {

@@ -1,5 +1,7 @@
 #include "vantage/sim/scene.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
@@ -7,6 +9,8 @@
 #include "vantage/io/format_parsing.hpp"
 #include "vantage/io/input_file.hpp"
 #include "vantage/sim/builtin_scenes.hpp"
+#include "vantage/sim/mesh_io.hpp"
+#include "vantage/sim/object_scene.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage::sim {
@@ -29,7 +33,15 @@ std::string read_file(const std::filesystem::path& path) {
 }  // namespace
 
 std::string_view to_string(SceneKind kind) {
-  return kind == SceneKind::kTableTop ? "tabletop" : "office";
+  switch (kind) {
+    case SceneKind::kTableTop:
+      return "tabletop";
+    case SceneKind::kOffice:
+      return "office";
+    case SceneKind::kObject:
+      return "object";
+  }
+  return "unknown";
 }
 
 Eigen::Isometry3d pose_from_xyz_rpy(const Eigen::Vector3d& xyz, const Eigen::Vector3d& rpy) {
@@ -59,6 +71,7 @@ void PoseNoise::validate() const {
 }
 
 std::vector<Eigen::Isometry3d> Scene::candidate_poses() const {
+  if (kind == SceneKind::kObject && view_sphere) return sphere_poses(*view_sphere);
   if (kind != SceneKind::kTableTop) return {};
   return ring_poses(ring);
 }
@@ -79,6 +92,20 @@ std::string builtin_scene_text(std::string_view name) {
 }
 
 Scene load_scene(const std::string& name_or_yaml_path) {
+  return load_scene(name_or_yaml_path, ObjectProtocol{});
+}
+
+bool is_object_source(const std::string& name_or_path) {
+  const std::vector<std::string> models = builtin_model_names();
+  if (std::find(models.begin(), models.end(), name_or_path) != models.end()) return true;
+  std::string ext = std::filesystem::path(name_or_path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".ply" || ext == ".obj" || ext == ".off" || ext == ".stl";
+}
+
+Scene load_scene(const std::string& name_or_yaml_path, const ObjectProtocol& objects) {
+  if (is_object_source(name_or_yaml_path)) return single_object_scene(name_or_yaml_path, objects);
   for (const BuiltinSceneFile& file : builtin_scene_files()) {
     if (file.name == name_or_yaml_path) {
       Scene scene = parse_scene(std::string(file.text), cat("scene ", file.name), ".");

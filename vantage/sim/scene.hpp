@@ -15,6 +15,7 @@
 #include "vantage/sim/sensor.hpp"
 #include "vantage/views/hemisphere.hpp"
 #include "vantage/views/ring.hpp"
+#include "vantage/views/sphere.hpp"
 
 namespace vantage::sim {
 
@@ -22,6 +23,9 @@ namespace vantage::sim {
 enum class SceneKind {
   kTableTop,  ///< candidate views on a ring around the table (§5.1)
   kOffice,    ///< candidate stops at frontier centroids, a 360° sweep at each (§5.2)
+  /// Single objects floating on a view sphere (the field's protocol, object_scene.hpp): no table
+  /// to segment, the sphere's views as candidates and starts, travel on the sphere.
+  kObject,
 };
 std::string_view to_string(SceneKind kind);
 
@@ -74,6 +78,8 @@ struct Scene {
   /// Table top: the candidate views (K positions x yaw offsets around mount.target, radius from
   /// the file, height = mount.height). Unused in an office.
   RingConfig ring;
+  /// Object: the view sphere its candidates and starts lie on (object_scene.hpp).
+  std::optional<SphereConfig> view_sphere;
   std::vector<Eigen::Isometry3d> start_poses;  ///< T_world_sensor of each start
   /// Table top: the arm that carries the sensor over the table (the hemisphere's reachability
   /// rule, `arm:` in docs/scenes.md); none: every hemisphere view is reachable.
@@ -84,7 +90,8 @@ struct Scene {
   std::vector<Room> rooms;         ///< office rooms (their walls are among the shapes)
   Eigen::AlignedBox2d floor_area;  ///< where a robot may stand (x, y) [m]
 
-  /// Table top: the ring's 30 candidate views; office: none (the planner finds frontiers).
+  /// Table top: the ring's 30 candidate views; object: the view sphere's; office: none (the
+  /// planner finds frontiers).
   std::vector<Eigen::Isometry3d> candidate_poses() const;
   /// The sensor's field of view (the frusta of candidates and scans).
   const SensorFov& fov() const { return sensor.fov; }
@@ -96,7 +103,8 @@ std::vector<std::string> builtin_scene_names();
 /// The text of a built-in scene file; throws std::invalid_argument for an unknown name.
 std::string builtin_scene_text(std::string_view name);
 
-/// A built-in scene by name, or a scene file by path. Throws std::invalid_argument with one line
+/// A built-in scene by name, or a scene file by path; a built-in model's name or a mesh file
+/// (.ply, .obj, .off, .stl) is a single object under the default protocol (object_scene.hpp). Throws std::invalid_argument with one line
 /// that names the file, line and key for a bad scene (unknown key, missing key, key given twice,
 /// wrong type, negative size, unknown model or sensor, a missing or corrupt mesh file), and
 /// std::runtime_error when the scene is neither built in nor a readable file.

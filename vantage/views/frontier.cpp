@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "vantage/util/text.hpp"
+#include "vantage/views/candidate_set.hpp"
 
 namespace vantage {
 namespace {
@@ -121,6 +124,52 @@ std::vector<FrontierRegion> frontier_regions(const OccupancyGrid& grid,
     regions.push_back(std::move(region));
   }
   return regions;
+}
+
+PlacedViews frontier_candidates(const CandidateSite& site, const CandidateParams& params) {
+  if (site.grid == nullptr) {
+    throw std::invalid_argument("frontier candidates are found in a map: none was given");
+  }
+  const OccupancyGrid& grid = *site.grid;
+  FrontierConfig config;
+  const double half = 0.5 * grid.spec().resolution;
+  if (params.band) {
+    config.min_z = params.band->first - half;
+    config.max_z = params.band->second + half;
+  }
+  const std::vector<FrontierRegion> regions = frontier_regions(grid, config);
+  PlacedViews views;
+  std::size_t dropped = 0;
+  for (const FrontierRegion& region : regions) {
+    Eigen::Vector3d place = region.centroid;
+    if (params.band) place.z() = std::clamp(place.z(), params.band->first, params.band->second);
+    // NOTE: a robot cannot stand in unknown or occupied space: such a centroid is dropped.
+    const std::optional<Index3> cell = grid.spec().find(place);
+    if (!cell || grid.state(grid.spec().linear(*cell)) != CellState::kFree) {
+      dropped += 4;
+      continue;
+    }
+    for (int k = 0; k < 4; ++k) {
+      Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+      pose.linear() = Eigen::AngleAxisd(k * std::numbers::pi / 2.0, Eigen::Vector3d::UnitZ())
+                          .toRotationMatrix();
+      pose.translation() = place;
+      views.poses.push_back(pose);
+    }
+  }
+  if (views.poses.empty()) {
+    throw std::runtime_error(
+        regions.empty()
+            ? std::string(params.band ? "the map has no frontier regions at --sensor-height to "
+                                        "plan from"
+                                      : "the map has no frontier regions to plan from")
+            : cat("none of the ", regions.size(),
+                  " frontier regions' centroids lies in a known free cell (try --sensor-height)"));
+  }
+  views.note = cat(
+      "frontier: ", regions.size(), " regions, ", views.poses.size(), " views",
+      dropped > 0 ? cat(" (", dropped, " dropped: their place is not known free)") : std::string());
+  return views;
 }
 
 }  // namespace vantage

@@ -8,6 +8,7 @@
 
 #include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/views/candidate_set.hpp"
 #include "vantage/views/detail/placement.hpp"
 #include "vantage/views/ring.hpp"
 
@@ -92,6 +93,24 @@ std::vector<Eigen::Isometry3d> hemisphere_poses(const HemisphereConfig& config) 
             " m away (set --arm-base and --reach, or the scene's arm)"));
   }
   return poses;
+}
+
+PlacedViews hemisphere_candidates(const CandidateSite& site, const CandidateParams& params) {
+  HemisphereConfig hemisphere;
+  hemisphere.center = site.target;
+  if (!params.radii.empty()) {
+    hemisphere.radii = params.radii;
+  } else if (params.radius > 0.0 || !site.ring) {
+    // NOTE: an arm's views (issue 26): rings at 0.75, 1 and 1.25 times the ring's radius.
+    const double r = params.radius > 0.0 ? params.radius : default_ring(site.region).radius;
+    hemisphere.radii = {0.75 * r, r, 1.25 * r};
+  }
+  if (params.spacing > 0.0) hemisphere.spacing = params.spacing;
+  if (site.arm) {
+    hemisphere.base = site.arm->base;
+    hemisphere.reach = site.arm->reach;
+  }
+  return {hemisphere_poses(hemisphere), TravelRule{}, {}};
 }
 
 }  // namespace vantage

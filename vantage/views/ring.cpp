@@ -7,6 +7,7 @@
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/views/candidate_set.hpp"
 #include "vantage/views/detail/placement.hpp"
 
 namespace vantage {
@@ -83,6 +84,21 @@ std::vector<Frustum> make_views(const std::vector<Eigen::Isometry3d>& poses, con
   views.reserve(poses.size());
   for (const Eigen::Isometry3d& pose : poses) views.emplace_back(pose, fov);
   return views;
+}
+
+PlacedViews ring_candidates(const CandidateSite& site, const CandidateParams& params) {
+  RingConfig ring = site.ring ? *site.ring : default_ring(site.region);
+  if (params.radius > 0.0) ring.radius = params.radius;
+  if (!std::isnan(params.height)) ring.height = params.height;
+  if (params.views > 0) {
+    const int offsets = static_cast<int>(ring.yaw_offsets.size());
+    if (params.views % offsets != 0) {
+      throw std::invalid_argument(cat("ring: views (", params.views, ") must be a multiple of its ",
+                                      offsets, " yaw offsets"));
+    }
+    ring.positions = params.views / offsets;
+  }
+  return {ring_poses(ring), {TravelRule::Kind::kRingWalk, ring.center, ring.radius}, {}};
 }
 
 }  // namespace vantage

@@ -1,5 +1,6 @@
 #include "vantage/views/sphere.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -8,6 +9,7 @@
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/views/candidate_set.hpp"
 #include "vantage/views/detail/placement.hpp"
 #include "vantage/views/ring.hpp"
 
@@ -45,6 +47,36 @@ std::vector<Eigen::Isometry3d> sphere_poses(const SphereConfig& config) {
     poses.push_back(look_at(config.center + config.radius * direction, config.center));
   }
   return poses;
+}
+
+PlacedViews sphere_candidates(const CandidateSite& site, const CandidateParams& params) {
+  SphereConfig sphere;
+  sphere.center = site.target;
+  const double half_diagonal = 0.5 * site.region.sizes().head<2>().norm();
+  sphere.radius = params.radius > 0.0 ? params.radius : std::max(1.0, 2.0 * half_diagonal);
+  sphere.views = params.views > 0 ? params.views : 50;
+  return {sphere_poses(sphere), TravelRule{}, {}};
+}
+
+SphereConfig object_view_sphere(const Eigen::Vector3d& center, double radius, int views) {
+  SphereConfig sphere;
+  sphere.center = center;
+  sphere.radius = radius;
+  sphere.views = views;
+  sphere.min_elevation = -std::numbers::pi / 2.0;
+  sphere.max_elevation = std::numbers::pi / 2.0;
+  return sphere;
+}
+
+PlacedViews view_sphere_candidates(const CandidateSite& site, const CandidateParams& params) {
+  // NOTE: an object scene's own sphere, else one around the region at the band's default radius.
+  const double half_diagonal = 0.5 * site.region.sizes().norm();
+  SphereConfig sphere = site.sphere
+                            ? *site.sphere
+                            : object_view_sphere(site.target, std::max(1.0, 2.0 * half_diagonal));
+  if (params.radius > 0.0) sphere.radius = params.radius;
+  if (params.views > 0) sphere.views = params.views;
+  return {sphere_poses(sphere), {TravelRule::Kind::kSphereArc, sphere.center, sphere.radius}, {}};
 }
 
 }  // namespace vantage

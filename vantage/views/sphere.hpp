@@ -23,4 +23,12 @@ struct SphereConfig {
 /// Poses on the band, evenly spread (equal area per view), each looking at the centre.
 std::vector<Eigen::Isometry3d> sphere_poses(const SphereConfig& config);
 
+/// Views on an object's view sphere by default: SCVP's and MA-SCVP's 32.
+inline constexpr int kObjectViews = 32;
+
+/// The whole sphere of `views` views at `radius` around `center` (elevations -90 to 90 degrees):
+/// the view space of single-object NBV benchmarks (SCVP, MA-SCVP, PB-NBV).
+SphereConfig object_view_sphere(const Eigen::Vector3d& center, double radius,
+                                int views = kObjectViews);
+
 }  // namespace vantage

@@ -18,6 +18,7 @@
 #include "vantage/experiment/results.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/sim/generate.hpp"
+#include "vantage/sim/object_scene.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/util/memory.hpp"
 
@@ -136,7 +137,10 @@ BenchConfig bench_config(const BenchOptions& o) {
   config.exploration.seed = o.seed;
   config.exploration.revisit = o.revisit;
   config.exploration.office.project_stops = o.project_stops;
-  o.candidates.apply(config.exploration);
+  config.objects = o.candidates.object_protocol();
+  // NOTE: a sweep's scenes share one kind: objects, or table tops (generated piles included).
+  o.candidates.apply(config.exploration,
+                     o.kind == "objects" ? sim::SceneKind::kObject : sim::SceneKind::kTableTop);
   config.exploration.budget = work_budget(o.max_work, o.max_memory);
   config.jobs = o.jobs;
   parse_shard(o.shard, config);
@@ -149,7 +153,9 @@ void run(const BenchOptions& o) {
 
   // NOTE: --jobs trials at once, each with its own grid; the largest scene decides.
   std::vector<sim::Scene> scenes;
-  for (const std::string& name : config.scenes) scenes.push_back(sim::load_scene(name));
+  for (const std::string& name : config.scenes) {
+    scenes.push_back(sim::load_scene(name, config.objects));
+  }
   if (config.generated > 0) scenes.push_back(sim::pile_scene(bench_piles(config).front()));
   std::uint64_t cells = 0;
   for (const sim::Scene& scene : scenes) {
@@ -193,7 +199,15 @@ void run(const BenchOptions& o) {
 void add_sweep_command(CLI::App& bench, const std::string& name, const std::string& description,
                        const std::string& trials_help, const std::shared_ptr<BenchOptions>& o) {
   CLI::App* cmd = bench.add_subcommand(name, description);
-  cmd->add_option("--scenes", o->scenes, "scenes")->delimiter(',')->capture_default_str();
+  if (o->kind == "objects") {
+    cmd->add_option("--objects", o->scenes,
+                    "objects, each on its own view sphere: mesh files (.ply, .obj, .off, .stl) "
+                    "or built-in models")
+        ->delimiter(',')
+        ->capture_default_str();
+  } else {
+    cmd->add_option("--scenes", o->scenes, "scenes")->delimiter(',')->capture_default_str();
+  }
   cmd->add_option("--methods", o->methods,
                   "methods (planner methods, and greedy-oracle: table tops)")
       ->delimiter(',')
@@ -210,7 +224,7 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
                   "what the probabilistic and survival methods rank by, one trial set each: "
                   "bits,cells")
       ->default_str("each method's own: cells for survival, bits for probabilistic");
-  cmd->add_option("--trials", o->trials, trials_help)
+  cmd->add_option(o->kind == "objects" ? "--starts,--trials" : "--trials", o->trials, trials_help)
       ->check(whole_in(1, kMaxScans))
       ->capture_default_str();
   cmd->add_option(
@@ -228,7 +242,11 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   cmd->add_flag("!--no-plots", o->plots, "skip plots and summary");
   add_memory_option(*cmd, o->max_memory);
   add_work_option(*cmd, o->max_work);
-  if (o->kind == "tabletop") {
+  if (o->kind == "objects") {
+    cmd->add_flag("--revisit", o->revisit,
+                  "views already taken stay candidates (the paper's loop taken literally)");
+    o->candidates.add_to(*cmd);
+  } else if (o->kind == "tabletop") {
     cmd->add_flag("--revisit", o->revisit,
                   "views already taken stay candidates (the paper's loop taken literally)");
     cmd->add_option("--generated", o->generated,
@@ -270,7 +288,7 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
         }
       }
     }
-    o->scenes_given = cmd->count("--scenes") > 0;
+    o->scenes_given = o->kind != "objects" && cmd->count("--scenes") > 0;
     run(*o);
   });
 }
@@ -285,6 +303,19 @@ void add_bench_command(CLI::App& app) {
   add_sweep_command(*bench, "tabletop",
                     "Table-top sweep: scenes x methods x trials (the paper's Figs. 10 and 11)",
                     "trials per scene and method; trial i starts from ring position i", tabletop);
+
+  auto objects = std::make_shared<BenchOptions>();
+  objects->kind = "objects";
+  objects->scenes = {"bunny", "dragon", "teapot"};
+  objects->methods.emplace_back(kGreedyOracleName);
+  objects->trials = 5;
+  objects->out = "results/bench-objects";
+  add_sweep_command(*bench, "objects",
+                    "Object sweep, the field's protocol (docs/objects.md): single objects x "
+                    "methods x starts on a view sphere of 32 views",
+                    "starts per object and method; start i is the i-th of the sphere's views "
+                    "spread apart",
+                    objects);
 
   const BenchConfig paper = office_bench_config();
   auto office = std::make_shared<BenchOptions>();

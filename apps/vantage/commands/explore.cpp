@@ -29,6 +29,7 @@ namespace fs = std::filesystem;
 
 struct ExploreOptions {
   std::string scene = "tabletop-3";
+  std::string object;  ///< a mesh file or built-in model: a single object on its view sphere
   PlanningOptions planning;
   MappingOptions mapping;
   CandidateOptions candidates;
@@ -47,7 +48,8 @@ struct ExploreOptions {
 
 fs::path default_out(const ExploreOptions& o, PlannerMethod method) {
   const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  return fs::path("results") / fmt::format("explore-{}-{}-{:%Y%m%d-%H%M%S}", o.scene,
+  const std::string scene = o.object.empty() ? o.scene : fs::path(o.object).stem().string();
+  return fs::path("results") / fmt::format("explore-{}-{}-{:%Y%m%d-%H%M%S}", scene,
                                            to_string(method), fmt::localtime(now));
 }
 
@@ -81,7 +83,9 @@ void print_scan(const ScanRecord& r, int total, bool ranks_by_bits) {
 }
 
 void run(const ExploreOptions& o) {
-  const sim::Scene scene = sim::load_scene(o.scene);
+  const sim::Scene scene = o.object.empty()
+                               ? sim::load_scene(o.scene, o.candidates.object_protocol())
+                               : sim::single_object_scene(o.object, o.candidates.object_protocol());
   const bool office = scene.kind == sim::SceneKind::kOffice;
   // The paper's a for the scene's kind (§5.1, §5.2); the method's own a (default_alpha) when
   // --alpha is not given, and the prior of --alpha auto.
@@ -114,7 +118,7 @@ void run(const ExploreOptions& o) {
   config.office.project_stops = o.project_stops;
   config.start = o.start;
   config.seed = o.seed;
-  o.candidates.apply(config);
+  o.candidates.apply(config, scene.kind);
   from_options([&] { config.validate(); });
 
   const fs::path out = o.out.empty() ? default_out(o, config.planner.method) : fs::path(o.out);
@@ -173,8 +177,15 @@ void add_explore_command(CLI::App& app) {
   auto o = std::make_shared<ExploreOptions>();
   CLI::App* cmd = app.add_subcommand(
       "explore", "Explore a simulated scene scan by scan, choosing each next view (the main job)");
-  cmd->add_option("--scene,-s", o->scene, "built-in scene name or scene YAML file")
-      ->capture_default_str();
+  CLI::Option* scene =
+      cmd->add_option("--scene,-s", o->scene,
+                      "built-in scene name, scene YAML file, or a mesh file (.ply, .obj, .off, "
+                      ".stl) as a single object")
+          ->capture_default_str();
+  cmd->add_option("--object", o->object,
+                  "a single object on its view sphere, the field's protocol (docs/objects.md): a "
+                  "mesh file (.ply, .obj, .off, .stl) or a built-in model (bunny, dragon, teapot)")
+      ->excludes(scene);
   o->planning.add_to(*cmd);
   cmd->get_option("--alpha")
       ->description(fmt::format(

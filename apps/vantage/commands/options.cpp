@@ -10,7 +10,9 @@
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/yardstick.hpp"
 #include "vantage/planner/search.hpp"
+#include "vantage/util/limits.hpp"
 #include "vantage/util/memory.hpp"
+#include "vantage/views/candidate_sets.hpp"
 
 namespace vantage::cli {
 
@@ -113,11 +115,26 @@ void PlanningOptions::add_to(CLI::App& cmd, bool search_option) {
 }
 
 void CandidateOptions::add_to(CLI::App& cmd) {
-  cmd.add_option("--candidates", candidates,
-                 "table top: ring (the scene's ring, travel the walk around the table) or "
-                 "hemisphere (an arm's views over the table at several radii and elevations, "
-                 "travel the sensor's straight-line path)")
-      ->check(CLI::IsMember({"ring", "hemisphere"}))
+  std::vector<std::string> names;
+  std::string help =
+      "the candidate views (default: the scene's own, a table top's ring, an "
+      "object's view-sphere):";
+  for (const CandidateSetRow& row : candidate_sets()) {
+    if (row.needs_map || row.needs_list) continue;  // found in a map, or the user's list
+    names.emplace_back(row.name);
+    help += fmt::format(" {} ({});", row.name, row.help);
+  }
+  help.back() = ' ';
+  cmd.add_option("--candidates", candidates, help)->check(CLI::IsMember(names));
+  cmd.add_option("--views", views,
+                 "ring, sphere, view-sphere: how many candidate views (0: the set's own; a ring's "
+                 "is its positions times its yaw offsets)")
+      ->check(whole_in(0, static_cast<int>(kMaxCandidateViews)))
+      ->capture_default_str();
+  cmd.add_option("--view-radius", view_radius,
+                 "ring, sphere, view-sphere: the views' distance from the target (0: the set's "
+                 "own) [m]")
+      ->check(number_in(0.0, 1e3))
       ->capture_default_str();
   cmd.add_option("--arm-base", arm_base,
                  "hemisphere: the arm's base x,y,z [m] (default: the scene's arm, else none)");
@@ -134,17 +151,40 @@ void CandidateOptions::add_to(CLI::App& cmd) {
                  "[m]")
       ->default_str(fmt::format("{}", fmt::join(HemisphereConfig{}.radii, ",")));
   cmd.add_option("--coverage-tolerance", coverage_tolerance,
-                 "table top: surface coverage counts an object surface cell once a scan point "
-                 "lies within this many cells of it, 1 (it or a neighbour) or 0 (in it); the "
-                 "greedy oracle and the yardstick's denominator follow [cells]")
-      ->check(whole_in(0, kMaxCoverageTolerance))
+                 "surface coverage counts an object surface cell once a scan point lies within "
+                 "this many cells of it, 1 (it or a neighbour) or 0 (in it: MA-SCVP's); the "
+                 "greedy oracle and the yardstick's denominator follow (default: 1 on a table "
+                 "top, 0 for objects) [cells]")
+      ->check(whole_in(0, kMaxCoverageTolerance));
+  cmd.add_option("--object-radius", object_radius,
+                 "objects: each object's bounding sphere is scaled to this radius (the view "
+                 "sphere keeps its distance from it) [m]")
+      ->check(number_in(0.0, 1e3, /*open_low=*/true))
       ->capture_default_str();
 }
 
-void CandidateOptions::apply(ExplorationConfig& config) const {
-  config.candidates = candidates == "hemisphere" ? CandidateSet::kHemisphere : CandidateSet::kRing;
+sim::ObjectProtocol CandidateOptions::object_protocol() const {
+  sim::ObjectProtocol protocol;
+  protocol.object_radius = object_radius;
+  if (views > 0) protocol.views = views;
+  if (view_radius > 0.0) {
+    protocol.view_radius = view_radius;
+  } else {
+    // NOTE: the default sphere keeps the default distance from a larger or smaller object.
+    protocol.view_radius += object_radius - sim::ObjectProtocol{}.object_radius;
+  }
+  protocol.resolution *= object_radius / sim::ObjectProtocol{}.object_radius;
+  from_options([&] { protocol.validate(); });
+  return protocol;
+}
+
+void CandidateOptions::apply(ExplorationConfig& config, sim::SceneKind kind) const {
+  config.candidates = candidates;
+  config.views.views = views;
+  config.views.radius = view_radius;
+  const bool hemisphere = candidates == "hemisphere";
   const bool arm_given = !arm_base.empty() || reach > 0.0;
-  if (arm_given && config.candidates != CandidateSet::kHemisphere) {
+  if (arm_given && !hemisphere) {
     throw UsageError("--arm-base and --reach bound an arm's views: give --candidates hemisphere");
   }
   if (arm_base.empty() != !(reach > 0.0)) {
@@ -152,7 +192,11 @@ void CandidateOptions::apply(ExplorationConfig& config) const {
         "--arm-base and --reach come together: the arm's base x,y,z and its reach [m]");
   }
   config.hemisphere.spacing = spacing;
-  config.coverage_tolerance = coverage_tolerance;
+  config.coverage_tolerance =
+      coverage_tolerance >= 0 ? coverage_tolerance : (kind == sim::SceneKind::kObject ? 0 : 1);
+  // NOTE: an arm places the sensor on an object's view sphere to within a millimetre, as the
+  // field's simulators take it: the scene's pose noise (none) rather than a mobile base's.
+  if (kind == sim::SceneKind::kObject) config.pose_noise.reset();
   if (!radii.empty()) config.hemisphere.radii = parse_numbers(radii, "--hemisphere-radii");
   if (reach > 0.0) {
     ArmReach arm;
@@ -166,7 +210,7 @@ void CandidateOptions::apply(ExplorationConfig& config) const {
   }
   // NOTE: the views --view-spacing and --hemisphere-radii make are counted here, before the
   // scene is built: too many is a command line to change (exit 2), not a run that fails.
-  if (config.candidates == CandidateSet::kHemisphere) {
+  if (hemisphere) {
     from_options([&] { config.hemisphere.validate(); });
   }
 }

@@ -13,6 +13,7 @@
 #include "vantage/perception/mapper.hpp"
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
+#include "vantage/sim/object_scene.hpp"
 #include "vantage/sim/scene.hpp"
 
 namespace vantage::cli {
@@ -34,19 +35,27 @@ struct PlanningOptions : PlanningSettings {
   PlannerConfig planner_config(double literal_alpha = kTableTopAlpha) const;
 };
 
-/// --candidates ring|hemisphere, --arm-base, --reach, --view-spacing, and the yardstick over
-/// them, --coverage-tolerance (explore, bench tabletop).
+/// --candidates (the registry's sets placed around a scene), --views, --view-radius, --arm-base,
+/// --reach, --view-spacing, and the yardstick over them, --coverage-tolerance (explore, bench).
 struct CandidateOptions {
-  std::string candidates = "ring";
-  std::string arm_base;                         ///< "x,y,z" [m]; empty: the scene's arm
-  double reach = 0.0;                           ///< [m]; 0: the scene's arm
+  std::string candidates;    ///< empty: the scene's own (ring; an object's view-sphere)
+  int views = 0;             ///< 0: the set's own
+  double view_radius = 0.0;  ///< [m]; 0: the set's own
+  std::string arm_base;      ///< "x,y,z" [m]; empty: the scene's arm
+  double reach = 0.0;        ///< [m]; 0: the scene's arm
   double spacing = HemisphereConfig{}.spacing;  ///< the hemisphere's view spacing [m]
   std::string radii;                            ///< "r1,r2,..." [m]; empty: HemisphereConfig's
-  int coverage_tolerance = ExplorationConfig{}.coverage_tolerance;  ///< [cells]
+  int coverage_tolerance = -1;                  ///< [cells]; -1: the scene kind's own
+
+  double object_radius = sim::ObjectProtocol{}.object_radius;  ///< [m]
 
   void add_to(CLI::App& cmd);
-  /// Sets the candidate set, the hemisphere and the arm; throws UsageError naming the option.
-  void apply(ExplorationConfig& config) const;
+  /// Sets the candidate set, the hemisphere and the arm, and the yardstick's tolerance (the
+  /// scene kind's own unless given: 1 cell on a table top, 0 for objects, MA-SCVP's); throws
+  /// UsageError naming the option.
+  void apply(ExplorationConfig& config, sim::SceneKind kind) const;
+  /// The object protocol these options ask for (--views, --view-radius, --object-radius).
+  sim::ObjectProtocol object_protocol() const;
 };
 
 /// The most threads an option asks for; more is a typo, not a machine.

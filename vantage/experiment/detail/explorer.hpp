@@ -45,12 +45,6 @@ inline double coverage(const OccupancyGrid& grid, const std::vector<std::uint32_
   return static_cast<double>(seen) / static_cast<double>(observable.size());
 }
 
-/// The walk around the table between two views: the arc between their bearings at the ring's
-/// radius, plus any difference in their distance from the ring's centre [m].
-inline TravelRule ring_walk_rule(const RingConfig& ring) {
-  return {TravelRule::Kind::kRingWalk, ring.center, ring.radius};
-}
-
 /// Where the next scan is taken, and what the decision recorded.
 struct Decision {
   bool stop = false;

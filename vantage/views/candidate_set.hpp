@@ -1,0 +1,66 @@
+#pragma once
+/// @file
+/// What every candidate set is built from and what it gives: the one signature the registry
+/// (candidate_sets.hpp) holds for each set. A set's builder lives in its own file (ring.cpp,
+/// hemisphere.cpp, sphere.cpp, frontier.cpp, listed.cpp).
+
+#include <Eigen/Geometry>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "vantage/map/occupancy_grid.hpp"
+#include "vantage/views/hemisphere.hpp"
+#include "vantage/views/ring.hpp"
+#include "vantage/views/sphere.hpp"
+#include "vantage/views/travel.hpp"
+
+namespace vantage {
+
+/// Where the views are placed: what the world says, from a scene or from a map.
+struct CandidateSite {
+  Eigen::Vector3d target = Eigen::Vector3d::Zero();  ///< the point the views look at [m]
+  Eigen::AlignedBox3d region;      ///< the region of interest, for the sets' default sizes [m]
+  std::optional<RingConfig> ring;  ///< a scene's own ring (table tops), else default_ring(region)
+  std::optional<SphereConfig> sphere;   ///< a scene's own view sphere (objects)
+  std::optional<ArmReach> arm;          ///< the arm that carries the sensor (hemisphere); none: any
+  const OccupancyGrid* grid = nullptr;  ///< the map, for sets found in it (frontier)
+};
+
+/// What a user may say of a set; each set reads the fields it knows, 0 or empty is its default.
+struct CandidateParams {
+  double radius = 0.0;  ///< ring, sphere, view-sphere: distance from the target; hemisphere: the
+                        ///< middle of three radii 0.75 r, r, 1.25 r [m]
+  int views = 0;        ///< ring: positions x yaw offsets; sphere, view-sphere: views
+  double height = std::numeric_limits<double>::quiet_NaN();  ///< ring: the sensor height [m]
+  std::vector<double> radii;  ///< hemisphere: the rings' radii, overriding `radius` [m]
+  double spacing = 0.0;       ///< hemisphere: arc between neighbouring views [m]
+  /// frontier: the sensor's height band [m]; none: every height.
+  std::optional<std::pair<double, double>> band;
+  std::vector<Eigen::Isometry3d> listed;  ///< file: the user's poses (T_world_sensor)
+};
+
+/// A set's views and how the sensor travels between them.
+struct PlacedViews {
+  std::vector<Eigen::Isometry3d> poses;  ///< T_world_sensor of each view
+  TravelRule travel;
+  std::string note;  ///< one line on what was built or left out (frontier), or empty
+};
+
+// The builders the registry's rows name, each defined in its set's own file.
+/// ring.cpp: the site's ring (or default_ring(region)), radius, height and views overridden.
+PlacedViews ring_candidates(const CandidateSite& site, const CandidateParams& params);
+/// hemisphere.cpp: rings at radii `radii` (or 0.75, 1, 1.25 x `radius`), within the arm's reach.
+PlacedViews hemisphere_candidates(const CandidateSite& site, const CandidateParams& params);
+/// sphere.cpp: a band of a sphere above the target (0 to 80 degrees), 50 views by default.
+PlacedViews sphere_candidates(const CandidateSite& site, const CandidateParams& params);
+/// sphere.cpp: the whole sphere around an object, 32 views by default, travel on the sphere.
+PlacedViews view_sphere_candidates(const CandidateSite& site, const CandidateParams& params);
+/// frontier.cpp: four level views at each frontier region's centroid in a known free cell.
+PlacedViews frontier_candidates(const CandidateSite& site, const CandidateParams& params);
+/// listed.cpp: the user's poses as given.
+PlacedViews listed_candidates(const CandidateSite& site, const CandidateParams& params);
+
+}  // namespace vantage
