@@ -210,7 +210,7 @@ TEST_F(SceneFiles, UnknownModelNamesTheKeyAndHowToGetModels) {
 }
 
 TEST_F(SceneFiles, OtherMistakesNameTheirKey) {
-  EXPECT_NE(error_of("kind: tabletop", "kind: garden").find("kind: must be tabletop or office"),
+  EXPECT_NE(error_of("kind: tabletop", "kind: garden").find("kind: must be tabletop, office or object"),
             std::string::npos);
   EXPECT_NE(error_of("resolution: 0.0078125", "resolution: fine").find("grid.resolution"),
             std::string::npos);

@@ -13,7 +13,6 @@
 #include "vantage/io/yaml_reader.hpp"
 #include "vantage/sim/furniture.hpp"
 #include "vantage/sim/mesh_io.hpp"
-#include "vantage/sim/object_scene.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/sim/scene_values.hpp"
 #include "vantage/util/limits.hpp"
@@ -33,7 +32,8 @@ struct Parser {
 
   void parse(const YamlField& root) {
     if (const auto kind = root.get("kind"); kind && kind->text() == "object") {
-      parse_object_file(root);
+      scene = parse_object_file(root, base_dir);
+      scene.source = source;
       return;
     }
     root.allow_keys({"name", "kind", "description", "units", "grid", "floor", "table", "walls",
@@ -48,7 +48,7 @@ struct Parser {
     } else {
       kind.fail(cat("must be tabletop, office or object, got '", kind.text(), "'"));
     }
-    if (auto units = root.get("units")) parse_units(*units);
+    if (auto units = root.get("units")) check_units(*units);
     parse_grid(root.at("grid"));
     if (auto f = root.get("floor")) parse_floor(*f);
     if (auto f = root.get("table")) parse_table(*f);
@@ -71,57 +71,6 @@ struct Parser {
     if (auto f = root.get("arm")) parse_arm(*f);
   }
 
-  /// An object file (docs/objects.md): meshes and their poses under the object protocol.
-  void parse_object_file(const YamlField& root) {
-    root.allow_keys({"name", "kind", "description", "units", "objects", "protocol"});
-    if (auto units = root.get("units")) parse_units(*units);
-    ObjectProtocol protocol;
-    if (auto p = root.get("protocol")) {
-      p->allow_keys({"object_radius", "view_radius", "views", "resolution", "sensor"});
-      protocol.object_radius = positive_or(*p, "object_radius", protocol.object_radius);
-      protocol.view_radius = positive_or(*p, "view_radius", protocol.view_radius);
-      if (auto v = p->get("views")) protocol.views = v->integer(1, 100000);
-      protocol.resolution = positive_or(*p, "resolution", protocol.resolution);
-      if (auto v = p->get("sensor")) protocol.sensor = v->text();
-      try {
-        protocol.validate();
-      } catch (const std::invalid_argument& e) {
-        p->fail(e.what());
-      }
-    }
-    const YamlField list = root.at("objects");
-    const auto items = list.items();
-    if (items.empty()) list.fail("needs at least one object");
-    if (items.size() > kMaxSceneObjects) {
-      list.fail(cat("holds ", items.size(), " objects, more than the ", kMaxSceneObjects,
-                    " a scene may place"));
-    }
-    std::vector<ObjectPlacement> objects;
-    for (const YamlField& item : items) {
-      item.allow_keys({"file", "model", "radius", "pose"});
-      const auto model = item.get("model");
-      const auto file = item.get("file");
-      if (model.has_value() == file.has_value()) {
-        item.fail("an object needs exactly one of 'model' or 'file'");
-      }
-      ObjectPlacement o;
-      o.mesh = model ? model->text() : file->text();
-      if (file && std::filesystem::path(o.mesh).is_relative())
-        o.mesh = (base_dir / o.mesh).string();
-      o.radius = positive_or(item, "radius", protocol.object_radius);
-      if (auto pose = item.get("pose")) o.pose = parse_pose(*pose);
-      objects.push_back(o);
-    }
-    try {
-      scene = object_scene(root.at("name").text(), objects, protocol, base_dir);
-      scene.source = source;
-    } catch (const std::invalid_argument& e) {
-      list.fail(e.what());
-    } catch (const std::runtime_error& e) {
-      list.fail(e.what());
-    }
-  }
-
   /// A table top's arm: where its base stands and how far it reaches (the hemisphere's rule).
   void parse_arm(const YamlField& f) {
     if (scene.kind != SceneKind::kTableTop) f.fail("an arm needs a tabletop scene");
@@ -132,14 +81,6 @@ struct Parser {
     require_in_world(base, std::span<const double>(arm.base.data(), 3));
     arm.reach = length(f.at("reach"));
     scene.arm = arm;
-  }
-
-  void parse_units(const YamlField& f) {
-    f.allow_keys({"length", "angle"});
-    if (auto l = f.get("length"); l && l->text() != "m") l->fail("only metres ('m') are supported");
-    if (auto a = f.get("angle"); a && a->text() != "deg") {
-      a->fail("only degrees ('deg') are supported in scene files");
-    }
   }
 
   void parse_grid(const YamlField& f) {

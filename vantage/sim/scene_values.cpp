@@ -115,4 +115,12 @@ Shape read_mesh_shape(const YamlField& f, const std::string& label,
   return s;
 }
 
+void check_units(const YamlField& f) {
+  f.allow_keys({"length", "angle"});
+  if (auto l = f.get("length"); l && l->text() != "m") l->fail("only metres ('m') are supported");
+  if (auto a = f.get("angle"); a && a->text() != "deg") {
+    a->fail("only degrees ('deg') are supported in scene files");
+  }
+}
+
 }  // namespace vantage::sim::detail

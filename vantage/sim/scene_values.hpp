@@ -11,6 +11,7 @@
 
 #include "vantage/io/yaml_reader.hpp"
 #include "vantage/sim/geometry.hpp"
+#include "vantage/sim/scene.hpp"
 
 namespace vantage::sim::detail {
 
@@ -37,5 +38,12 @@ Eigen::Isometry3d parse_pose(const YamlField& f);
 /// An object's mesh: a built-in `model` or a `file` (relative to `base_dir`), with its `scale`.
 Shape read_mesh_shape(const YamlField& f, const std::string& label,
                       const std::filesystem::path& base_dir);
+
+/// The `units` map: only {length: m, angle: deg}; fails naming the key otherwise.
+void check_units(const YamlField& f);
+
+/// A scene file of `kind: object` (docs/objects.md): its objects under its protocol, placed by
+/// object_scene; fails naming the key for a bad one.
+Scene parse_object_file(const YamlField& root, const std::filesystem::path& base_dir);
 
 }  // namespace vantage::sim::detail

@@ -32,6 +32,7 @@
 #include "vantage/util/limits.hpp"
 #include "vantage/util/memory.hpp"
 #include "vantage/views/frontier.hpp"
+#include "vantage/views/candidate_sets.hpp"
 #include "vantage/views/hemisphere.hpp"
 #include "vantage/views/ring.hpp"
 #include "vantage/views/sphere.hpp"
@@ -114,27 +115,25 @@ void run(const PlanOptions& o) {
   }
 
   if (o.input.empty()) fov_from_options(o);  // throws for a bad --fov-deg or --range
-  const bool named_candidates = o.candidates == "ring" || o.candidates == "sphere" ||
-                                o.candidates == "hemisphere" || o.candidates == "frontier";
+  const bool named_candidates = !names_pose_file(o);
   if (!named_candidates) {
     std::error_code error;
     if (fs::is_directory(o.candidates, error)) {
       throw UsageError(fmt::format(
-          "--candidates '{}' is a folder: give ring, sphere, hemisphere, frontier or a pose file "
-          "(TUM format)",
-          o.candidates));
+          "--candidates '{}' is a folder: give one of {} or a pose file (TUM format)",
+          o.candidates, candidate_set_names()));
     }
     if (!fs::exists(o.candidates, error)) {
       throw UsageError(fmt::format(
-          "--candidates '{}' is neither ring, sphere, hemisphere, frontier nor an existing pose "
-          "file",
-          o.candidates));
+          "--candidates '{}' is neither one of {} nor an existing pose file", o.candidates,
+          candidate_set_names()));
     }
   }
 
   // NOTE: the views --views makes are counted before the map is built (issue 39: a million ring
   // positions, 3 M views, ran out of memory after minutes of mapping).
-  if (o.views > 0 && (o.candidates == "ring" || o.candidates == "sphere")) {
+  if (o.views > 0 && (o.candidates == "ring" || o.candidates == "sphere" ||
+                     o.candidates == "view-sphere")) {
     const std::uint64_t views = static_cast<std::uint64_t>(o.views) *
                                 (o.candidates == "ring" ? RingConfig{}.yaw_offsets.size() : 1);
     if (views > kMaxCandidateViews) {
@@ -324,10 +323,12 @@ void add_plan_command(CLI::App& app) {
   cmd->add_option("--topic", o->topic,
                   "the sensor_msgs/PointCloud2 topic of the manifest's recording (a ROS 1 bag or "
                   "an MCAP file), in place of its recording.topic");
+  std::string sets;
+  for (const CandidateSetRow& row : candidate_sets()) {
+    if (!row.needs_list) sets += fmt::format("{} ({}), ", row.name, row.help);
+  }
   cmd->add_option("--candidates,-c", o->candidates,
-                  "ring, sphere, hemisphere (an arm's views: rings at several radii and elevations "
-                  "looking at the ROI's centre), frontier (4 level views at each frontier "
-                  "region's centroid), or a TUM-format file of candidate poses")
+                  sets + "or a TUM-format file of candidate poses")
       ->capture_default_str();
   cmd->add_option("--radius", o->radius,
                   "ring/sphere radius, the hemisphere's middle one [m] (default: from the ROI)")
@@ -338,7 +339,8 @@ void add_plan_command(CLI::App& app) {
                   "frontier candidates: the robot's sensor height [m], h or a range min,max (a "
                   "ground robot's); frontier cells are taken in that band and each view placed "
                   "in it (default: any height)");
-  cmd->add_option("--views", o->views, "ring positions (x3 yaw offsets) or sphere views")
+  cmd->add_option("--views", o->views,
+                  "ring positions (x3 yaw offsets), sphere or view-sphere views")
       ->check(whole_in(1, kMaxIndex));
   cmd->add_option("--fov-deg", o->fov_deg, "h,v field of view without a manifest [deg]")
       ->capture_default_str();

@@ -52,6 +52,9 @@ SensorFov fov_from_options(const PlanOptions& o);
 std::optional<std::pair<double, double>> sensor_band(const PlanOptions& o);
 /// The candidate views --candidates names that do not depend on the map (all but frontier), in
 /// the map's frame; nothing for frontier.
+/// Whether --candidates names a pose file rather than one of the registry's sets.
+bool names_pose_file(const PlanOptions& o);
+
 std::optional<std::vector<Eigen::Isometry3d>> planned_poses(const PlanOptions& o,
                                                             const Eigen::AlignedBox3d& roi,
                                                             CloudFrame frame);
