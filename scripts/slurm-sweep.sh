@@ -82,6 +82,7 @@ cmd_submit() {
   [[ $tasks =~ ^[1-9][0-9]*$ ]] || usage "--tasks must be a whole number of at least 1, not '$tasks'"
   [[ $cpus =~ ^[1-9][0-9]*$ ]] || usage "--cpus-per-task must be a whole number of at least 1, not '$cpus'"
   [[ -n $out ]] || usage "--out DIR is needed"
+  [[ $out != *[\"$'\n']* ]] || usage "--out DIR may not hold a double quote or a line break"
   local jobs_given=0 arg
   for arg in "${sweep[@]:1}"; do
     case $arg in
@@ -103,7 +104,7 @@ cmd_submit() {
     echo "# Written by scripts/slurm-sweep.sh submit: one shard of the sweep per array task."
     echo "#SBATCH --job-name=vantage-bench"
     echo "#SBATCH --array=0-$((tasks - 1))"
-    echo "#SBATCH --output=$out/slurm/task-%a.log"
+    echo "#SBATCH --output=\"$out/slurm/task-%a.log\""
     echo "#SBATCH --open-mode=append"
     for line in "${sbatch_lines[@]}"; do echo "#SBATCH $line"; done
     echo "set -euo pipefail"
