@@ -113,6 +113,7 @@ cmd_submit() {
     printf '%q bench' "$vantage"
     printf ' %q' "${sweep[@]}"
     [[ $jobs_given == 1 ]] || printf ' --jobs %s' "$cpus"
+    # shellcheck disable=SC2016 # $task is the task's, expanded when it runs
     printf ' --no-plots --shard "$task/%s" --out %q"$task"\n' "$tasks" "$out/shard-"
     echo "touch $(printf '%q' "$out/slurm/task-")\$task.done"
   } >"$out/slurm/sweep.sbatch"

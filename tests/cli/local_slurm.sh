@@ -123,6 +123,7 @@ local_slurm_stop() {
     if [[ -n ${jobs// /} ]]; then
       # shellcheck disable=SC2086
       scancel $jobs 2>/dev/null || true
+      # shellcheck disable=SC2016 # expanded by the inner shell, at each try
       local_slurm_until 100 bash -c '[[ -z $(squeue -h 2>/dev/null) ]]' || true
     fi
   fi

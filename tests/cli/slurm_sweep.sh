@@ -29,6 +29,7 @@ echo "slurm: up in $(($(date +%s) - started)) s"
 
 # 12 trials, 3 a task: the cancelled task has two trials left when its first is written.
 tasks=4
+# shellcheck disable=SC2054 # a comma-separated list of methods, one argument
 sweep=(tabletop --scenes "$scene" --methods probabilistic,greedy --trials 6 --scans 5)
 "$vantage" bench "${sweep[@]}" --no-plots --out "$work/one" >/dev/null
 
