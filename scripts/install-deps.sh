@@ -12,6 +12,8 @@ edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev libnanoflann-dev npm
       libpng-dev libzstd-dev liblz4-dev)
 # The recordings tests' ROS 1 bag is written by Debian's python3-rosbag (issue 38).
 edge+=(python3-rosbag python3-sensor-msgs python3-tf2-msgs)
+# cli.slurm_sweep starts a one-node Slurm of its own (tests/cli/local_slurm.sh, issue 50).
+edge+=(slurm-wlm munge)
 
 # libclang-rt-dev: libFuzzer and the sanitizer runtimes; llvm: llvm-symbolizer for their reports.
 fuzz=(clang libclang-rt-dev llvm)

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "test_scene.hpp"
+#include "vantage/experiment/build_info.hpp"
 #include "vantage/sim/generate.hpp"
 
 namespace vantage {
@@ -224,6 +225,115 @@ TEST(Bench, GeneratedPilesHaveStableKeysAndTheirSceneFiles) {
 
   testing::write_text(scene_file, testing::read_text(scene_file) + "# edited\n");
   EXPECT_THROW(run_bench(dir, config), std::invalid_argument);
+}
+
+/// `dir`'s sweep.json with `field` set to `value` (a JSON text).
+void set_setting(const std::filesystem::path& dir, const std::string& field,
+                 const std::string& value) {
+  std::string text = testing::read_text(dir / "sweep.json");
+  const std::string key = "\"" + field + "\": ";
+  const std::size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos) << field;
+  const std::size_t from = at + key.size();
+  text.replace(from, text.find_first_of(",\n", from) - from, value);
+  testing::write_text(dir / "sweep.json", text);
+}
+
+/// A copy of folder `from` as `to`.
+void copy_folder(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::filesystem::copy(
+      from, to,
+      std::filesystem::copy_options::recursive | std::filesystem::copy_options::overwrite_existing);
+}
+
+// issue 50: sweep.json records what makes a row reproducible (the binary's version and commit,
+// the settings, the seed, each scene's content hash), and a folder of another binary or another
+// scene of the same name is neither resumed nor merged: one line names the field and both folders.
+TEST(Bench, SweepRecordsTheBinaryAndTheScenesAndMergeRefusesOthers) {
+  BenchConfig config = tiny_sweep();
+  config.methods = {PlannerMethod::kRandom};
+  config.trials = 1;
+  config.jobs = 1;
+  const auto a = testing::fresh_dir("bench-provenance-a");
+  run_bench(a, config);
+  const std::string settings = testing::read_text(a / "sweep.json");
+  EXPECT_NE(settings.find("\"commit\": \"" + std::string(build_commit()) + "\""), std::string::npos)
+      << settings;
+  EXPECT_NE(settings.find("\"version\": \"" + std::string(build_version()) + "\""),
+            std::string::npos)
+      << settings;
+  EXPECT_NE(settings.find("\"seed\": 1"), std::string::npos) << settings;
+  EXPECT_NE(settings.find("\"small-tabletop\": \"fnv1a64:"), std::string::npos) << settings;
+  EXPECT_FALSE(build_commit().empty());
+
+  // Another commit: merge names the field and both folders; resuming is refused too.
+  const auto b = testing::fresh_dir("bench-provenance-b");
+  copy_folder(a, b);
+  set_setting(b, "commit", "\"0123456789abcdef0123456789abcdef01234567\"");
+  try {
+    merge_bench({a, b}, testing::fresh_dir("bench-provenance-merged"));
+    FAIL() << "merged folders of two commits";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("commit differs"), std::string::npos) << message;
+    EXPECT_NE(message.find((a / "sweep.json").string()), std::string::npos) << message;
+    EXPECT_NE(message.find((b / "sweep.json").string()), std::string::npos) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  EXPECT_THROW(run_bench(b, config), std::invalid_argument);
+
+  // A scene of the same name with other content (an edited scene file): refused the same ways.
+  const auto c = testing::fresh_dir("bench-provenance-c");
+  copy_folder(a, c);
+  set_setting(c, "small-tabletop", "\"fnv1a64:0000000000000000\"");
+  try {
+    merge_bench({a, c}, testing::fresh_dir("bench-provenance-merged-c"));
+    FAIL() << "merged folders of two scenes of one name";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the content of scene 'small-tabletop' differs"),
+              std::string::npos)
+        << e.what();
+  }
+  const auto edited = testing::fresh_dir("bench-provenance-scene") / "small_tabletop.yaml";
+  testing::write_text(edited,
+                      testing::read_text(testing::small_scene_path()) + "# another scene\n");
+  BenchConfig other = config;
+  other.scenes = {edited.string()};
+  try {
+    run_bench(a, other);
+    FAIL() << "resumed a folder in another scene of the same name";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("another scene 'small-tabletop'"), std::string::npos)
+        << e.what();
+  }
+
+  // A folder from before sweep.json held the binary: said as such, not resumed.
+  const auto d = testing::fresh_dir("bench-provenance-d");
+  copy_folder(a, d);
+  std::string old = testing::read_text(d / "sweep.json");
+  old.erase(old.find("  \"commit\""),
+            old.find('\n', old.find("  \"commit\"")) + 1 - old.find("  \"commit\""));
+  testing::write_text(d / "sweep.json", old);
+  try {
+    run_bench(d, config);
+    FAIL() << "resumed a folder without the binary's record";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("written before sweep.json recorded the binary"),
+              std::string::npos)
+        << e.what();
+  }
+
+  // Folders of other scenes merge: the merged sweep.json holds both scenes' hashes.
+  BenchConfig more = config;
+  more.scenes = {"tabletop-1"};
+  more.exploration.scans = config.exploration.scans;
+  const auto e = testing::fresh_dir("bench-provenance-e");
+  run_bench(e, more);
+  const auto merged = testing::fresh_dir("bench-provenance-merged-e");
+  merge_bench({a, e}, merged);
+  const std::string both = testing::read_text(merged / "sweep.json");
+  EXPECT_NE(both.find("\"small-tabletop\": \"fnv1a64:"), std::string::npos) << both;
+  EXPECT_NE(both.find("\"tabletop-1\": \"fnv1a64:"), std::string::npos) << both;
 }
 
 TEST(Bench, RejectsBadShardsAndUnknownScenes) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -15,6 +16,7 @@
 #include <string_view>
 #include <thread>
 
+#include "vantage/experiment/build_info.hpp"
 #include "vantage/experiment/decision_cost.hpp"
 #include "vantage/experiment/results.hpp"
 #include "vantage/experiment/yardstick.hpp"
@@ -26,9 +28,17 @@ namespace vantage {
 namespace fs = std::filesystem;
 namespace {
 
-std::uint64_t fnv1a(std::string_view text) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;
+constexpr std::uint64_t kFnvOffset = 0xcbf29ce484222325ULL;
+
+/// FNV-1a (64 bits) over `text`, continued from `h`.
+std::uint64_t fnv1a(std::string_view text, std::uint64_t h = kFnvOffset) {
   for (const char c : text) h = (h ^ static_cast<unsigned char>(c)) * 0x100000001b3ULL;
+  return h;
+}
+
+/// FNV-1a continued over a number's 8 bytes, the low one first, so a hash is the same on any host.
+std::uint64_t fnv1a_bits(std::uint64_t bits, std::uint64_t h) {
+  for (int k = 0; k < 8; ++k) h = (h ^ ((bits >> (8 * k)) & 0xffU)) * 0x100000001b3ULL;
   return h;
 }
 
@@ -42,6 +52,37 @@ std::string read_file(const fs::path& path) {
 
 /// The file in a sweep folder that holds the settings its trials were run with.
 constexpr const char* kSettingsFile = "sweep.json";
+
+/// The field of sweep.json that holds each scene's content hash, by scene name (scene_hash).
+constexpr const char* kScenesKey = "scenes";
+
+/// A scene's content: FNV-1a (64 bits) over its scene file's text and the solids it loads to
+/// (each shape's kind, its mesh's vertices and triangles, its sphere), as "fnv1a64:" and 16 hex
+/// digits. A changed scene file, or a changed model file it names, gives another hash.
+std::string scene_hash(std::string_view text, const sim::Scene& scene) {
+  std::uint64_t h = fnv1a(text);
+  auto number = [&h](double v) { h = fnv1a_bits(std::bit_cast<std::uint64_t>(v), h); };
+  auto count = [&h](std::size_t n) { h = fnv1a_bits(n, h); };
+  count(scene.shapes.size());
+  for (const sim::Shape& shape : scene.shapes) {
+    count(shape.kind.size());
+    h = fnv1a(shape.kind, h);
+    count(shape.mesh_world.vertices.size());
+    for (const Eigen::Vector3d& v : shape.mesh_world.vertices) {
+      for (int k = 0; k < 3; ++k) number(v[k]);
+    }
+    count(shape.mesh_world.triangles.size());
+    for (const Eigen::Vector3i& t : shape.mesh_world.triangles) {
+      for (int k = 0; k < 3; ++k) count(static_cast<std::uint32_t>(t[k]));
+    }
+    count(shape.sphere ? 1 : 0);
+    if (shape.sphere) {
+      for (int k = 0; k < 3; ++k) number(shape.sphere->center[k]);
+      number(shape.sphere->radius);
+    }
+  }
+  return fmt::format("fnv1a64:{:016x}", h);
+}
 
 /// What every trial of one folder must share, so that its files can be resumed and merged: the
 /// settings that change a trial's rows besides the scene, method, a and start in its key.
@@ -87,10 +128,16 @@ nlohmann::json trial_settings(const BenchConfig& config) {
       {"shortlist", e.planner.sequence.shortlist}};
 }
 
-/// trial_settings, and for a sweep of generated piles which ones (their names and files say the
-/// rest): a folder holds one set of piles.
+/// trial_settings, the binary's version and commit, the paper's a that auto and the methods' own
+/// a start from, and for a sweep of generated piles which ones (their names and files say the
+/// rest): a folder holds one set of piles. Each scene's content is kept beside them
+/// (scene_hashes). The options that change no row (--jobs, --threads, --shard, --out,
+/// --no-plots, --max-memory, --max-work) are not kept, so that shards and reruns share them.
 nlohmann::json sweep_settings(const BenchConfig& config) {
   nlohmann::json settings = trial_settings(config);
+  settings["version"] = std::string(build_version());
+  settings["commit"] = std::string(build_commit());
+  settings["paper_alpha"] = config.paper_alpha;
   if (config.generated > 0) {
     settings["generated"] = {{"count", config.generated},
                              {"objects", config.pile.objects},
@@ -101,6 +148,23 @@ nlohmann::json sweep_settings(const BenchConfig& config) {
 
 /// A sweep folder's copy of each generated pile's scene file.
 constexpr const char* kScenesFolder = "scenes";
+
+/// The content hash of each scene of a sweep, named and generated (scene_hash), by scene name.
+nlohmann::json scene_hashes(const BenchConfig& config) {
+  nlohmann::json hashes = nlohmann::json::object();
+  const std::vector<std::string> builtin = sim::builtin_scene_names();
+  for (const std::string& source : config.scenes) {
+    const bool named = std::find(builtin.begin(), builtin.end(), source) != builtin.end();
+    const std::string text = named ? sim::builtin_scene_text(source) : read_file(source);
+    const sim::Scene scene = sim::load_scene(source);
+    hashes[scene.name] = scene_hash(text, scene);
+  }
+  for (const sim::PileConfig& pile : bench_piles(config)) {
+    hashes[sim::pile_name(pile)] =
+        scene_hash(sim::pile_scene_yaml(sim::generate_pile(pile)), sim::pile_scene(pile));
+  }
+  return hashes;
+}
 
 /// The files ending in `extension` in a folder's `folder`/ (scenes/ or yardstick/), by file name.
 std::map<std::string, fs::path> scene_files(const fs::path& dir, const char* folder = kScenesFolder,
@@ -144,16 +208,81 @@ nlohmann::json read_settings(const fs::path& dir) {
 }
 
 /// Throws std::invalid_argument naming the first setting in which `found` (from `where`) differs
-/// from `wanted`.
+/// from `wanted`, the scenes' hashes aside (require_same_scenes).
 void require_same_settings(const nlohmann::json& found, const nlohmann::json& wanted,
                            const fs::path& where, std::string_view remedy) {
+  if (!found.contains("commit")) {
+    throw std::invalid_argument(fmt::format(
+        "{}: written before sweep.json recorded the binary (version, commit) and the scenes' "
+        "content, so its trials cannot be checked against this run's; {}",
+        where.string(), remedy));
+  }
   for (const auto& [key, value] : wanted.items()) {
+    if (key == kScenesKey) continue;
     if (!found.contains(key) || found[key] != value) {
       throw std::invalid_argument(
           fmt::format("{}: its trials were run with {} = {}, not {}; {}", where.string(), key,
                       found.contains(key) ? found[key].dump() : "(unset)", value.dump(), remedy));
     }
   }
+}
+
+/// Throws std::invalid_argument naming the first scene that both `found` (from `where`) and
+/// `wanted` hash, with another content.
+void require_same_scenes(const nlohmann::json& found, const nlohmann::json& wanted,
+                         const fs::path& where, std::string_view remedy) {
+  const nlohmann::json scenes = found.value(kScenesKey, nlohmann::json::object());
+  for (const auto& [name, hash] : wanted.items()) {
+    if (scenes.contains(name) && scenes[name] != hash) {
+      throw std::invalid_argument(
+          fmt::format("{}: its trials were run in another scene '{}' (content {}, not {}); {}",
+                      where.string(), name, scenes[name].dump(), hash.dump(), remedy));
+    }
+  }
+}
+
+/// Throws std::invalid_argument naming the first field in which the settings of two folders
+/// differ (a setting, the binary, or the content of a scene both hold), and both folders.
+void require_same_sweep(const nlohmann::json& a, const fs::path& a_dir, const nlohmann::json& b,
+                        const fs::path& b_dir) {
+  auto differ = [&](const std::string& field, const nlohmann::json& in_a,
+                    const nlohmann::json& in_b) {
+    throw std::invalid_argument(fmt::format(
+        "bench merge: {} differs: {} in {}, {} in {}; only sweeps of the same settings, binary "
+        "and scenes can be merged",
+        field, in_a.is_null() ? "(unset)" : in_a.dump(), (a_dir / kSettingsFile).string(),
+        in_b.is_null() ? "(unset)" : in_b.dump(), (b_dir / kSettingsFile).string()));
+  };
+  // NOTE: both ways, so a setting one folder has and the other lacks is a difference too.
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : a.items()) keys.push_back(key);
+  for (const auto& [key, value] : b.items()) {
+    if (!a.contains(key)) keys.push_back(key);
+  }
+  for (const std::string& key : keys) {
+    if (key == kScenesKey) continue;
+    const nlohmann::json in_a = a.value(key, nlohmann::json(nullptr));
+    const nlohmann::json in_b = b.value(key, nlohmann::json(nullptr));
+    if (in_a != in_b) differ(key, in_a, in_b);
+  }
+  const nlohmann::json scenes_a = a.value(kScenesKey, nlohmann::json::object());
+  const nlohmann::json scenes_b = b.value(kScenesKey, nlohmann::json::object());
+  for (const auto& [name, hash] : scenes_a.items()) {
+    if (scenes_b.contains(name) && scenes_b[name] != hash) {
+      differ(fmt::format("the content of scene '{}'", name), hash, scenes_b[name]);
+    }
+  }
+}
+
+/// `settings` with the scenes of `more` it lacks added to its scenes' hashes.
+nlohmann::json with_scenes(nlohmann::json settings, const nlohmann::json& more) {
+  nlohmann::json& scenes = settings[kScenesKey];
+  if (!scenes.is_object()) scenes = nlohmann::json::object();
+  const nlohmann::json more_scenes = more.value(kScenesKey, nlohmann::json::object());
+  for (const auto& [name, hash] : more_scenes.items()) {
+    if (!scenes.contains(name)) scenes[name] = hash;
+  }
+  return settings;
 }
 
 /// Trial files in a folder's trials/, by key.
@@ -214,10 +343,17 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
   fs::create_directories(dir / "trials");
   // NOTE: trial files are resumed by key alone, so a folder must never mix trials run with
   // different settings (12 stops and 20, say) into one scans.csv.
-  const nlohmann::json settings = sweep_settings(config);
+  // The binary and the scenes' content too: a folder's rows are one binary's in one set of
+  // scenes, so others can check them. A resumed sweep may add scenes.
+  nlohmann::json settings = sweep_settings(config);
+  settings[kScenesKey] = scene_hashes(config);
   if (const nlohmann::json found = read_settings(dir); !found.is_null()) {
-    require_same_settings(found, settings, dir / kSettingsFile,
-                          "resume with the same settings or choose another --out");
+    const std::string remedy = "resume with the same settings and binary or choose another --out";
+    require_same_settings(found, settings, dir / kSettingsFile, remedy);
+    require_same_scenes(found, settings[kScenesKey], dir / kSettingsFile, remedy);
+    if (const nlohmann::json more = with_scenes(found, settings); more != found) {
+      write_atomically(dir / kSettingsFile, more.dump(2) + "\n");
+    }
   } else {
     write_atomically(dir / kSettingsFile, settings.dump(2) + "\n");
   }
@@ -413,6 +549,7 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
   std::map<std::string, std::string> scenes;  // generated scene files, by file name
   std::map<std::string, std::string> truths;  // yardstick files, by file name
   nlohmann::json settings = nullptr;          // of the first folder; all must agree
+  fs::path settings_dir;                      // that folder
   for (std::size_t k = 0; k < all.size(); ++k) {
     const fs::path& dir = all[k];
     const bool target = k == dirs.size();
@@ -425,11 +562,10 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
     }
     if (settings.is_null()) {
       settings = found;
+      settings_dir = dir;
     } else if (!found.is_null()) {
-      // NOTE: both ways, so a setting one folder has and the other lacks is a difference too.
-      const std::string remedy = "only sweeps run with the same settings can be merged";
-      require_same_settings(found, settings, dir / kSettingsFile, remedy);
-      require_same_settings(settings, found, all.front() / kSettingsFile, remedy);
+      require_same_sweep(settings, settings_dir, found, dir);
+      settings = with_scenes(settings, found);
     }
     for (const auto& [name, path] : scene_files(dir)) {
       const auto [it, inserted] = scenes.emplace(name, read_file(path));
@@ -462,7 +598,8 @@ void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
     }
   }
   fs::create_directories(out / "trials");
-  if (!settings.is_null() && read_settings(out).is_null()) {
+  // NOTE: the target's settings took part above, so this only adds the scenes it lacked.
+  if (!settings.is_null() && read_settings(out) != settings) {
     write_atomically(out / kSettingsFile, settings.dump(2) + "\n");
   }
   for (const auto& [key, rows] : trials) write_atomically(out / "trials" / (key + ".csv"), rows);

@@ -104,17 +104,21 @@ void write_yardstick_file(const std::filesystem::path& path, const sim::Scene& s
 /// Runs this shard's trials that `dir/trials/` does not hold yet, then writes `dir/scans.csv`
 /// from all trial files present. The generated piles' scene files go to `dir/scenes/` first; one
 /// that is there already and differs (another version's generator) throws std::invalid_argument.
-/// Returns the number of trials run now. The settings that shape a trial's rows (stops, seed,
-/// evaluation, mapping, ...) are kept in `dir/sweep.json`; resuming a folder with other settings
-/// throws std::invalid_argument naming the first that differs. `on_trial` is called from the worker
-/// threads, one call at a time.
+/// Returns the number of trials run now. What shapes a trial's rows besides its key is kept in
+/// `dir/sweep.json`: the settings (stops, seed, evaluation, mapping, ...), the binary's version
+/// and git commit (build_info.hpp) and each scene's content hash (its file's text and the solids
+/// it loads to); resuming a folder with other settings, another binary, or a scene of its name
+/// with other content throws std::invalid_argument naming the first that differs (a resumed sweep
+/// may add scenes). `on_trial` is called from the worker threads, one call at a time.
 std::size_t run_bench(const std::filesystem::path& dir, const BenchConfig& config,
                       const std::function<void(const TrialEvent&)>& on_trial = {});
 
 /// Joins the trial files of several sweep folders (e.g. shards) into `out/trials/`, their
 /// generated scene files into `out/scenes/` and their yardstick files into `out/yardstick/`, and
-/// writes `out/scans.csv`. Throws std::runtime_error when two folders hold the same trial with
-/// different contents, and std::invalid_argument when their sweep.json settings differ.
+/// writes `out/scans.csv` and `out/sweep.json` (the scenes' hashes of all). Throws
+/// std::runtime_error when two folders hold the same trial with different contents, and
+/// std::invalid_argument, in one line naming the field and both folders, when their sweep.json
+/// differ in a setting, the binary's version or commit, or the content of a scene both hold.
 void merge_bench(const std::vector<std::filesystem::path>& dirs, const std::filesystem::path& out);
 
 /// Writes `dir/scans.csv`: the header and every trial file's rows, in key order.

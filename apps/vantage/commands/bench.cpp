@@ -334,10 +334,12 @@ void add_bench_command(CLI::App& app) {
 
   auto dirs = std::make_shared<std::vector<std::string>>();
   auto out = std::make_shared<std::string>();
+  auto plots = std::make_shared<bool>(true);
   CLI::App* merge = bench->add_subcommand("merge", "Join the trial files of shard folders");
   merge->add_option("dirs", *dirs, "sweep folders to join")->required();
   merge->add_option("--out,-o", *out, "folder to write (default: the first folder)");
-  merge->callback([dirs, out] {
+  merge->add_flag("!--no-plots", *plots, "skip plots and summary");
+  merge->callback([dirs, out, plots] {
     std::vector<fs::path> paths(dirs->begin(), dirs->end());
     // NOTE: a folder that is not there is said as such, not as a folder without sweep.json.
     for (const fs::path& dir : paths) {
@@ -351,6 +353,15 @@ void add_bench_command(CLI::App& app) {
     const fs::path target = out->empty() ? paths.front() : fs::path(*out);
     merge_bench(paths, target);
     fmt::print("merged {} folder(s) into {}\n", paths.size(), (target / "scans.csv").string());
+    // NOTE: the merged sweep is drawn as one run on one machine draws it.
+    if (*plots) {
+      std::fflush(stdout);
+      run_plot_script("plot_bench.py", {target.string()});
+      fmt::print(
+          "plots and summary: {}/unobserved.png, prediction_error.png, summary.md, "
+          "trials.csv\n",
+          target.string());
+    }
   });
 }
 
