@@ -12,10 +12,11 @@ shaping=(--scenes --methods --alphas --objectives --trials --scans --seed --revi
          --objects --generated-seed --candidates --arm-base --reach --view-spacing
          --hemisphere-radii --coverage-tolerance --no-stop-projection --evaluation --search
          --epsilon --lambda --horizon --travel-weight --sample --swept-rays --shortlist
-         --integration --no-icp --no-segmentation --no-hole-filling)
+         --integration --no-icp --no-segmentation --no-hole-filling --views --view-radius
+         --object-radius --starts)
 # Results identical whatever they say (a budget refuses, it never changes a decision).
 rowless=(--help --jobs --shard --out --no-plots --max-memory --max-work --threads)
-for kind in tabletop office; do
+for kind in tabletop objects office; do
   while read -r option; do
     [[ " ${shaping[*]} ${rowless[*]} " == *" $option "* ]] || {
       echo "FAIL: bench $kind $option is new: record it in sweep.json (vantage/experiment/bench.cpp," \
@@ -24,4 +25,4 @@ for kind in tabletop office; do
     }
   done < <("$vantage" bench "$kind" --help | grep -oE '^  (-[a-z],)?--[a-z-]+' | sed 's/.*,//; s/^ *//')
 done
-echo "ok: every option of bench tabletop and office is accounted for"
+echo "ok: every option of bench tabletop, objects and office is accounted for"
