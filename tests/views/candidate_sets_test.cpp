@@ -1,0 +1,126 @@
+// The candidate sets' registry (vantage/views/candidate_sets.hpp) and the travel on an object's
+// view sphere (vantage/views/travel.hpp).
+
+#include "vantage/views/candidate_sets.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <set>
+#include <string>
+
+namespace vantage {
+namespace {
+
+CandidateSite site_around(const Eigen::Vector3d& target) {
+  CandidateSite site;
+  site.target = target;
+  site.region = Eigen::AlignedBox3d(target - Eigen::Vector3d(0.5, 0.5, 0.2),
+                                    target + Eigen::Vector3d(0.5, 0.5, 0.2));
+  return site;
+}
+
+TEST(CandidateSets, EveryRowIsNamedOnceAndFoundByItsName) {
+  std::set<std::string> names;
+  for (const CandidateSetRow& row : candidate_sets()) {
+    EXPECT_FALSE(row.help.empty()) << row.name;
+    EXPECT_TRUE(names.insert(std::string(row.name)).second) << row.name << " twice";
+    EXPECT_EQ(&find_candidate_set(row.name), &row);
+    EXPECT_TRUE(is_candidate_set(row.name));
+  }
+  for (const char* name : {"ring", "hemisphere", "sphere", "view-sphere", "frontier", "file"}) {
+    EXPECT_TRUE(names.count(name)) << name;
+  }
+  try {
+    (void)find_candidate_set("cube");
+    FAIL() << "an unknown set was found";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown candidate set 'cube' (expected one of: ring,"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(CandidateSets, EverySetPlacedAroundATargetLooksAtIt) {
+  const Eigen::Vector3d target(0.3, -0.2, 0.8);
+  for (const CandidateSetRow& row : candidate_sets()) {
+    if (row.needs_map || row.needs_list) continue;
+    const PlacedViews views = row.build(site_around(target), CandidateParams{});
+    ASSERT_FALSE(views.poses.empty()) << row.name;
+    for (const Eigen::Isometry3d& pose : views.poses) {
+      const Eigen::Vector3d to_target = (target - pose.translation()).normalized();
+      // The ring's yaw offsets turn a view up to 15 degrees off its target.
+      EXPECT_GT(pose.linear().col(0).dot(to_target), std::cos(0.27)) << row.name;
+    }
+  }
+}
+
+TEST(CandidateSets, TheListedSetIsTheUsersPosesAndTheFrontierNeedsAMap) {
+  CandidateParams params;
+  params.listed = {Eigen::Isometry3d(Eigen::Translation3d(1, 2, 3)), Eigen::Isometry3d::Identity()};
+  const PlacedViews views = build_candidates("file", CandidateSite{}, params);
+  ASSERT_EQ(views.poses.size(), 2u);
+  EXPECT_TRUE(views.poses[0].isApprox(params.listed[0]));
+  EXPECT_THROW(build_candidates("file", CandidateSite{}, CandidateParams{}), std::invalid_argument);
+  EXPECT_THROW(build_candidates("frontier", CandidateSite{}, CandidateParams{}),
+               std::invalid_argument);
+}
+
+TEST(CandidateSets, TheViewSphereCoversTheWholeSphereEvenly) {
+  const Eigen::Vector3d center(0.1, 0.2, 0.3);
+  CandidateSite site = site_around(center);
+  site.sphere = object_view_sphere(center, 0.7);
+  const PlacedViews views = build_candidates("view-sphere", site, CandidateParams{});
+  ASSERT_EQ(views.poses.size(), 32u);  // SCVP's and MA-SCVP's
+  EXPECT_EQ(views.travel.kind, TravelRule::Kind::kSphereArc);
+  int below = 0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double nearest_pair = 10.0;
+  for (std::size_t i = 0; i < views.poses.size(); ++i) {
+    const Eigen::Vector3d offset = views.poses[i].translation() - center;
+    EXPECT_NEAR(offset.norm(), 0.7, 1e-12);
+    EXPECT_NEAR(views.poses[i].linear().col(0).dot(-offset.normalized()), 1.0, 1e-12);
+    below += offset.z() < 0.0 ? 1 : 0;
+    mean += offset;
+    for (std::size_t j = 0; j < i; ++j) {
+      nearest_pair = std::min(nearest_pair,
+                              (views.poses[i].translation() - views.poses[j].translation()).norm());
+    }
+  }
+  EXPECT_EQ(below, 16);                       // half below the object's centre
+  EXPECT_LT(mean.norm() / 32.0, 0.05 * 0.7);  // no side favoured
+  // 32 points evenly spread on a sphere of 0.7 m lie about 0.22 m apart; none nearly coincide.
+  EXPECT_GT(nearest_pair, 0.15);
+  CandidateParams params;
+  params.views = 100;
+  params.radius = 1.0;
+  EXPECT_EQ(build_candidates("view-sphere", site, params).poses.size(), 100u);
+}
+
+TEST(Travel, TheSphereArcIsAMetricAboveTheChordAndAtMostHalfAGreatCircle) {
+  const TravelRule arc{TravelRule::Kind::kSphereArc, Eigen::Vector3d(0.5, -1, 2), 0.7};
+  std::mt19937 rng(7);
+  std::normal_distribution<double> n;
+  auto point = [&] {
+    return arc.center + arc.radius * Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized();
+  };
+  for (int k = 0; k < 2000; ++k) {
+    const Eigen::Vector3d a = point(), b = point(), c = point();
+    const double ab = arc(a, b);
+    EXPECT_GE(ab, (a - b).norm() - 1e-12);
+    EXPECT_LE(ab, std::numbers::pi * arc.radius + 1e-12);
+    EXPECT_NEAR(ab, arc(b, a), 1e-12);
+    EXPECT_LE(ab, arc(a, c) + arc(c, b) + 1e-12);
+  }
+  const Eigen::Vector3d top = arc.center + Eigen::Vector3d(0, 0, 0.7);
+  const Eigen::Vector3d bottom = arc.center - Eigen::Vector3d(0, 0, 0.7);
+  const Eigen::Vector3d side = arc.center + Eigen::Vector3d(0.7, 0, 0);
+  EXPECT_NEAR(arc(top, bottom), std::numbers::pi * 0.7, 1e-12);  // around, never through
+  EXPECT_NEAR(arc(top, side), std::numbers::pi / 2 * 0.7, 1e-12);
+  EXPECT_NEAR(arc(top, top), 0.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace vantage
