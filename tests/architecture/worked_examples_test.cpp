@@ -1,6 +1,7 @@
 // docs/architecture.md's worked examples, compiled and held to what they claim: a model in one
 // file (examples/architecture/frontier_voxel.hpp) and a search in one file
-// (examples/architecture/exact_search.cpp), each run through the interface its registry row
+// (examples/architecture/exact_search.cpp) and a candidate set in one file
+// (examples/architecture/cube_views.cpp), each run through the interface its registry row
 // would list it by.
 
 #include <gtest/gtest.h>
@@ -8,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "examples/architecture/cube_views.cpp"    // NOLINT: the example is one file
 #include "examples/architecture/exact_search.cpp"  // NOLINT: the example is one file
 #include "examples/architecture/frontier_voxel.hpp"
 #include "tests/planner/views_around.hpp"
@@ -75,6 +77,23 @@ TEST(WorkedExamples, ASearchInOneFileDecidesBehindTheInterface) {
   EXPECT_FALSE(kExactSearch.serves(survival));
   // Not registered: naming it is refused, as any unknown search is.
   EXPECT_THROW((void)parse_decision_search("exact"), std::invalid_argument);
+}
+
+TEST(WorkedExamples, ACandidateSetInOneFileBuildsThroughItsRow) {
+  CandidateSite site;
+  site.target = {0.2, 0.1, 0.9};
+  site.region = Eigen::AlignedBox3d(site.target - Eigen::Vector3d::Constant(0.4),
+                                    site.target + Eigen::Vector3d::Constant(0.4));
+  const PlacedViews views = kCubeRow.build(site, CandidateParams{});
+  ASSERT_EQ(views.poses.size(), 6u);
+  for (const Eigen::Isometry3d& pose : views.poses) {
+    EXPECT_NEAR((pose.translation() - site.target).norm(), 0.5, 1e-12);
+    EXPECT_NEAR(pose.linear().col(0).dot((site.target - pose.translation()).normalized()), 1.0,
+                1e-12);
+  }
+  EXPECT_EQ(views.travel.kind, TravelRule::Kind::kStraightLine);
+  // Not in the registry until its row is added: the example does not change the library.
+  EXPECT_FALSE(is_candidate_set(kCubeRow.name));
 }
 
 }  // namespace
