@@ -23,6 +23,7 @@
 #include "vantage/planner/planner.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/views/candidate_sets.hpp"
 #include "vantage/views/ring.hpp"
 #include "vantage/views/sphere.hpp"
 
@@ -232,6 +233,45 @@ void bind_plan(py::module_& m) {
       "(a manifest's roi) [m]; radius 1.5 half-diagonals of its footprint (at least 1 m), 0.3 m "
       "above its top, 10 positions, yaw offsets -15, 0, 15 degrees; radius, height and "
       "positions as `plan --radius --height --views` override them. K x 4 x 4.");
+  m.def(
+      "candidate_sets",
+      [] {
+        std::vector<std::pair<std::string, std::string>> sets;
+        for (const CandidateSetRow& row : candidate_sets()) {
+          sets.emplace_back(std::string(row.name), std::string(row.help));
+        }
+        return sets;
+      },
+      "The candidate sets by name, with a line each: the registry `vantage plan --candidates`, "
+      "`explore` and `bench` read (views/candidate_sets.hpp).");
+  m.def(
+      "candidate_views",
+      [](const std::string& name, const DoubleArray& roi_min, const DoubleArray& roi_max,
+         double radius, int views, std::optional<DoubleArray> poses) {
+        CandidateSite site;
+        site.region =
+            Eigen::AlignedBox3d(to_vector3(roi_min, "roi_min"), to_vector3(roi_max, "roi_max"));
+        if (!site.region.min().allFinite() || !site.region.max().allFinite() ||
+            (site.region.min().array() > site.region.max().array()).any()) {
+          throw std::invalid_argument("roi must be (min corner, max corner), min <= max");
+        }
+        site.target = site.region.center();
+        CandidateParams params;
+        params.radius = radius;
+        params.views = views;
+        if (poses) params.listed = to_poses(*poses, "poses");
+        const CandidateSetRow& row = find_candidate_set(name);
+        if (row.needs_map) {
+          throw std::invalid_argument(
+              cat("candidate set '", name, "' is found in a map: plan with it (vt.plan)"));
+        }
+        return from_poses(row.build(site, params).poses);
+      },
+      py::arg("name"), py::arg("roi_min"), py::arg("roi_max"), py::arg("radius") = 0.0,
+      py::arg("views") = 0, py::arg("poses") = std::nullopt,
+      "The views of the candidate set `name` (candidate_sets()) around a region of interest, "
+      "as `vantage plan --candidates NAME` places them: radius and views 0 for the set's own "
+      "[m]; 'file' takes `poses` (K x 4 x 4). K x 4 x 4.");
   m.def(
       "sphere_poses",
       [](const DoubleArray& center, double radius, int views) {

@@ -7,6 +7,7 @@
 
 #include "bindings.hpp"
 #include "convert.hpp"
+#include "vantage/sim/object_scene.hpp"
 #include "vantage/sim/world.hpp"
 #include "vantage/util/text.hpp"
 
@@ -40,6 +41,28 @@ py::array_t<double> scan(const sim::World& world, const Eigen::Matrix4d& T_world
 
 void bind_sim(py::module_& m) {
   m.def("builtin_scene_names", &sim::builtin_scene_names, "Names of the built-in scenes.");
+  m.def(
+      "object_scene",
+      [](const std::string& mesh, double object_radius, double view_radius, int views,
+         double resolution, const std::string& sensor) {
+        sim::ObjectProtocol protocol;
+        protocol.object_radius = object_radius;
+        protocol.view_radius = view_radius;
+        protocol.views = views;
+        protocol.resolution = resolution;
+        protocol.sensor = sensor;
+        return with_file(mesh, false, [&] { return sim::single_object_scene(mesh, protocol); });
+      },
+      py::arg("mesh"), py::arg("object_radius") = sim::ObjectProtocol{}.object_radius,
+      py::arg("view_radius") = sim::ObjectProtocol{}.view_radius,
+      py::arg("views") = sim::ObjectProtocol{}.views,
+      py::arg("resolution") = sim::ObjectProtocol{}.resolution,
+      py::arg("sensor") = sim::ObjectProtocol{}.sensor,
+      "A single object on its view sphere, the field's protocol (docs/objects.md): `mesh` a file "
+      "(.ply, .obj, .off, .stl) or a built-in model, centred on its bounding sphere scaled to "
+      "`object_radius`, floating; `views` candidates spread over the sphere at `view_radius` "
+      "from its centre, which are also its start poses [m]. Scene('bunny.ply') is the same "
+      "with the defaults.");
   m.def("builtin_sensor_names", &sim::builtin_sensor_names,
         "Names of the built-in sensors ('hokuyo', 'kinect').");
   m.def(

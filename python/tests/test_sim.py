@@ -66,3 +66,33 @@ def test_pose_from_xyz_rpy_matches_look_at():
     # Yaw 90 degrees at the origin looks along +y, as look_at((0, 0, 0), (0, 1, 0)) does.
     pose = vt.pose_from_xyz_rpy((0, 0, 0), (0, 0, np.pi / 2))
     np.testing.assert_allclose(pose, vt.look_at((0, 0, 0), (0, 1, 0)), atol=1e-12)
+
+
+def test_an_object_sits_on_its_view_sphere():
+    scene = vt.object_scene("bunny")
+    assert scene.kind == "object" and scene.name == "bunny"
+    views = scene.candidate_poses()
+    assert views.shape == (32, 4, 4)
+    center = views[:, :3, 3].mean(axis=0)
+    assert np.allclose(np.linalg.norm(views[:, :3, 3] - center, axis=1), 0.7, atol=0.02)
+    # The starts are the sphere's views, in another order.
+    assert len(scene.start_poses) == 32
+    wider = vt.object_scene("bunny", views=40, view_radius=1.0)
+    assert len(wider.candidate_poses()) == 40
+    with pytest.raises(ValueError, match="minimum range"):
+        vt.object_scene("bunny", view_radius=0.3)
+
+
+def test_candidate_sets_come_from_one_registry():
+    names = [name for name, _ in vt.candidate_sets()]
+    assert names[:4] == ["ring", "hemisphere", "sphere", "view-sphere"]
+    assert "frontier" in names and "file" in names
+    views = vt.candidate_views("view-sphere", [-0.1, -0.1, -0.1], [0.1, 0.1, 0.1], radius=0.7)
+    assert views.shape == (32, 4, 4)
+    assert np.allclose(np.linalg.norm(views[:, :3, 3], axis=1), 0.7)
+    ring = vt.candidate_views("ring", [-0.5, -0.5, 0.75], [0.5, 0.5, 1.0])
+    assert ring.shape == (30, 4, 4)
+    with pytest.raises(ValueError, match="unknown candidate set 'cube'"):
+        vt.candidate_views("cube", [0, 0, 0], [1, 1, 1])
+    with pytest.raises(ValueError, match="found in a map"):
+        vt.candidate_views("frontier", [0, 0, 0], [1, 1, 1])
