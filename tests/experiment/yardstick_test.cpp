@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <set>
 #include <stdexcept>
 #include <tuple>
@@ -398,6 +399,47 @@ TEST(Yardstick, ASweepRunsTheGreedyOracleAndWritesTheTruthForTheSetCover) {
     EXPECT_EQ(row[27], "");
   }
   EXPECT_TRUE(found);
+}
+
+}  // namespace
+}  // namespace vantage
+
+namespace vantage {
+namespace {
+
+// PB-NBV's rule, a point within a distance of the cell: against every cell's box measured pair by
+// pair, on random points in and around a small grid.
+TEST(Yardstick, ADistanceToleranceCoversTheCellsWithinItOfAPoint) {
+  const GridSpec grid = GridSpec::centered({0.1, -0.2, 0.3}, 0.005, {9, 7, 8});
+  std::vector<std::uint32_t> all(grid.num_cells());
+  for (std::uint32_t c = 0; c < all.size(); ++c) all[c] = c;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.03, 0.03);
+  for (const double metres : {0.001, 0.005, 0.0123}) {
+    PointCloud points;
+    for (int k = 0; k < 12; ++k)
+      points.push_back(Eigen::Vector3d(0.1 + u(rng), -0.2 + u(rng), 0.3 + u(rng)));
+    std::vector<std::uint32_t> expected;
+    for (const std::uint32_t c : all) {
+      const Eigen::Vector3d lo = grid.origin + grid.resolution * grid.unravel(c).cast<double>();
+      const Eigen::AlignedBox3d box(lo, lo + Eigen::Vector3d::Constant(grid.resolution));
+      for (const Eigen::Vector3d& p : points) {
+        if (box.exteriorDistance(p) <= metres) {
+          expected.push_back(c);
+          break;
+        }
+      }
+    }
+    EXPECT_EQ(covered_cells(grid, all, points, CoverageTolerance::within(metres)), expected)
+        << metres << " m";
+    EXPECT_FALSE(expected.empty());
+  }
+  EXPECT_EQ(parse_coverage_tolerance("5mm"), CoverageTolerance::within(0.005));
+  EXPECT_EQ(parse_coverage_tolerance("0.005m"), CoverageTolerance::within(0.005));
+  EXPECT_EQ(parse_coverage_tolerance("0"), CoverageTolerance(0));
+  for (const char* bad : {"5", "mm", "-1mm", "2m", "5 mm", "1e400mm"}) {
+    EXPECT_THROW(parse_coverage_tolerance(bad), std::invalid_argument) << bad;
+  }
 }
 
 }  // namespace

@@ -23,6 +23,7 @@
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/util/work.hpp"
+#include "vantage/experiment/yardstick.hpp"
 #include "vantage/views/candidate_set.hpp"
 #include "vantage/views/hemisphere.hpp"
 
@@ -105,7 +106,7 @@ struct ExplorationConfig {
   /// Table top: the yardstick's tolerance [cells], 0 or 1 (yardstick.hpp): surface coverage, its
   /// denominator and the greedy oracle's hit sets count a surface cell covered once a scan point
   /// lies in it (0) or within one cell of it (1, issue 36's definition).
-  int coverage_tolerance = 1;
+  CoverageTolerance coverage_tolerance = 1;
 
   /// Throws std::invalid_argument naming the field.
   void validate() const;

@@ -57,9 +57,10 @@ void ExplorationConfig::validate() const {
                                       "sphere or view-sphere)"));
     }
   }
-  if (coverage_tolerance < 0 || coverage_tolerance > kMaxCoverageTolerance) {
-    throw std::invalid_argument(cat("explore.coverage_tolerance must be 0 or ",
-                                    kMaxCoverageTolerance, " cells, got ", coverage_tolerance));
+  try {
+    coverage_tolerance.validate();
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(cat("explore.coverage_tolerance: ", e.what()));
   }
 }
 

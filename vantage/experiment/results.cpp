@@ -292,7 +292,7 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
       "a surface cell of the objects (table and floor excluded) is covered once a registered "
       "point lies {}; surface_coverage divides by the cells the candidate views and starts hit "
       "with noise-free scans, raw_surface_coverage by all object surface cells",
-      config.coverage_tolerance == 0 ? "in it" : "in it or in one of its 26 neighbours");
+      config.coverage_tolerance.describe());
   json run = {{"vantage_version", VANTAGE_VERSION},
               {"scene",
                {{"name", scene.name},
@@ -307,7 +307,8 @@ void write_run_files(const std::filesystem::path& dir, const sim::Scene& scene,
               {"surface_cells", result.surface_cells},
               {"visible_surface_cells", result.visible_surface_cells},
               {"surface_coverage_rule", rule},
-              {"coverage_tolerance_cells", config.coverage_tolerance},
+              {"coverage_tolerance_cells", config.coverage_tolerance.cells},
+              {"coverage_tolerance_m", config.coverage_tolerance.metres},
               {"scans", json::array()},
               {"candidates", json::array()}};
   if (scene.kind != sim::SceneKind::kOffice && run_candidate_set(scene, config) == "hemisphere") {

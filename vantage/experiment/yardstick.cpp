@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <string>
 #include <iterator>
 #include <stdexcept>
 
@@ -57,12 +59,109 @@ std::vector<std::uint32_t> object_surface_cells(const sim::Scene& scene, int num
   return sim::surface_cells(scene.grid, sim::voxelize(objects, scene.grid, num_threads));
 }
 
-std::vector<std::uint32_t> covered_cells(const GridSpec& grid, std::span<const std::uint32_t> cells,
-                                         const PointCloud& points_world, int tolerance) {
-  if (tolerance < 0 || tolerance > kMaxCoverageTolerance) {
-    throw std::invalid_argument(fmt::format("coverage tolerance {} cells: must be 0 or {}",
-                                            tolerance, kMaxCoverageTolerance));
+CoverageTolerance CoverageTolerance::within(double m) {
+  CoverageTolerance t(0);
+  t.metres = m;
+  return t;
+}
+
+void CoverageTolerance::validate() const {
+  if (metres != 0.0) {
+    if (!(metres > 0.0 && metres <= kMaxCoverageToleranceMetres)) {
+      throw std::invalid_argument(fmt::format("coverage tolerance {} m: must be in (0, {}] m",
+                                              metres, kMaxCoverageToleranceMetres));
+    }
+    return;
   }
+  if (cells < 0 || cells > kMaxCoverageTolerance) {
+    throw std::invalid_argument(fmt::format("coverage tolerance {} cells: must be 0 or {}", cells,
+                                            kMaxCoverageTolerance));
+  }
+}
+
+std::string CoverageTolerance::describe() const {
+  if (metres > 0.0) return fmt::format("within {:g} mm of it", metres * 1e3);
+  return cells == 0 ? "in it" : "in it or in one of its 26 neighbours";
+}
+
+std::string CoverageTolerance::label() const {
+  return metres > 0.0 ? fmt::format("{:g}mm", metres * 1e3) : fmt::format("{}", cells);
+}
+
+CoverageTolerance parse_coverage_tolerance(std::string_view text) {
+  const std::string t(text);
+  const auto fail = [&] {
+    return std::invalid_argument(fmt::format(
+        "coverage tolerance '{}': give 0 or 1 [cells], or a distance such as 5mm or 0.005m", t));
+  };
+  if (t == "0" || t == "1") return CoverageTolerance(t == "0" ? 0 : 1);
+  double scale = 0.0;
+  std::string number;
+  if (t.size() > 2 && t.compare(t.size() - 2, 2, "mm") == 0) {
+    scale = 1e-3;
+    number = t.substr(0, t.size() - 2);
+  } else if (t.size() > 1 && t.back() == 'm') {
+    scale = 1.0;
+    number = t.substr(0, t.size() - 1);
+  } else {
+    throw fail();
+  }
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(number, &used);
+  } catch (const std::exception&) {
+    throw fail();
+  }
+  if (used != number.size() || !(value > 0.0)) throw fail();
+  const CoverageTolerance result = CoverageTolerance::within(value * scale);
+  result.validate();
+  return result;
+}
+
+namespace {
+
+/// The cells within `tolerance.metres` of some point: each point marks the cells of the box
+/// around it whose own box it lies within that distance of.
+std::vector<std::uint8_t> marks_within(const GridSpec& grid, const PointCloud& points_world,
+                                       double metres) {
+  std::vector<std::uint8_t> marks(grid.num_cells(), 0);
+  const double res = grid.resolution;
+  const int reach = static_cast<int>(std::ceil(metres / res)) + 1;
+  for (const Eigen::Vector3d& p : points_world) {
+    if (!p.allFinite()) continue;
+    const Index3 q = grid.lattice_index(p);
+    const Index3 lo = (q - Index3::Constant(reach)).cwiseMax(Index3::Zero());
+    const Index3 hi = (q + Index3::Constant(reach)).cwiseMin(grid.dims - Index3::Ones());
+    for (int z = lo.z(); z <= hi.z(); ++z) {
+      for (int y = lo.y(); y <= hi.y(); ++y) {
+        for (int x = lo.x(); x <= hi.x(); ++x) {
+          const Eigen::Vector3d min = grid.origin + res * Eigen::Vector3d(x, y, z);
+          const Eigen::Vector3d gap =
+              (min - p).cwiseMax(p - min - Eigen::Vector3d::Constant(res)).cwiseMax(0.0);
+          if (gap.squaredNorm() <= metres * metres) marks[grid.linear(Index3(x, y, z))] = 1;
+        }
+      }
+    }
+  }
+  return marks;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> covered_cells(const GridSpec& grid, std::span<const std::uint32_t> cells,
+                                         const PointCloud& points_world,
+                                         CoverageTolerance tolerance_rule) {
+  tolerance_rule.validate();
+  if (tolerance_rule.metres > 0.0) {
+    const std::vector<std::uint8_t> marks = marks_within(grid, points_world, tolerance_rule.metres);
+    std::vector<std::uint32_t> out;
+    for (const std::uint32_t c : cells) {
+      if (marks[c] != 0) out.push_back(c);
+    }
+    return out;
+  }
+  const int tolerance = tolerance_rule.cells;
   PaddedMarks padded(grid);
   for (const Eigen::Vector3d& p : points_world) {
     if (!p.allFinite()) continue;
@@ -105,7 +204,8 @@ std::size_t count_common(std::span<const std::uint32_t> a, std::span<const std::
 }
 
 SurfaceTruth compute_surface_truth(const sim::World& world,
-                                   std::span<const Eigen::Isometry3d> candidates, int tolerance,
+                                   std::span<const Eigen::Isometry3d> candidates,
+                                   CoverageTolerance tolerance,
                                    int num_threads) {
   const auto start = std::chrono::steady_clock::now();
   const sim::Scene& scene = world.scene();

@@ -39,14 +39,42 @@ inline constexpr std::string_view kSupportKinds[] = {"table", "floor"};
 /// The object surface S of a scene in its grid, ascending linear indices (see the file comment).
 std::vector<std::uint32_t> object_surface_cells(const sim::Scene& scene, int num_threads = 0);
 
-/// The tolerances the yardstick knows [cells] (the file's note).
+/// The tolerances the yardstick knows in cells (the file's note).
 inline constexpr int kMaxCoverageTolerance = 1;
 
-/// The cells of `cells` (ascending) within `tolerance` cells (0 or 1) of some point of
-/// `points_world`: the point's cell is the cell or, at 1, one of its 26 neighbours. Points
-/// outside the grid count for the border cells they lie next to. Ascending.
+/// The largest tolerance a distance may give [m]: a metre is no scan point's error.
+inline constexpr double kMaxCoverageToleranceMetres = 1.0;
+
+/// When a point covers a cell: within `cells` cells (0: in it, MA-SCVP's; 1: in it or one of its
+/// 26 neighbours, issue 36's), or, when `metres` > 0, within that distance of the cell's box
+/// (PB-NBV counts a ground-truth point covered by a scan point within 5 mm).
+struct CoverageTolerance {
+  int cells = 1;        ///< 0 or 1 (kMaxCoverageTolerance), when metres is 0
+  double metres = 0.0;  ///< > 0: Euclidean distance from the point to the cell's box [m]
+
+  CoverageTolerance(int c = 1) : cells(c) {}  // NOLINT(google-explicit-constructor): cells
+  /// Within `m` of the cell [m].
+  static CoverageTolerance within(double m);
+  bool operator==(const CoverageTolerance&) const = default;
+  /// Throws std::invalid_argument naming the value.
+  void validate() const;
+  /// How a point covers a cell, in words ("in it", "within 5 mm of it", ...).
+  std::string describe() const;
+  /// "0", "1" (cells) or "5mm" (a distance).
+  std::string label() const;
+};
+
+/// "0" or "1" [cells], or a distance with its unit, "5mm" or "0.005m"; throws
+/// std::invalid_argument naming the text.
+CoverageTolerance parse_coverage_tolerance(std::string_view text);
+
+/// The cells of `cells` (ascending) that some point of `points_world` covers at `tolerance`: the
+/// point's cell is the cell or, at 1 cell, one of its 26 neighbours, or the point lies within the
+/// tolerance's distance of the cell's box. Points outside the grid count for the border cells
+/// they lie next to. Ascending.
 std::vector<std::uint32_t> covered_cells(const GridSpec& grid, std::span<const std::uint32_t> cells,
-                                         const PointCloud& points_world, int tolerance = 1);
+                                         const PointCloud& points_world,
+                                         CoverageTolerance tolerance = 1);
 
 /// The size of the intersection of two ascending index lists.
 std::size_t count_common(std::span<const std::uint32_t> a, std::span<const std::uint32_t> b);
@@ -54,7 +82,7 @@ std::size_t count_common(std::span<const std::uint32_t> a, std::span<const std::
 /// The ground truth the yardstick needs for one scene and candidate set.
 struct SurfaceTruth {
   GridSpec grid;
-  int tolerance = 1;                   ///< covered within this many cells (the file's note)
+  CoverageTolerance tolerance;         ///< when a point covers a cell (the file's note)
   std::vector<std::uint32_t> surface;  ///< S, ascending
   std::vector<std::uint32_t> visible;  ///< V: the cells of S some candidate or start hits
   /// Per candidate view, its hit set: the cells of S its noise-free scan covers (a subset of
@@ -69,7 +97,8 @@ struct SurfaceTruth {
 /// collects S, V and each one's hit set at `tolerance` cells. Deterministic for any thread count
 /// (World::scan is).
 SurfaceTruth compute_surface_truth(const sim::World& world,
-                                   std::span<const Eigen::Isometry3d> candidates, int tolerance,
+                                   std::span<const Eigen::Isometry3d> candidates,
+                                   CoverageTolerance tolerance,
                                    int num_threads = 0);
 
 /// The surface coverage figures of a set of measured points.

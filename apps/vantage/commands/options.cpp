@@ -151,11 +151,10 @@ void CandidateOptions::add_to(CLI::App& cmd) {
                  "[m]")
       ->default_str(fmt::format("{}", fmt::join(HemisphereConfig{}.radii, ",")));
   cmd.add_option("--coverage-tolerance", coverage_tolerance,
-                 "surface coverage counts an object surface cell once a scan point lies within "
-                 "this many cells of it, 1 (it or a neighbour) or 0 (in it: MA-SCVP's); the "
-                 "greedy oracle and the yardstick's denominator follow (default: 1 on a table "
-                 "top, 0 for objects) [cells]")
-      ->check(whole_in(0, kMaxCoverageTolerance));
+                 "surface coverage counts an object surface cell once a scan point lies in it "
+                 "(0, MA-SCVP's), in it or a neighbour (1) [cells], or within a distance of it "
+                 "(5mm, PB-NBV's); the greedy oracle and the yardstick's denominator follow "
+                 "(default: 1 on a table top, 0 for objects)");
   cmd.add_option("--object-radius", object_radius,
                  "objects: each object's bounding sphere is scaled to this radius (the view "
                  "sphere keeps its distance from it) [m]")
@@ -193,7 +192,9 @@ void CandidateOptions::apply(ExplorationConfig& config, sim::SceneKind kind) con
   }
   config.hemisphere.spacing = spacing;
   config.coverage_tolerance =
-      coverage_tolerance >= 0 ? coverage_tolerance : (kind == sim::SceneKind::kObject ? 0 : 1);
+      coverage_tolerance.empty()
+          ? CoverageTolerance(kind == sim::SceneKind::kObject ? 0 : 1)
+          : from_options([&] { return parse_coverage_tolerance(coverage_tolerance); });
   // NOTE: an arm places the sensor on an object's view sphere to within a millimetre, as the
   // field's simulators take it: the scene's pose noise (none) rather than a mobile base's.
   if (kind == sim::SceneKind::kObject) config.pose_noise.reset();

@@ -45,7 +45,7 @@ struct CandidateOptions {
   double reach = 0.0;        ///< [m]; 0: the scene's arm
   double spacing = HemisphereConfig{}.spacing;  ///< the hemisphere's view spacing [m]
   std::string radii;                            ///< "r1,r2,..." [m]; empty: HemisphereConfig's
-  int coverage_tolerance = -1;                  ///< [cells]; -1: the scene kind's own
+  std::string coverage_tolerance;  ///< "0", "1" [cells] or "5mm"; empty: the scene kind's own
 
   double object_radius = sim::ObjectProtocol{}.object_radius;  ///< [m]
 
