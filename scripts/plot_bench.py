@@ -503,6 +503,15 @@ SURFACE_LEVELS = (0.80, 0.90, 0.95)
 ORACLE = "greedy-oracle"
 
 
+VIEW_BUDGET = 10  # views, the start's scan included
+
+
+def at_budget(ms):
+    """Mean coverage after VIEW_BUDGET views over the trials that ran that many, as text."""
+    values = [m["at10"] for m in ms if m.get("at10") is not None]
+    return f"{100 * sum(values) / len(values):.1f}%" if values else "-"
+
+
 def has_surface(rows):
     return any(r.get("surface_coverage") for r in rows)
 
@@ -521,7 +530,10 @@ def surface_metrics(g):
         m = {"scene": scene, "method": method, "setting": setting, "trial": trial,
              "aac": sum(1 - c for c in cov), "auc": sum(cov),
              "travel": sum(float(r.get("travel_m") or 0.0) for r in rows),
-             "final": cov[-1], "raw": float(rows[-1].get("raw_surface_coverage") or "nan")}
+             "final": cov[-1], "raw": float(rows[-1].get("raw_surface_coverage") or "nan"),
+             # PB-NBV's and ClutterNBV's budget: the coverage after 10 views, the start's
+             # included (None: the trial took fewer).
+             "at10": cov[VIEW_BUDGET - 1] if len(cov) >= VIEW_BUDGET else None}
         add_scans_to(m, rows, cov, SURFACE_LEVELS)
         trials.append(m)
     trials.sort(key=lambda m: (m["scene"], m["method"], setting_order(m["setting"]),
@@ -601,8 +613,8 @@ def pooled_surface_table(trials, budget, ref="greedy"):
              f"mean, {budget + 1} where not reached.", "",
              f"| method | AAC [scans] | × {ref}'s | p | gap closed | " +
              " | ".join(f"scans to {round(100 * lv)}% | p" for lv in SURFACE_LEVELS) +
-             f" | travel [m] | × {ref}'s | p | final |",
-             "|---|---|---|---|---|" + "---|---|" * len(SURFACE_LEVELS) + "---|---|---|---|"]
+             f" | travel [m] | × {ref}'s | p | final | after 10 views |",
+             "|---|---|---|---|---|" + "---|---|" * len(SURFACE_LEVELS) + "---|---|---|---|---|"]
 
     def p_of(d, f):
         p = wilcoxon_p([f(d[k]) - f(g[k]) for k in sorted(keys)])
@@ -617,7 +629,8 @@ def pooled_surface_table(trials, budget, ref="greedy"):
         lines.append(f"| {name} | {total(d, aac) / len(keys):.3f} | {total(d, aac) / ra:.3f} |"
                      f" {p_of(d, aac)} | {gap} | {levels} | {total(d, travel) / len(keys):.2f} |"
                      f" {total(d, travel) / rt:.3f} | {p_of(d, travel)} |"
-                     f" {100 * total(d, lambda m: m['final']) / len(keys):.1f}% |")
+                     f" {100 * total(d, lambda m: m['final']) / len(keys):.1f}% |"
+                     f" {at_budget([d[k] for k in keys])} |")
     return lines + [""]
 
 
@@ -670,15 +683,21 @@ def visible_cells_of(out):
     return cells
 
 
-def surface_summary(trials, budget, set_cover_rows, tolerance=1):
-    covered = ("a cell covered once a point lies in it" if tolerance == 0 else
+def surface_summary(trials, budget, set_cover_rows, tolerance=1, tolerance_m=0.0):
+    covered = (f"a cell covered once a point lies within {1e3 * tolerance_m:g} mm of it"
+               if tolerance_m else
+               "a cell covered once a point lies in it" if tolerance == 0 else
                "a cell covered once a point lies in it or in one of its 26 neighbours")
+    if tolerance_m:
+        tolerance = f"{1e3 * tolerance_m:g}mm"
     lines = ["## Surface coverage by scan points", "",
              "surface = the share of the visible object surface (the object surface cells that the",
              "candidate views and starts hit with noise-free scans; table excluded) covered by the",
              f"registered scan points, {covered} (docs/yardstick.md,",
              f"--coverage-tolerance {tolerance}); raw = the same share of all object surface cells.",
-             "Both after the last scan, mean over trials. AAC = area above the surface-coverage",
+             "Both after the last scan, mean over trials; after 10 views = surface after scan 10",
+             "(PB-NBV's and ClutterNBV's budget, the start's scan included), mean over trials.",
+             "AAC = area above the surface-coverage",
              "curve, sum over scans 1..N of (1 - coverage) [scans], mean over trials (lower is",
              "better). gap closed = (AAC greedy - AAC method) / (AAC greedy - AAC greedy-oracle),",
              "median over the pairs (scene, start) where the oracle is ahead of greedy (pooled",
@@ -691,10 +710,10 @@ def surface_summary(trials, budget, set_cover_rows, tolerance=1):
     scenes = sorted({m["scene"] for m in trials})
     for scene in scenes:
         lines += [f"### {scene}", "",
-                  "| method | trials | surface | raw | AAC [scans] | gap closed | " +
+                  "| method | trials | surface | raw | after 10 views | AAC [scans] | gap closed | " +
                   " | ".join(f"scans to {round(100 * lv)}%" for lv in SURFACE_LEVELS) + " | " +
                   " | ".join(f"travel to {round(100 * lv)}% [m]" for lv in SURFACE_LEVELS) + " |",
-                  "|---|---|---|---|---|---|" + "---|" * (2 * len(SURFACE_LEVELS))]
+                  "|---|---|---|---|---|---|---|" + "---|" * (2 * len(SURFACE_LEVELS))]
         mine = [m for m in trials if m["scene"] == scene]
         keys = sorted({(m["method"], m["setting"]) for m in mine},
                       key=lambda ms: (ms[0], setting_order(ms[1])))
@@ -712,7 +731,7 @@ def surface_summary(trials, budget, set_cover_rows, tolerance=1):
                 travel.append(f"{median(reached):.2f}" if reached else "-")
             lines.append(f"| {label(method, setting)} | {n} |"
                          f" {100 * sum(m['final'] for m in ms) / n:.1f}% |"
-                         f" {100 * sum(m['raw'] for m in ms) / n:.1f}% |"
+                         f" {100 * sum(m['raw'] for m in ms) / n:.1f}% | {at_budget(ms)} |"
                          f" {sum(m['aac'] for m in ms) / n:.2f} | {share_text} | " +
                          " | ".join(cells) + " | " + " | ".join(travel) + " |")
         lines.append("")
@@ -883,7 +902,8 @@ def main(argv):
         surface = surface_metrics(g)
         extra = surface_summary(surface, budget, read_set_cover(out),
                                 # NOTE: a sweep from before the setting counted within one cell
-                                sweep_setting(out, "coverage_tolerance", 1))
+                                sweep_setting(out, "coverage_tolerance", 1),
+                                sweep_setting(out, "coverage_tolerance_m", 0.0))
         for ref in ["greedy"] + against:
             extra += pooled_surface_table(surface, budget, ref)
         extra += new_coverage_prediction(rows, visible_cells_of(out))
