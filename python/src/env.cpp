@@ -160,8 +160,7 @@ class ExploreRun {
   }
 
   void step(int view, double seconds) {
-    const Exploration& r = running();
-    (void)r;
+    running();
     py::gil_scoped_release release;
     run_->step(view, seconds);
   }
