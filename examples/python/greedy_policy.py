@@ -6,8 +6,11 @@ Greedy's gain of a view is the number of unobserved cells whose centre lies in t
 frustum with no occupied cell on the ray from the sensor to it; the policy takes the untaken
 candidate of the largest gain (ties to the lower index). Each ray's cells are found at once, from
 its crossings of the grid's planes, rather than walked cell by cell as the library does; the
-counts and the choices are the library's on the states python/tests/test_env.py tries. It is
-plain numpy: about a second per candidate on a 129 x 129 x 65 grid, so try it on the ring.
+counts are the library's exact ones (to a cell where a ray runs through a cell's edge) and the
+choices the built-in greedy's on the states python/tests/test_env.py tries; the built-in decides
+with its swept search, which may take another view near the best. It is plain numpy: 4-7 s a
+candidate at the first decision on tabletop-1's 129 x 129 x 65 grid, less later, so try it on
+the ring or a coarse scene.
 
     PYTHONPATH=build/release/python /usr/bin/python3 examples/python/greedy_policy.py [OUT_DIR]
 
