@@ -24,5 +24,7 @@ PlannerConfig default_planner_config(bool knows_pose);
 void bind_plan(pybind11::module_& m);
 /// Simulated scenes, sensors and scans.
 void bind_sim(pybind11::module_& m);
+/// The exploration loop a scan at a time (ExploreEnv's engine) and a Python policy's sweep.
+void bind_env(pybind11::module_& m);
 
 }  // namespace vantage::python

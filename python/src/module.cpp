@@ -58,4 +58,5 @@ PYBIND11_MODULE(_vantage, m) {
   vantage::python::bind_planner_config(m);
   vantage::python::bind_plan(m);
   vantage::python::bind_sim(m);
+  vantage::python::bind_env(m);
 }

@@ -15,6 +15,7 @@ import re as _re
 
 from . import _vantage
 from ._vantage import *  # noqa: F401,F403
+from .env import ActionSpace, ExploreEnv, bench_policy, random_policy  # noqa: F401
 
 # NOTE: a call that matches no signature makes pybind11 raise a TypeError of 3-9 lines (every
 # signature, then the arguments' reprs). Every function and method of the module is wrapped so that

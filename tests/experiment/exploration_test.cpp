@@ -249,5 +249,65 @@ TEST(PlanningSettings, NoMethodIsTheDefaultForTheTask) {
   EXPECT_THROW(settings.planner_config(), SettingError);
 }
 
+ExplorationConfig stepping_config(const sim::Scene& scene) {
+  ExplorationConfig config;
+  config.scans = 4;
+  config.seed = 11;
+  config.planner.method = PlannerMethod::kGreedy;
+  config.mapper = default_mapper_config(scene);
+  return config;
+}
+
+TEST(Exploration, TakingThePlannersProposalsIsExplore) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  const ExplorationConfig config = stepping_config(scene);
+  Mapper mapper(scene.grid, config.mapper);
+  const ExplorationResult whole = explore(scene, config, mapper);
+
+  Mapper stepped_mapper(scene.grid, config.mapper);
+  Exploration run(scene, config, stepped_mapper);
+  ASSERT_NE(run.step(), nullptr);
+  while (!run.done()) {
+    const ViewProposal proposal = run.propose();
+    EXPECT_FALSE(run.taken()[static_cast<std::size_t>(proposal.view)]);
+    run.step(proposal.view, proposal.seconds);
+  }
+  EXPECT_EQ(run.step(), nullptr);
+  const ExplorationResult stepped = run.finish();
+  ASSERT_EQ(stepped.scans.size(), whole.scans.size());
+  EXPECT_EQ(stepped.stop_reason, whole.stop_reason);
+  for (std::size_t k = 0; k < whole.scans.size(); ++k) {
+    const ScanRecord& a = whole.scans[k];
+    const ScanRecord& b = stepped.scans[k];
+    EXPECT_EQ(a.view, b.view) << "scan " << a.scan;
+    EXPECT_EQ(a.unobserved, b.unobserved) << "scan " << a.scan;
+    EXPECT_EQ(a.actual_gain, b.actual_gain) << "scan " << a.scan;
+    EXPECT_EQ(a.surface_coverage, b.surface_coverage) << "scan " << a.scan;
+    EXPECT_EQ(a.travel, b.travel) << "scan " << a.scan;
+    EXPECT_EQ(a.pose_error_after, b.pose_error_after) << "scan " << a.scan;
+  }
+}
+
+TEST(Exploration, RefusesAViewItCannotTake) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  ExplorationConfig config = stepping_config(scene);
+  config.scans = 2;
+  Mapper mapper(scene.grid, config.mapper);
+  Exploration run(scene, config, mapper);
+  EXPECT_THROW(run.step(3), std::invalid_argument);  // the first scan is the start's
+  EXPECT_THROW(run.propose(), std::invalid_argument);
+  const ScanRecord* first = run.step();
+  ASSERT_NE(first, nullptr);
+  const int n = static_cast<int>(run.result().candidates.size());
+  EXPECT_THROW(run.step(n), std::invalid_argument);
+  EXPECT_THROW(run.step(-1), std::invalid_argument);
+  EXPECT_THROW(run.step(first->view), std::invalid_argument);  // taken by the start
+  EXPECT_THROW(run.step(3, -1.0), std::invalid_argument);
+  EXPECT_EQ(run.step(3, 0.25).seconds.plan, 0.25);
+  EXPECT_TRUE(run.done());
+  EXPECT_THROW(run.step(4), std::invalid_argument);
+  EXPECT_EQ(run.result().stop_reason, "took every scan asked for");
+}
+
 }  // namespace
 }  // namespace vantage

@@ -303,6 +303,35 @@ using SurfaceTruths = std::map<std::string, SurfaceTruth>;
 std::string run_trial(const TrialSpec& spec, const BenchConfig& config,
                       const SurfaceTruths& truths) {
   const sim::Scene scene = trial_scene(spec, config);
+  const ExplorationConfig exploration = trial_config(spec, config, scene);
+  Mapper mapper(scene.grid, exploration.mapper);
+  const auto found = truths.find(spec.scene);
+  const SurfaceTruth* truth = found == truths.end() ? nullptr : &found->second;
+  ExplorationResult result;
+  if (spec.policy.empty()) {
+    result = explore(scene, exploration, mapper, {}, truth);
+  } else {
+    const auto policy =
+        std::find_if(config.policies.begin(), config.policies.end(),
+                     [&](const ExternalPolicy& p) { return p.name == spec.policy; });
+    // NOTE: a policy's error names the trial it broke; the types stay (bad choice or failure).
+    try {
+      result = explore_choosing(scene, exploration, mapper, policy->choose, truth);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(fmt::format("trial {}: {}", spec.key(), e.what()));
+    } catch (const std::runtime_error& e) {
+      throw std::runtime_error(fmt::format("trial {}: {}", spec.key(), e.what()));
+    }
+  }
+  return scans_csv_rows({spec.scene, spec.method, spec.alpha, spec.objective, spec.trial,
+                         spec.greedy_oracle, spec.policy},
+                        result.scans);
+}
+
+}  // namespace
+
+ExplorationConfig trial_config(const TrialSpec& spec, const BenchConfig& config,
+                               const sim::Scene& scene) {
   ExplorationConfig exploration = config.exploration;
   exploration.planner.method = spec.method;
   exploration.greedy_oracle = spec.greedy_oracle;
@@ -326,16 +355,8 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config,
     exploration.mapper.register_scans = given.register_scans;
     exploration.mapper.segment_table = exploration.mapper.segment_table && given.segment_table;
   }
-  Mapper mapper(scene.grid, exploration.mapper);
-  const auto truth = truths.find(spec.scene);
-  const ExplorationResult result =
-      explore(scene, exploration, mapper, {}, truth == truths.end() ? nullptr : &truth->second);
-  return scans_csv_rows(
-      {spec.scene, spec.method, spec.alpha, spec.objective, spec.trial, spec.greedy_oracle},
-      result.scans);
+  return exploration;
 }
-
-}  // namespace
 
 std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
                       const std::function<void(const TrialEvent&)>& on_trial) {
@@ -386,9 +407,10 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
     if (truths.count(spec.scene) > 0) continue;
     const sim::Scene scene = trial_scene(spec, config);
     if (scene.kind == sim::SceneKind::kOffice) {
-      if (spec.greedy_oracle) {
-        throw std::invalid_argument(fmt::format(
-            "bench: scene '{}' is an office: the greedy oracle is for table tops", spec.scene));
+      if (spec.greedy_oracle || !spec.policy.empty()) {
+        throw std::invalid_argument(
+            fmt::format("bench: scene '{}' is an office: {} for table tops", spec.scene,
+                        spec.greedy_oracle ? "the greedy oracle is" : "an external policy is"));
       }
       continue;
     }

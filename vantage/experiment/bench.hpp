@@ -30,9 +30,22 @@ struct TrialSpec {
   /// The greedy oracle (ExplorationConfig::greedy_oracle) rather than `method` (greedy's
   /// settings stand in for it).
   bool greedy_oracle = false;
+  /// An external policy's name (BenchConfig::policies): it chooses the views, not `method`
+  /// (greedy's settings stand in for it).
+  std::string policy = {};
 
   /// File-name key, e.g. "tabletop-1__probabilistic__a0.997__t3", "..._aauto__cells__t3".
   std::string key() const;
+};
+
+/// A planner outside the library (Python's vt.bench_policy): its trials run the methods' loop,
+/// from the same starts with the same seeds, on table tops, and it chooses each view after the
+/// start's (explore_choosing).
+struct ExternalPolicy {
+  /// Its scans.csv method and trial keys: letters, digits, '_', '.', '-', and no built-in
+  /// method's name.
+  std::string name;
+  ViewChooser choose;
 };
 
 /// Settings of a sweep.
@@ -57,6 +70,9 @@ struct BenchConfig {
   /// Also run the greedy oracle (table tops; ExplorationConfig::greedy_oracle), one trial set per
   /// scene after the methods'. `methods` may then be empty.
   bool greedy_oracle = false;
+  /// External policies, one trial set per scene each after everything else's (so the others'
+  /// trial order, and their shards, stay as without them). `methods` may then be empty.
+  std::vector<ExternalPolicy> policies;
   double paper_alpha = kTableTopAlpha;  ///< the paper's a for the sweep's kind (§5.1, §5.2)
   int trials = 10;
   ExplorationConfig exploration;  ///< method, alpha, start and seed are set per trial
@@ -81,6 +97,12 @@ std::vector<sim::PileConfig> bench_piles(const BenchConfig& config);
 /// generated piles'. Loads each scene once, to name
 /// it; throws what load_scene throws.
 std::vector<TrialSpec> bench_trials(const BenchConfig& config);
+
+/// The exploration settings of one trial in `scene`: config.exploration with the trial's method,
+/// a and objective, its start (trial mod the scene's starts), its seed (the sweep's seed mixed
+/// with the scene's name and the trial, the same for every method) and the scene's mapper.
+ExplorationConfig trial_config(const TrialSpec& spec, const BenchConfig& config,
+                               const sim::Scene& scene);
 
 /// How a trial went, for progress output.
 struct TrialEvent {

@@ -4,8 +4,10 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
+#include <set>
 #include <stdexcept>
 
 #include "vantage/experiment/bench.hpp"
@@ -21,6 +23,7 @@ std::string TrialSpec::key() const {
                                               objective == GainObjective::kCells ? "__cells" : "")
                                 : std::string();
   if (greedy_oracle) return fmt::format("{}__{}__t{}", scene, kGreedyOracleName, trial);
+  if (!policy.empty()) return fmt::format("{}__{}__t{}", scene, policy, trial);
   return fmt::format("{}__{}{}__t{}", scene, to_string(method), alpha_part, trial);
 }
 
@@ -33,8 +36,35 @@ void BenchConfig::validate() const {
   }
   if (generated > 0) pile.validate();
   objects.validate();
-  if (methods.empty() && !greedy_oracle) {
+  if (methods.empty() && !greedy_oracle && policies.empty()) {
     throw std::invalid_argument("bench.methods must not be empty");
+  }
+  std::set<std::string> policy_names;
+  for (const ExternalPolicy& p : policies) {
+    const bool safe = !p.name.empty() && std::all_of(p.name.begin(), p.name.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.' || c == '-';
+    });
+    if (!safe || p.name.find("__") != std::string::npos) {
+      throw std::invalid_argument(fmt::format(
+          "bench.policies: name '{}' must be letters, digits, '_', '.' or '-' (no '__')", p.name));
+    }
+    bool builtin = p.name == kGreedyOracleName;
+    try {
+      (void)parse_planner_method(p.name);
+      builtin = true;
+    } catch (const std::invalid_argument&) {
+      // NOTE: not a method's name: free for the policy.
+    }
+    if (builtin) {
+      throw std::invalid_argument(
+          fmt::format("bench.policies: '{}' is a built-in method's name", p.name));
+    }
+    if (!policy_names.insert(p.name).second) {
+      throw std::invalid_argument(fmt::format("bench.policies: '{}' is named twice", p.name));
+    }
+    if (!p.choose) {
+      throw std::invalid_argument(fmt::format("bench.policies: '{}' has no chooser", p.name));
+    }
   }
   for (const AlphaSetting& a : alphas) {
     if (!(a.value > 0.0 && a.value <= 1.0)) {
@@ -129,6 +159,16 @@ std::vector<TrialSpec> bench_trials(const BenchConfig& config) {
         specs.push_back({scene, source, PlannerMethod::kGreedy,
                          default_alpha_setting(PlannerMethod::kGreedy, config.paper_alpha),
                          natural_objective(PlannerMethod::kGreedy), t, true});
+      }
+    }
+  }
+  // NOTE: after everything else, so the other trials keep their places (and shards).
+  for (const ExternalPolicy& policy : config.policies) {
+    for (const auto& [scene, source] : scenes) {
+      for (int t = 0; t < config.trials; ++t) {
+        specs.push_back({scene, source, PlannerMethod::kGreedy,
+                         default_alpha_setting(PlannerMethod::kGreedy, config.paper_alpha),
+                         natural_objective(PlannerMethod::kGreedy), t, false, policy.name});
       }
     }
   }

@@ -87,84 +87,168 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
   yaw_ = std::atan2(start.linear()(1, 0), start.linear()(0, 0));
 }
 
-ExplorationResult Explorer::run(const ScanCallback& on_scan) {
+const ScanRecord* Explorer::step() {
+  if (done_) return nullptr;
   Decision next;
-  next.pose = scene_.start_poses[static_cast<std::size_t>(config_.start)];
-  for (std::size_t i = 0; i < result_.candidates.size(); ++i) {
-    if (result_.candidates[i].isApprox(next.pose, 1e-9)) next.view = static_cast<int>(i);
+  if (result_.scans.empty()) {
+    next.pose = scene_.start_poses[static_cast<std::size_t>(config_.start)];
+    for (std::size_t i = 0; i < result_.candidates.size(); ++i) {
+      if (result_.candidates[i].isApprox(next.pose, 1e-9)) next.view = static_cast<int>(i);
+    }
+    if (next.view >= 0 && !taken_.empty()) taken_[static_cast<std::size_t>(next.view)] = true;
+    return &take(std::move(next));
   }
-  if (next.view >= 0 && !taken_.empty()) taken_[static_cast<std::size_t>(next.view)] = true;
-  for (int k = 1; k <= config_.scans; ++k) {
-    ScanRecord record;
-    record.scan = k;
-    record.view = next.view;
-    record.T_world_sensor = next.pose;
-    record.predicted_gain = next.predicted;
-    record.greedy_predicted_gain = next.greedy_predicted;
-    record.predicted_cells = next.predicted_cells;
-    record.alpha = next.alpha;
-    record.surface_rates = next.surface_rates;
-    record.seconds.plan = next.seconds;
-    record.seconds.candidates = next.candidate_seconds;
-    record.seconds.reference = next.reference_seconds;
-    record.travel = next.travel;
-    record.fallback = next.fallback;
-    record.goal = next.goal;
-    record.path = std::move(next.path);
-    record.candidates = next.candidates;
-    record.considered = std::move(next.considered);
-    record.search = std::move(next.search);
-
-    // --alpha auto: what the view about to be scanned would see under every candidate a, set
-    // against what it does see. The first scan calibrates too (on the empty map).
-    if (fit_) {
-      const auto start = Clock::now();
-      const std::vector<Frustum> views = views_at(record.T_world_sensor);
-      GainConfig gain = planner_.gain;
-      gain.method = planner_.method.gain;
-      record.calibration = expected_cells_by_alpha(mapper_.grid(), views, gain, fit_->alphas());
-      record.seconds.calibrate = seconds_since(start);
-    }
-    if (surface_fit_) surface_fit_->before(mapper_.grid(), planner_.gain.num_threads);
-    if (office_) {
-      observe_sweep(k, record);
-    } else {
-      observe_view(k, record);
-    }
-    if (surface_fit_) {
-      surface_fit_->after(mapper_.grid());
-      planner_.gain.surface_rates = surface_fit_->rates();
-    }
-    if (fit_) {
-      fit_->record(record.calibration, static_cast<double>(record.actual_gain));
-      planner_.gain.alpha = fit_->alpha();
-    }
-    record.unobserved = mapper_.grid().counts().unobserved;
-    record.coverage = coverage(mapper_.grid(), truth_.observable);
-    if (surface_ != nullptr) {
-      // NOTE: recounted from all registered points each scan: a re-registration moves earlier
-      // scans' points too.
-      const SurfaceCoverage s = surface_coverage(*surface_, mapper_.object_cloud());
-      record.surface_coverage = s.visible;
-      record.raw_surface_coverage = s.raw;
-    }
-
-    bool stop = k == config_.scans;
-    if (stop) result_.stop_reason = "took every scan asked for";
-    if (!stop) {
-      const auto u = static_cast<std::uint64_t>(k);
-      next = office_ ? plan_stop(k, stream_seed(config_.seed, u, 3))
-                     : plan_view(record, stream_seed(config_.seed, u, 3));
-      if (next.stop) {
-        stop = true;
-        result_.stop_reason = next.stop_reason;
-      }
-    }
-    result_.scans.push_back(record);
-    if (on_scan) on_scan(record, config_.scans);
-    if (stop) break;
+  const ScanRecord& current = result_.scans.back();
+  const std::uint64_t seed = stream_seed(config_.seed, static_cast<std::uint64_t>(current.scan), 3);
+  next = office_ ? plan_stop(current.scan, seed) : plan_view(current, seed);
+  if (next.stop) {
+    done_ = true;
+    result_.stop_reason = next.stop_reason;
+    return nullptr;
   }
-  return std::move(result_);
+  if (!office_) commit_view(static_cast<std::size_t>(next.view));
+  return &take(std::move(next));
+}
+
+const ScanRecord& Explorer::step(int view, double decision_seconds) {
+  if (done_) {
+    throw std::invalid_argument(
+        cat("the run is over (", result_.stop_reason, "): view ", view, " cannot be taken"));
+  }
+  if (result_.scans.empty()) {
+    throw std::invalid_argument(
+        cat("the first scan is the start pose's (step()), not view ", view, "'s"));
+  }
+  if (office_) {
+    throw std::invalid_argument(cat("scene '", scene_.name,
+                                    "' is an office: its candidates are the planner's frontier "
+                                    "stops, not views to choose by index"));
+  }
+  if (config_.greedy_oracle) {
+    throw std::invalid_argument("the greedy oracle's runs choose their own views");
+  }
+  const int n = static_cast<int>(ring_.size());
+  if (view < 0 || view >= n) {
+    throw std::invalid_argument(cat("view ", view, " is out of range: scene '", scene_.name,
+                                    "' has ", n, " candidate views (0 to ", n - 1, ")"));
+  }
+  const auto i = static_cast<std::size_t>(view);
+  if (taken_[i] && !config_.revisit) {
+    throw std::invalid_argument(cat("view ", view, " has been taken already"));
+  }
+  if (!std::isfinite(decision_seconds) || decision_seconds < 0.0) {
+    throw std::invalid_argument(
+        cat("the decision's time must be a finite number of seconds >= 0, got ", decision_seconds));
+  }
+  const ScanRecord& current = result_.scans.back();
+  Decision d;
+  d.view = view;
+  d.pose = result_.candidates[i];
+  d.travel = planner_.sequence.travel(current.T_world_sensor.translation(), ring_[i].view.origin());
+  d.candidates = static_cast<int>(
+      config_.revisit ? taken_.size() : std::count(taken_.begin(), taken_.end(), false));
+  d.seconds = decision_seconds;
+  d.search = "caller";
+  commit_view(i);
+  return take(std::move(d));
+}
+
+Decision Explorer::propose() {
+  if (done_) throw std::invalid_argument(cat("the run is over (", result_.stop_reason, ")"));
+  if (result_.scans.empty()) {
+    throw std::invalid_argument("the first scan is the start pose's: nothing to propose yet");
+  }
+  if (office_) {
+    throw std::invalid_argument(
+        cat("scene '", scene_.name, "' is an office: propose() is for table tops"));
+  }
+  const ScanRecord& current = result_.scans.back();
+  return plan_view(current, stream_seed(config_.seed, static_cast<std::uint64_t>(current.scan), 3));
+}
+
+std::vector<double> Explorer::travel() const {
+  std::vector<double> out;
+  if (office_ || result_.scans.empty()) return out;
+  const Eigen::Vector3d here = result_.scans.back().T_world_sensor.translation();
+  for (const Candidate& c : ring_) out.push_back(planner_.sequence.travel(here, c.view.origin()));
+  return out;
+}
+
+void Explorer::commit_view(std::size_t view) {
+  taken_[view] = true;
+  if (!config_.greedy_oracle) return;
+  std::vector<std::uint32_t> hit;
+  std::set_union(truly_hit_.begin(), truly_hit_.end(), surface_->candidate_hits[view].begin(),
+                 surface_->candidate_hits[view].end(), std::back_inserter(hit));
+  truly_hit_ = std::move(hit);
+}
+
+const ScanRecord& Explorer::take(Decision next) {
+  const int k = static_cast<int>(result_.scans.size()) + 1;
+  ScanRecord record;
+  record.scan = k;
+  record.view = next.view;
+  record.T_world_sensor = next.pose;
+  record.predicted_gain = next.predicted;
+  record.greedy_predicted_gain = next.greedy_predicted;
+  record.predicted_cells = next.predicted_cells;
+  record.alpha = next.alpha;
+  record.surface_rates = next.surface_rates;
+  record.seconds.plan = next.seconds;
+  record.seconds.candidates = next.candidate_seconds;
+  record.seconds.reference = next.reference_seconds;
+  record.travel = next.travel;
+  record.fallback = next.fallback;
+  record.goal = next.goal;
+  record.path = std::move(next.path);
+  record.candidates = next.candidates;
+  record.considered = std::move(next.considered);
+  record.search = std::move(next.search);
+
+  // --alpha auto: what the view about to be scanned would see under every candidate a, set
+  // against what it does see. The first scan calibrates too (on the empty map).
+  if (fit_) {
+    const auto start = Clock::now();
+    const std::vector<Frustum> views = views_at(record.T_world_sensor);
+    GainConfig gain = planner_.gain;
+    gain.method = planner_.method.gain;
+    record.calibration = expected_cells_by_alpha(mapper_.grid(), views, gain, fit_->alphas());
+    record.seconds.calibrate = seconds_since(start);
+  }
+  if (surface_fit_) surface_fit_->before(mapper_.grid(), planner_.gain.num_threads);
+  if (office_) {
+    observe_sweep(k, record);
+  } else {
+    observe_view(k, record);
+  }
+  if (surface_fit_) {
+    surface_fit_->after(mapper_.grid());
+    planner_.gain.surface_rates = surface_fit_->rates();
+  }
+  if (fit_) {
+    fit_->record(record.calibration, static_cast<double>(record.actual_gain));
+    planner_.gain.alpha = fit_->alpha();
+  }
+  record.unobserved = mapper_.grid().counts().unobserved;
+  record.coverage = coverage(mapper_.grid(), truth_.observable);
+  if (surface_ != nullptr) {
+    // NOTE: recounted from all registered points each scan: a re-registration moves earlier
+    // scans' points too.
+    const SurfaceCoverage s = surface_coverage(*surface_, mapper_.object_cloud());
+    record.surface_coverage = s.visible;
+    record.raw_surface_coverage = s.raw;
+  }
+  result_.scans.push_back(std::move(record));
+
+  if (k == config_.scans) {
+    done_ = true;
+    result_.stop_reason = "took every scan asked for";
+  } else if (!office_ && !config_.revisit &&
+             std::find(taken_.begin(), taken_.end(), false) == taken_.end()) {
+    done_ = true;
+    result_.stop_reason = cat("every candidate view has been taken after scan ", k);
+  }
+  return result_.scans.back();
 }
 
 sim::Scene Explorer::noisy(const sim::Scene& scene, const ExplorationConfig& config) {
@@ -300,7 +384,6 @@ Decision Explorer::plan_view(const ScanRecord& current, std::uint64_t seed) {
                         " after scan ", current.scan);
   }
   const std::size_t view = index[plan.best];
-  taken_[view] = true;
   d.view = static_cast<int>(view);
   d.pose = result_.candidates[view];
   record_prediction(plan, open[plan.best], plan.best, d);
@@ -314,7 +397,7 @@ Decision Explorer::plan_view(const ScanRecord& current, std::uint64_t seed) {
 }
 
 Decision Explorer::oracle_view(const ScanRecord& current, const std::vector<Candidate>& open,
-                               const std::vector<std::size_t>& index, Decision d) {
+                               const std::vector<std::size_t>& index, Decision d) const {
   const auto start = Clock::now();
   std::vector<double> gains(open.size());
   std::size_t best = 0;
@@ -331,11 +414,6 @@ Decision Explorer::oracle_view(const ScanRecord& current, const std::vector<Cand
                         " after scan ", current.scan);
   }
   const std::size_t view = index[best];
-  taken_[view] = true;
-  std::vector<std::uint32_t> hit;
-  std::set_union(truly_hit_.begin(), truly_hit_.end(), surface_->candidate_hits[view].begin(),
-                 surface_->candidate_hits[view].end(), std::back_inserter(hit));
-  truly_hit_ = std::move(hit);
   d.view = static_cast<int>(view);
   d.pose = result_.candidates[view];
   d.predicted = gains[best];
@@ -356,8 +434,8 @@ ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& conf
   return explore(scene, config, mapper, on_scan, nullptr);
 }
 
-ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
-                          const ScanCallback& on_scan, const SurfaceTruth* surface_truth) {
+Exploration::Exploration(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
+                         const SurfaceTruth* surface_truth) {
   config.validate();
   if (scene.start_poses.empty()) {
     throw std::invalid_argument(cat("scene '", scene.name, "' has no start poses"));
@@ -389,8 +467,50 @@ ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& conf
     throw std::invalid_argument(
         "explore.greedy_oracle needs the mapper's object cloud (mapper.keep_object_cloud)");
   }
-  detail::Explorer explorer(scene, config, mapper, surface_truth);
-  return explorer.run(on_scan);
+  explorer_ = std::make_unique<detail::Explorer>(scene, config, mapper, surface_truth);
+}
+
+Exploration::~Exploration() = default;
+Exploration::Exploration(Exploration&&) noexcept = default;
+Exploration& Exploration::operator=(Exploration&&) noexcept = default;
+
+const ScanRecord* Exploration::step() { return explorer_->step(); }
+
+const ScanRecord& Exploration::step(int view, double decision_seconds) {
+  return explorer_->step(view, decision_seconds);
+}
+
+ViewProposal Exploration::propose() {
+  detail::Decision d = explorer_->propose();
+  return {d.view, std::move(d.considered), d.seconds};
+}
+
+bool Exploration::done() const { return explorer_->done(); }
+const ExplorationResult& Exploration::result() const { return explorer_->result(); }
+const std::vector<bool>& Exploration::taken() const { return explorer_->taken(); }
+std::vector<double> Exploration::travel() const { return explorer_->travel(); }
+const Mapper& Exploration::mapper() const { return explorer_->mapper(); }
+ExplorationResult Exploration::finish() { return std::move(explorer_->result()); }
+
+ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
+                          const ScanCallback& on_scan, const SurfaceTruth* surface_truth) {
+  Exploration run(scene, config, mapper, surface_truth);
+  while (const ScanRecord* record = run.step()) {
+    if (on_scan) on_scan(*record, config.scans);
+  }
+  return run.finish();
+}
+
+ExplorationResult explore_choosing(const sim::Scene& scene, const ExplorationConfig& config,
+                                   Mapper& mapper, const ViewChooser& choose,
+                                   const SurfaceTruth* surface_truth) {
+  Exploration run(scene, config, mapper, surface_truth);
+  run.step();
+  while (!run.done()) {
+    const ViewChoice choice = choose(run);
+    run.step(choice.view, choice.seconds);
+  }
+  return run.finish();
 }
 
 }  // namespace vantage

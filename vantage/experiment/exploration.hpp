@@ -12,6 +12,7 @@
 #include <Eigen/Geometry>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -230,6 +231,65 @@ struct SurfaceTruth;  // yardstick.hpp
 /// Called after each scan, for live progress.
 using ScanCallback = std::function<void(const ScanRecord&, int total)>;
 
+namespace detail {
+class Explorer;
+}  // namespace detail
+
+/// The decision the run's planner would make now, not taken (Exploration::propose).
+struct ViewProposal {
+  int view = -1;  ///< the candidate it chooses
+  /// Every open candidate it weighed, in index order, with its predictions (CandidateRecord).
+  std::vector<CandidateRecord> considered;
+  double seconds = 0.0;  ///< the decision's wall time [s]
+};
+
+/// One exploration run, a scan at a time: the loop explore() runs, and what lets a caller choose
+/// the views instead of the run's planner (Python's ExploreEnv, a policy in a sweep). Each step
+/// scans, registers, segments and integrates, and records the scan as explore does; the first
+/// step scans from the start pose. Keeps references to the scene, the config and the mapper,
+/// which must outlive it.
+class Exploration {
+ public:
+  /// Checks the settings and the scene (std::invalid_argument naming what) and computes the run's
+  /// truth, as explore does; takes no scan. `surface_truth` as explore's (null: computed here).
+  Exploration(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
+              const SurfaceTruth* surface_truth = nullptr);
+  ~Exploration();
+  Exploration(Exploration&&) noexcept;
+  Exploration& operator=(Exploration&&) noexcept;
+
+  /// Takes the next scan, from the start pose first and then from the view the planner chooses.
+  /// Returns its record (valid until the next step), or null when the run is over (done()).
+  const ScanRecord* step();
+  /// Table top: takes the next scan from candidate `view`, which the caller chose in
+  /// `decision_seconds` [s] (its plan_seconds). Throws std::invalid_argument naming the view
+  /// when the run is over, before the first scan (which is the start's: step()), in an office
+  /// (its candidates are the planner's frontier stops), for a view out of range or already taken
+  /// (unless ExplorationConfig::revisit), and for the greedy oracle's runs.
+  const ScanRecord& step(int view, double decision_seconds = 0.0);
+  /// Table top: what the planner would choose now among the open candidates, without taking it;
+  /// the same decision step() would take. Throws std::invalid_argument when the run is over or
+  /// before the first scan.
+  ViewProposal propose();
+
+  /// Whether the run is over: every scan asked for taken, every candidate taken, or the
+  /// planner's stop (min_gain); result().stop_reason says which.
+  bool done() const;
+  /// The run so far: the scans taken, the candidates, the coverage denominators.
+  const ExplorationResult& result() const;
+  /// Table top: which candidates have been taken (the start's too, when it is one).
+  const std::vector<bool>& taken() const;
+  /// The travel from the current view to each candidate under the run's travel rule [m]; empty
+  /// before the first scan and in an office.
+  std::vector<double> travel() const;
+  const Mapper& mapper() const;
+  /// Moves the result out; the run is spent after it.
+  ExplorationResult finish();
+
+ private:
+  std::unique_ptr<detail::Explorer> explorer_;
+};
+
 /// Runs one exploration of a simulated scene and returns its records and the final mapper.
 ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
                           const ScanCallback& on_scan = {});
@@ -238,6 +298,23 @@ ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& conf
 /// scene; null computes it. Throws std::invalid_argument when its grid is not the scene's.
 ExplorationResult explore(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
                           const ScanCallback& on_scan, const SurfaceTruth* surface_truth);
+
+/// What a chooser outside the run's planner picked: a candidate's index, and the time it took to
+/// pick it [s] (the scan's plan_seconds).
+struct ViewChoice {
+  int view = -1;
+  double seconds = 0.0;
+};
+
+/// Chooses the next view of a table-top run from the run so far (a Python policy, say).
+using ViewChooser = std::function<ViewChoice(const Exploration& run)>;
+
+/// A table-top run whose views after the start's are chosen by `choose` rather than the planner
+/// (Exploration::step(view)): the same loop, seeds and records as explore's otherwise. Throws
+/// what Exploration::step(view) throws for a choice it refuses, and what `choose` throws.
+ExplorationResult explore_choosing(const sim::Scene& scene, const ExplorationConfig& config,
+                                   Mapper& mapper, const ViewChooser& choose,
+                                   const SurfaceTruth* surface_truth = nullptr);
 
 /// The candidate set a table-top or object run takes its views from: config.candidates, else the
 /// scene's own (ring; an object's view-sphere).

@@ -259,7 +259,7 @@ RunLabel run_label(std::string scene, const ExplorationConfig& config) {
 }
 
 std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>& scans) {
-  const bool probabilistic = has_observability(label.method);
+  const bool probabilistic = label.policy.empty() && has_observability(label.method);
   const std::string alpha = probabilistic ? label.alpha.label() : std::string();
   const std::string objective = probabilistic ? std::string(to_string(label.objective)) : "";
   std::string rows;
@@ -267,8 +267,11 @@ std::string scans_csv_rows(const RunLabel& label, const std::vector<ScanRecord>&
     rows += fmt::format(
         "{},{},{},{},{},{},{},{},{},{},{:.15g},{:.15g},{:.15g},{:d},{},{},{},{:.6g},{:.6g},{:.6g},"
         "{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{},{}\n",
-        label.scene, label.greedy_oracle ? kGreedyOracleName : to_string(label.method), alpha,
-        label.trial, r.scan, r.view, optional_number(r.predicted_gain),
+        label.scene,
+        !label.policy.empty() ? std::string_view(label.policy)
+        : label.greedy_oracle ? kGreedyOracleName
+                              : to_string(label.method),
+        alpha, label.trial, r.scan, r.view, optional_number(r.predicted_gain),
         optional_number(r.greedy_predicted_gain), r.actual_gain, r.unobserved, r.coverage,
         r.seconds.plan, r.travel, r.fallback ? 1 : 0, optional_number(r.predicted_cells),
         optional_number(r.alpha), objective, r.pose_error_before, r.pose_error_after,

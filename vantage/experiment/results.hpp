@@ -71,6 +71,8 @@ struct RunLabel {
   GainObjective objective = GainObjective::kBits;  ///< written only for the probabilistic method
   int trial = 0;
   bool greedy_oracle = false;  ///< written as kGreedyOracleName instead of `method`
+  /// An external policy's name (ExternalPolicy), written instead of `method` when not empty.
+  std::string policy = {};
 };
 
 /// The label of an exploration run with `config` on scene `scene`, trial = its start.

@@ -72,9 +72,30 @@ class Explorer {
   Explorer(const sim::Scene& scene, const ExplorationConfig& config, Mapper& mapper,
            const SurfaceTruth* surface_truth);
 
-  ExplorationResult run(const ScanCallback& on_scan);
+  /// Exploration::step: the start's scan first, then the planner's choice; null when over.
+  const ScanRecord* step();
+  /// Exploration::step(view): the caller's choice.
+  const ScanRecord& step(int view, double decision_seconds);
+  /// Exploration::propose: the planner's table-top decision, not taken.
+  Decision propose();
+
+  bool done() const { return done_; }
+  const ExplorationResult& result() const { return result_; }
+  ExplorationResult& result() { return result_; }
+  const std::vector<bool>& taken() const { return taken_; }
+  const Mapper& mapper() const { return mapper_; }
+  /// Table top: the travel from the current view to each candidate [m]; empty before the first
+  /// scan and in an office.
+  std::vector<double> travel() const;
 
  private:
+  /// Takes the scan `next` decided on, and records it; ends the run after the last scan asked
+  /// for, or once no candidate is left.
+  const ScanRecord& take(Decision next);
+
+  /// Table top: marks the chosen view taken (the greedy oracle: its true hits hit).
+  void commit_view(std::size_t view);
+
   static sim::Scene noisy(const sim::Scene& scene, const ExplorationConfig& config);
 
   /// What the mapper did with a scan taken from the true pose `truth`.
@@ -106,14 +127,15 @@ class Explorer {
   CandidateRecord considered(const Plan& plan, std::size_t j, int view,
                              const Eigen::Isometry3d& pose, const Decision& d) const;
 
-  /// Table top: every ring view, scored by the method; the robot walks around the table.
+  /// Table top: every ring view, scored by the method; the robot walks around the table. Takes
+  /// nothing (commit_view does).
   Decision plan_view(const ScanRecord& current, std::uint64_t seed);
 
   /// Table top, greedy oracle (ExplorationConfig::greedy_oracle): the open candidate whose true
   /// hit set adds the most visible surface cells to the true hit sets of the start and the views
   /// taken; its gain is that count [cells].
   Decision oracle_view(const ScanRecord& current, const std::vector<Candidate>& open,
-                       const std::vector<std::size_t>& index, Decision d);
+                       const std::vector<std::size_t>& index, Decision d) const;
 
   /// Office: a stop at every frontier region's centroid, its travel on the map's navigation
   /// grid, its gain over the frusta of its sweep; then the drive there, in the true world.
@@ -136,6 +158,7 @@ class Explorer {
   ExplorationResult result_;
   std::vector<Candidate> ring_;  ///< table top: the ring's views
   std::vector<bool> taken_;  ///< table top: ring views already taken (ExplorationConfig::revisit)
+  bool done_ = false;        ///< the run is over
   // Office:
   NavigationConfig navigation_;
   FrontierConfig frontier_;
