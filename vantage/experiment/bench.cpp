@@ -156,8 +156,11 @@ nlohmann::json scene_hashes(const BenchConfig& config) {
   const std::vector<std::string> builtin = sim::builtin_scene_names();
   for (const std::string& source : config.scenes) {
     const bool named = std::find(builtin.begin(), builtin.end(), source) != builtin.end();
-    const std::string text = named ? sim::builtin_scene_text(source) : read_file(source);
-    const sim::Scene scene = sim::load_scene(source);
+    // NOTE: an object's mesh is in the loaded solids the hash covers; its file is not re-read.
+    const std::string text = named                          ? sim::builtin_scene_text(source)
+                             : sim::is_object_source(source) ? std::string()
+                                                             : read_file(source);
+    const sim::Scene scene = sim::load_scene(source, config.objects);
     hashes[scene.name] = scene_hash(text, scene);
   }
   for (const sim::PileConfig& pile : bench_piles(config)) {

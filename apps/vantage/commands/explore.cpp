@@ -13,6 +13,7 @@
 #include "commands/commands.hpp"
 #include "commands/options.hpp"
 #include "shell.hpp"
+#include "vantage/experiment/bench.hpp"
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/results.hpp"
 #include "vantage/gain/ray_model.hpp"
@@ -20,6 +21,7 @@
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/sim/scene.hpp"
+#include "vantage/sim/world.hpp"
 #include "vantage/util/memory.hpp"
 
 namespace vantage::cli {
@@ -152,15 +154,29 @@ void run(const ExploreOptions& o) {
             : "",
         o.scans, o.start, o.seed);
   }
+  // NOTE: an object's yardstick (its views' true hit sets) is kept with the run, so that the
+  // fewest views to each level are proven beside it (scripts/set_cover.py: set_cover.csv).
+  std::optional<SurfaceTruth> truth;
+  if (scene.kind == sim::SceneKind::kObject) {
+    const sim::World world(scene, sim::WorldConfig{o.planning.threads});
+    truth = compute_surface_truth(world, run_candidates(scene, config), config.coverage_tolerance,
+                                  o.planning.threads);
+  }
   Mapper mapper(scene.grid, config.mapper);
   const ExplorationResult result =
       explore(scene, config, mapper,
               o.quiet ? ScanCallback{} : ScanCallback([&](const ScanRecord& r, int total) {
                 print_scan(r, total, gain_units(config.planner).score == "bits");
-              }));
+              }),
+              truth ? &*truth : nullptr);
 
   write_folder_atomically(out, [&](const fs::path& dir) {
     write_run_files(dir, scene, config, result, mapper);
+    if (truth) {
+      write_yardstick_file(dir / kYardstickFolder / (scene.name + ".json"), scene, config,
+                           *truth);
+      run_plot_script("set_cover.py", {dir.string()});
+    }
     if (o.plots) run_plot_script("plot_run.py", {dir.string()});
   });
   const ScanRecord& last = result.scans.back();
