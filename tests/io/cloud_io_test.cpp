@@ -102,6 +102,24 @@ TEST_F(CloudIo, APcdRecordsItsViewpoint) {
       << message;
 }
 
+// issue 53: a VIEWPOINT 1e300 m away was taken as the cloud's pose, and the cloud mapped with a
+// warning that none of its points lay in the roi.
+TEST_F(CloudIo, AViewpointPastTheWorldIsRefused) {
+  for (const std::string far : {"1e300 0 0", "0 -2e5 0"}) {
+    const fs::path path =
+        write("far.pcd", std::string(kPcdHeader)
+                                 .replace(std::string(kPcdHeader).find("VIEWPOINT 0 0 0 1 0 0 0"),
+                                          23, "VIEWPOINT " + far + " 1 0 0 0") +
+                             "DATA ascii\n1 2 3\n4 5 6\n7 8 9\n");
+    const std::string message =
+        error_of<std::runtime_error>([&] { (void)read_cloud_viewpoint(path); });
+    EXPECT_NE(message.find("far.pcd: line 9: the VIEWPOINT's position ("), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("lies farther from the origin than the 100000 m"), std::string::npos)
+        << message;
+  }
+}
+
 TEST_F(CloudIo, DoublesRoundTripToFloatPrecision) {
   const PointCloud cloud = {{0.1, 0.2, 0.3}, {1.0 / 3.0, -2.0 / 7.0, 1e-9}};
   write_point_cloud(dir_ / "d.pcd", cloud);
