@@ -632,8 +632,8 @@ void read_rosbag(std::string_view bytes, const MessageVisitor& visit) {
   Cursor c(bytes.substr(kBagMagic.size()), kBagMagic.size(), "");
   if (c.done()) {
     throw RecordingDamage(kBagMagic.size(),
-                          "the file ends right after its magic, without its header: an empty "
-                          "bag, or one cut short");
+                          "the file ends at byte 13, right after its magic, without its header: "
+                          "an empty bag, or one cut short");
   }
   const BagRecord first = top_bag_record(c);
   BagHeader header;
@@ -742,8 +742,8 @@ void read_mcap(std::string_view bytes, const MessageVisitor& visit) {
   Cursor c(bytes.substr(kMcapMagic.size()), kMcapMagic.size(), "");
   if (c.done()) {
     throw RecordingDamage(kMcapMagic.size(),
-                          "the file ends right after its opening magic: no header, no message, "
-                          "no footer (an empty MCAP file, or one cut short)");
+                          "the file ends at byte 8, right after its opening magic: no header, no "
+                          "message, no footer (an empty MCAP file, or one cut short)");
   }
   McapState state;
   while (!c.done()) {
