@@ -119,6 +119,12 @@ void run(const PlanOptions& o) {
   }
   // NOTE: the default planner weighs travel from the robot's pose: --pose, or a manifest's last
   // cloud's.
+  if (o.planning.method == "greedy-oracle") {
+    // NOTE: plan --help lists explore's and bench's methods too; the oracle's is not "unknown".
+    throw UsageError(
+        "--method greedy-oracle needs the world's truth, which only a simulated table top has "
+        "(explore, bench); plan maps real scans: give a planner method");
+  }
   PlanningOptions planning = o.planning;
   planning.task = o.candidates == "frontier" ? ViewTask::kExploration : ViewTask::kObjects;
   planning.knows_pose = !o.pose.empty() || !o.input.empty();
@@ -157,15 +163,16 @@ void run(const PlanOptions& o) {
   const bool named_candidates = o.candidates == "ring" || o.candidates == "sphere" ||
                                 o.candidates == "hemisphere" || o.candidates == "frontier";
   if (!named_candidates) {
+    // NOTE: a folder or a missing file is bad input, exit 1, as --map's (issue 53).
     std::error_code error;
     if (fs::is_directory(o.candidates, error)) {
-      throw UsageError(fmt::format(
+      throw std::runtime_error(fmt::format(
           "--candidates '{}' is a folder: give ring, sphere, hemisphere, frontier or a pose file "
           "(TUM format)",
           o.candidates));
     }
     if (!fs::exists(o.candidates, error)) {
-      throw UsageError(fmt::format(
+      throw std::runtime_error(fmt::format(
           "--candidates '{}' is neither ring, sphere, hemisphere, frontier nor an existing pose "
           "file",
           o.candidates));
