@@ -56,6 +56,7 @@ plan "$rec/kinect.bag" --topic /camera/depth/points --out "$work/alone_derived" 
 grep -q "m (the frames' extent); resolution 0.01 m (for the sensor's range)" "$work/alone_derived.txt" ||
   fail "kinect.bag alone, derived: $(head -1 "$work/alone_derived.txt")"
 [[ $(grep -c "^cloud " "$work/alone_derived.txt") -eq 3 ]] || fail "kinect.bag alone did not map 3 clouds"
-"$vantage" plan --help | grep -q "or a recording alone (a ROS 1 bag, an MCAP file) with --topic" ||
+"$vantage" plan --help >"$work/help.txt"
+grep -q "or a recording alone (a ROS 1 bag, an MCAP file) with --topic" "$work/help.txt" ||
   fail "plan --help does not say a recording plans alone"
 echo "ok"
