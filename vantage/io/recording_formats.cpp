@@ -71,7 +71,7 @@ class Cursor {
   std::string_view bytes_;
   std::size_t pos_ = 0;
   std::uint64_t base_ = 0;
-  std::string_view where_;
+  std::string where_;  // NOTE: owned: a Cursor is often made with a cat(...) temporary
 };
 
 std::string hex(std::uint32_t value) {
