@@ -117,14 +117,14 @@ void run(const PlanOptions& o) {
     throw UsageError(
         "--alpha auto fits a over an exploration's scans (explore, bench); plan takes a number");
   }
-  // NOTE: the default planner weighs travel from the robot's pose: --pose, or a manifest's last
-  // cloud's.
   if (o.planning.method == "greedy-oracle") {
     // NOTE: plan --help lists explore's and bench's methods too; the oracle's is not "unknown".
     throw UsageError(
         "--method greedy-oracle needs the world's truth, which only a simulated table top has "
         "(explore, bench); plan maps real scans: give a planner method");
   }
+  // NOTE: the default planner weighs travel from the robot's pose: --pose, or a manifest's last
+  // cloud's.
   PlanningOptions planning = o.planning;
   planning.task = o.candidates == "frontier" ? ViewTask::kExploration : ViewTask::kObjects;
   planning.knows_pose = !o.pose.empty() || !o.input.empty();
