@@ -54,15 +54,15 @@ class RecordingDamage : public FormatError {
 /// channels and statistics) says it holds, per topic; empty when there is none or it is damaged.
 using RecordingIndex = std::map<std::string, std::uint64_t, std::less<>>;
 
-/// Reads a ROS 1 bag (format 2.0) held in `bytes`: every message of every chunk, in order.
-/// Chunks stored with "none" compression only; a bz2 or lz4 chunk is refused naming its
+/// Reads a ROS 1 bag (format 2.0) held in `bytes` (rosbag.cpp): every message of every chunk, in
+/// order. Chunks stored with "none" compression only; a bz2 or lz4 chunk is refused naming its
 /// compression. Throws RecordingDamage for damage and FormatError for what is not (a
 /// compression or version Vantage does not read), each in one line saying what and at which byte.
 void read_rosbag(std::string_view bytes, const MessageVisitor& visit);
 
-/// Reads an MCAP file held in `bytes`: every message, in chunks (uncompressed, zstd or lz4) or
-/// not, in order. Messages of an encoding other than CDR (ROS 2) are given with their channel's
-/// topic and schema name, and the caller decides. Throws as read_rosbag.
+/// Reads an MCAP file held in `bytes` (mcap.cpp): every message, in chunks (uncompressed, zstd or
+/// lz4) or not, in order. Messages of an encoding other than CDR (ROS 2) are given with their
+/// channel's topic and schema name, and the caller decides. Throws as read_rosbag.
 void read_mcap(std::string_view bytes, const MessageVisitor& visit);
 
 /// The messages per topic a bag's index counts (its connection and chunk info records, found by
