@@ -265,7 +265,47 @@ def rosbag_seeds():
             t = genpy.Time(7, 500)
             bag.write("/tf", TFMessage().deserialize(tf), t)
             bag.write("/camera/depth/points", PointCloud2().deserialize(cloud), t)
-        write("rosbag", "tiny.bag", open(path, "rb").read())
+        tiny = open(path, "rb").read()
+        write("rosbag", "tiny.bag", tiny)
+    rosbag_damaged_seeds(tiny)
+
+
+def bag_records(b):
+    """(offset, op, data offset, data size, header fields: value offset) of each top-level record."""
+    out, pos = [], 13
+    while pos < len(b):
+        hl, = struct.unpack_from("<I", b, pos)
+        fields, f = {}, pos + 4
+        while f < pos + 4 + hl:
+            n, = struct.unpack_from("<I", b, f)
+            name = b[f + 4:f + 4 + n].split(b"=", 1)[0]
+            fields[name] = f + 4 + len(name) + 1
+            f += 4 + n
+        dl, = struct.unpack_from("<I", b, pos + 4 + hl)
+        out.append((pos, b[fields[b"op"]], pos + 8 + hl, dl, fields))
+        pos += 8 + hl + dl
+    return out
+
+
+def rosbag_damaged_seeds(tiny):
+    """The tiny bag damaged as a disk or a kill damages it (issue 53): cut at the start of its
+    index, cut inside its chunk, a flipped byte in its index data, a chunk that claims 4 GiB, and
+    the header of a bag never closed (index_pos 0, no index)."""
+    records = bag_records(tiny)
+    chunk = next(r for r in records if r[1] == 5)
+    index_data = next(r for r in records if r[1] == 4)
+    index = next(r for r in records if r[1] in (6, 7))
+    write("rosbag", "cut-at-index.bag", tiny[:index[0]])
+    write("rosbag", "cut-inside-chunk.bag", tiny[:chunk[2] + chunk[3] // 2])
+    flipped = bytearray(tiny)
+    flipped[index_data[2] + 8 + 3] ^= 0x40  # the high byte of the first message's offset
+    write("rosbag", "flipped-index.bag", bytes(flipped))
+    claims = bytearray(tiny)
+    struct.pack_into("<I", claims, chunk[4][b"size"], 0xFFFFFFFF)
+    write("rosbag", "claims-4GiB.bag", bytes(claims))
+    unclosed = bytearray(tiny[:index[0]])
+    struct.pack_into("<Q", unclosed, records[0][4][b"index_pos"], 0)
+    write("rosbag", "unclosed.bag", bytes(unclosed))
 
 
 def mcap_seeds():
@@ -311,9 +351,72 @@ def mcap_seeds():
             write("mcap", name, magic + header + chunk + footer + magic)
 
 
+def mcap_whole_and_damaged_seeds():
+    """A tiny MCAP file with everything the format offers to check (mcap.dev/spec): a chunk with
+    its CRC, its message indexes, the data end's CRC, a summary (schemas, channels, statistics, a
+    chunk index) with its CRC, the footer and the closing magic; then damaged as a disk or a kill
+    damages it (issue 53)."""
+    import zlib
+
+    def record(op, body):
+        return bytes([op]) + struct.pack("<Q", len(body)) + body
+
+    def string(text):
+        return struct.pack("<I", len(text)) + text.encode()
+    cloud, tf = cloud_and_tf_ros1()
+    magic = b"\x89MCAP0\r\n"
+    schemas = (record(3, struct.pack("<H", 1) + string("sensor_msgs/PointCloud2") + string("ros1msg") +
+                      struct.pack("<I", 0)) +
+               record(3, struct.pack("<H", 2) + string("tf2_msgs/TFMessage") + string("ros1msg") +
+                      struct.pack("<I", 0)))
+    channels = (record(4, struct.pack("<HH", 1, 1) + string("/camera/depth/points") + string("ros1") +
+                       struct.pack("<I", 0)) +
+                record(4, struct.pack("<HH", 2, 2) + string("/tf") + string("ros1") +
+                       struct.pack("<I", 0)))
+    inner = schemas + channels
+    offsets = {}
+    for channel, payload in ((2, tf), (1, cloud)):
+        offsets[channel] = len(inner)
+        inner += record(5, struct.pack("<HIQQ", channel, 0, 7_000_000_500, 7_000_000_500) + payload)
+    header = record(1, string("ros1") + string("make_seeds.py"))
+    data = magic + header
+    chunk_at = len(data)
+    data += record(6, struct.pack("<QQQI", 7_000_000_500, 7_000_000_500, len(inner),
+                                  zlib.crc32(inner)) + string("") + struct.pack("<Q", len(inner)) +
+                   inner)
+    for channel in (1, 2):
+        data += record(7, struct.pack("<HI", channel, 16) +
+                       struct.pack("<QQ", 7_000_000_500, offsets[channel]))
+    data_end_at = len(data)
+    data += record(15, struct.pack("<I", zlib.crc32(data)))
+    summary_start = len(data)
+    counts = struct.pack("<HQHQ", 1, 1, 2, 1)
+    summary = (schemas + channels +
+               record(11, struct.pack("<QHIIIIQQ", 2, 2, 2, 0, 0, 1, 7_000_000_500, 7_000_000_500) +
+                      struct.pack("<I", len(counts)) + counts) +
+               record(8, struct.pack("<QQQQ", 7_000_000_500, 7_000_000_500, chunk_at,
+                                     9 + 40 + len(inner)) + struct.pack("<I", 0) +
+                      struct.pack("<Q", 0) + string("") + struct.pack("<QQ", len(inner), len(inner))))
+    data += summary
+    footer_head = bytes([2]) + struct.pack("<Q", 20) + struct.pack("<QQ", summary_start, 0)
+    whole = data + footer_head + struct.pack("<I", zlib.crc32(summary + footer_head)) + magic
+    write("mcap", "whole.mcap", whole)
+    write("mcap", "cut-at-data-end.mcap", whole[:data_end_at])
+    write("mcap", "cut-inside-chunk.mcap", whole[:chunk_at + 60])
+    write("mcap", "no-closing-magic.mcap", whole[:-8])
+    flipped = bytearray(whole)
+    flipped[chunk_at + 9 + 40 + offsets[1] + 40] ^= 0x01  # inside the cloud message
+    write("mcap", "flipped-chunk.mcap", bytes(flipped))
+    claims = bytearray(whole)
+    struct.pack_into("<Q", claims, chunk_at + 9 + 16, 1 << 60)
+    write("mcap", "claims-2e60.mcap", bytes(claims))
+    write("mcap", "magic-only.mcap", magic)
+
+
 if __name__ == "__main__":
     rosbag_seeds()
     mcap_seeds()
+    mcap_whole_and_damaged_seeds()
     depth_png_seeds()
     tum_seeds()
     pcd_seeds()

@@ -4,6 +4,7 @@
 #include "fuzz/recording_harness.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  vantage::fuzz::recording_input(data, size, "recording.mcap", &vantage::read_mcap);
+  vantage::fuzz::recording_input(data, size, "recording.mcap", &vantage::read_mcap,
+                                 &vantage::index_mcap);
   return 0;
 }

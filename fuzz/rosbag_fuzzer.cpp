@@ -4,6 +4,7 @@
 #include "fuzz/recording_harness.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  vantage::fuzz::recording_input(data, size, "recording.bag", &vantage::read_rosbag);
+  vantage::fuzz::recording_input(data, size, "recording.bag", &vantage::read_rosbag,
+                                 &vantage::index_rosbag);
   return 0;
 }

@@ -5,6 +5,8 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "bindings.hpp"
 #include "convert.hpp"
@@ -22,14 +24,22 @@ std::string repr(const GridSpec& s) {
              s.dims.z(), "))");
 }
 
-Index3 to_index(const std::vector<int>& dims, const char* what) {
+Index3 to_index(const std::vector<std::int64_t>& dims, const char* what) {
   if (dims.size() != 3) {
     throw std::invalid_argument(cat(what, " must hold 3 integers, got ", dims.size()));
   }
-  return {dims[0], dims[1], dims[2]};
+  // NOTE: a count past an int is a range error (ValueError), not a type error (issue 53).
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (dims[a] < std::numeric_limits<int>::min() || dims[a] > std::numeric_limits<int>::max()) {
+      throw std::invalid_argument(cat(what, "[", a, "] = ", dims[a], " lies past the ",
+                                      std::numeric_limits<int>::max(), " cells an axis may have"));
+    }
+  }
+  return {static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2])};
 }
 
-GridSpec make_spec(const DoubleArray& origin, double resolution, const std::vector<int>& dims) {
+GridSpec make_spec(const DoubleArray& origin, double resolution,
+                   const std::vector<std::int64_t>& dims) {
   GridSpec spec;
   spec.origin = to_vector3(origin, "origin");
   spec.resolution = resolution;
@@ -129,7 +139,7 @@ void bind_map(py::module_& m) {
            "nz) cells. Raises ValueError naming the field when unusable.")
       .def_static(
           "centered",
-          [](const DoubleArray& center, double resolution, const std::vector<int>& dims) {
+          [](const DoubleArray& center, double resolution, const std::vector<std::int64_t>& dims) {
             GridSpec spec = GridSpec::centered(to_vector3(center, "center"), resolution,
                                                to_index(dims, "dims"));
             spec.validate();

@@ -27,13 +27,22 @@ PYBIND11_MODULE(_vantage, m) {
   });
   m.def(
       "set_budget",
-      [](std::uint64_t max_memory, double max_work) {
+      [](const pybind11::int_& max_memory, double max_work) {
+        // NOTE: a negative or huge max_memory is a range error (ValueError), not a type error.
+        const unsigned long long bytes = PyLong_AsUnsignedLongLong(max_memory.ptr());
+        if (PyErr_Occurred()) {
+          PyErr_Clear();
+          throw std::invalid_argument(
+              vantage::cat("max_memory must be a whole number of bytes in [0, 2^64), 0 for what is "
+                           "available, got ",
+                           std::string(pybind11::str(pybind11::handle(max_memory)))));
+        }
         if (!(max_work > 0.0)) {
           throw std::invalid_argument(
               vantage::cat("max_work must be a positive number of seconds, got ", max_work));
         }
         vantage::WorkBudget& budget = vantage::python::python_budget();
-        budget.max_bytes = max_memory;
+        budget.max_bytes = bytes;
         budget.max_seconds = max_work;
       },
       pybind11::arg("max_memory") = 0, pybind11::arg("max_work") = vantage::kDefaultMaxWorkSeconds,

@@ -168,6 +168,14 @@ py::dict manifest_dict(const Manifest& manifest) {
   out["icp"] = manifest.options.icp;
   out["integration"] = std::string(to_string(manifest.options.integration));
   out["skip_non_finite"] = manifest.options.skip_non_finite;
+  if (const auto& s = manifest.salvage) {
+    py::dict salvage;
+    salvage["damage"] = s->damage;
+    salvage["byte"] = s->offset;
+    salvage["frames_kept"] = s->frames;
+    salvage["frames_dropped"] = s->dropped;
+    out["salvage"] = salvage;
+  }
   return out;
 }
 
@@ -415,21 +423,26 @@ void bind_plan(py::module_& m) {
   m.def(
       "read_manifest",
       [](const std::filesystem::path& path, std::optional<int> every,
-         std::optional<std::string> topic) {
-        return manifest_dict(with_file(
-            path, false, [&] { return read_manifest(path, {.every = every, .topic = topic}); }));
+         std::optional<std::string> topic, bool salvage) {
+        return manifest_dict(with_file(path, false, [&] {
+          return read_manifest(path, {.every = every, .topic = topic, .salvage = salvage});
+        }));
       },
       py::arg("path"), py::arg("every") = py::none(), py::arg("topic") = py::none(),
+      py::arg("salvage") = false,
       "Reads a manifest (a YAML file or a folder holding manifest.yaml, docs/manifest.md) into a "
       "dict: clouds (file, T_world_cloud, T_world_sensor, stamp, pose_from), frame, fov, roi, "
       "grid and the options. `every` and `topic` choose the frames of its TUM folder or "
-      "recording, as `vantage plan --every --topic` do.");
+      "recording, as `vantage plan --every --topic` do; `salvage` takes the whole frames before "
+      "a damaged recording's damage, as `--salvage` does (the dict's salvage says what was "
+      "dropped).");
   m.def(
       "map_recorded",
       [](const std::filesystem::path& path, int num_threads, std::optional<int> every,
-         std::optional<std::string> topic) {
-        const Manifest manifest = with_file(
-            path, false, [&] { return read_manifest(path, {.every = every, .topic = topic}); });
+         std::optional<std::string> topic, bool salvage) {
+        const Manifest manifest = with_file(path, false, [&] {
+          return read_manifest(path, {.every = every, .topic = topic, .salvage = salvage});
+        });
         MapperConfig config = mapper_config_for(manifest);
         config.integration.num_threads = num_threads;
         check_grid_memory(manifest.grid, mapping_cost(num_threads),
@@ -440,7 +453,7 @@ void bind_plan(py::module_& m) {
         return mapper.grid();
       },
       py::arg("path"), py::arg("num_threads") = 0, py::arg("every") = py::none(),
-      py::arg("topic") = py::none(),
+      py::arg("topic") = py::none(), py::arg("salvage") = false,
       "Maps a manifest's clouds (files, a TUM folder or a recording) exactly as `vantage plan` "
       "does, a cloud without a pose after the first by registration; returns the grid.");
   m.def(

@@ -68,6 +68,11 @@ def test_bad_shapes_and_names_raise():
         vt.GridSpec((0, 0, 0), 0.1, (10, 0, 10))
     with pytest.raises(ValueError, match="too many|cells"):
         vt.GridSpec((0, 0, 0), 0.1, (2000, 2000, 2000))
+    # issue 53: counts past what a field holds are range errors, not type errors.
+    with pytest.raises(ValueError, match=r"dims\[0\] = 2147483648 lies past the 2147483647 cells"):
+        vt.GridSpec((0, 0, 0), 0.001, (2**31, 1, 1))
+    with pytest.raises(ValueError, match=r"max_memory must be a whole number of bytes in \[0, 2\^64\).*got -1"):
+        vt.set_budget(-1)
     with pytest.raises(ValueError, match="unknown gain method 'fancy'"):
         vt.GainConfig(method="fancy")
     with pytest.raises(ValueError, match="epsilon"):

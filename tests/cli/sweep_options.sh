@@ -15,7 +15,7 @@ shaping=(--scenes --methods --alphas --objectives --trials --scans --seed --revi
          --integration --no-icp --no-segmentation --no-hole-filling --views --view-radius
          --object-radius --starts)
 # Results identical whatever they say (a budget refuses, it never changes a decision).
-rowless=(--help --jobs --shard --out --no-plots --max-memory --max-work --threads)
+rowless=(--help --jobs --shard --out --no-plots --max-memory --max-work --max-setup --threads)
 for kind in tabletop objects office; do
   while read -r option; do
     [[ " ${shaping[*]} ${rowless[*]} " == *" $option "* ]] || {

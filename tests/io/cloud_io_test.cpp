@@ -102,6 +102,43 @@ TEST_F(CloudIo, APcdRecordsItsViewpoint) {
       << message;
 }
 
+// issue 53: a PLY file whose data is in the other byte order than its header says was blamed on
+// a NaN, with the advice to skip non-finite points.
+TEST_F(CloudIo, APlyInTheOtherByteOrderIsSaidAsSuch) {
+  // Little-endian floats whose bytes, reversed, are NaN: 0x3f80ffff (1.0000305).
+  std::string data;
+  for (int i = 0; i < 3; ++i) data += std::string("\xff\xff\x80\x3f", 4);
+  const fs::path path = write("swapped.ply",
+                              "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float "
+                              "x\nproperty float y\nproperty float z\nend_header\n" +
+                                  data);
+  const std::string message = error_of<std::runtime_error>([&] { (void)read_point_cloud(path); });
+  EXPECT_NE(message.find("swapped.ply: point 0 has a non-finite coordinate"), std::string::npos)
+      << message;
+  EXPECT_NE(message.find("; read as binary_little_endian every point is finite: its header names "
+                         "the wrong byte order"),
+            std::string::npos)
+      << message;
+}
+
+// issue 53: a VIEWPOINT 1e300 m away was taken as the cloud's pose, and the cloud mapped with a
+// warning that none of its points lay in the roi.
+TEST_F(CloudIo, AViewpointPastTheWorldIsRefused) {
+  for (const std::string far : {"1e300 0 0", "0 -2e5 0"}) {
+    const fs::path path =
+        write("far.pcd", std::string(kPcdHeader)
+                                 .replace(std::string(kPcdHeader).find("VIEWPOINT 0 0 0 1 0 0 0"),
+                                          23, "VIEWPOINT " + far + " 1 0 0 0") +
+                             "DATA ascii\n1 2 3\n4 5 6\n7 8 9\n");
+    const std::string message =
+        error_of<std::runtime_error>([&] { (void)read_cloud_viewpoint(path); });
+    EXPECT_NE(message.find("far.pcd: line 9: the VIEWPOINT's position ("), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("lies farther from the origin than the 100000 m"), std::string::npos)
+        << message;
+  }
+}
+
 TEST_F(CloudIo, DoublesRoundTripToFloatPrecision) {
   const PointCloud cloud = {{0.1, 0.2, 0.3}, {1.0 / 3.0, -2.0 / 7.0, 1e-9}};
   write_point_cloud(dir_ / "d.pcd", cloud);

@@ -1,6 +1,7 @@
 #include "vantage/io/manifest.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -357,6 +358,34 @@ TEST_F(ManifestTest, FolderWithoutPoses) {
   }
   write(kSensor + kRegion);  // beside it, no cloud at all
   expect_error(kSensor + kRegion, "clouds", "holds no .pcd or .ply file");
+}
+
+// issue 53: a folder whose .pcd entry is a folder or a FIFO was said as "2 poses but 1 clouds",
+// the entry unnamed.
+TEST_F(ManifestTest, AFolderEntryNamedAsACloudThatIsNoFileIsNamed) {
+  std::filesystem::create_directories(dir_ / "odd/b.pcd");
+  test::write_file(dir_ / "odd/a.pcd", pcd_with_viewpoint());
+  test::write_file(dir_ / "odd/manifest.yaml", kSensor + kRegion);
+  try {
+    read_manifest(dir_ / "odd");
+    ADD_FAILURE() << "a folder named b.pcd was skipped";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("clouds: missing, so the folder's .pcd and .ply files "
+                                   "are taken, and " +
+                                   (dir_ / "odd/b.pcd").string() + " is a directory, not a file"),
+        std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(dir_ / "odd/b.pcd");
+  ASSERT_EQ(::mkfifo((dir_ / "odd/c.pcd").c_str(), 0600), 0);
+  try {
+    read_manifest(dir_ / "odd");
+    ADD_FAILURE() << "a FIFO named c.pcd was skipped";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("c.pcd is a FIFO, not a regular file"), std::string::npos)
+        << e.what();
+  }
 }
 
 TEST_F(ManifestTest, CloudCountDiffersFromPoseCount) {

@@ -256,6 +256,38 @@ TEST(OctomapImport, ReadsColorOcTrees) {
   EXPECT_EQ(read.grid.state(3), CellState::kFree);
 }
 
+// issue 53: a color tree's data under another tree type's name was said as "the header announces
+// 17 nodes but the data holds 1"; it is said as the wrong type it is.
+TEST(OctomapImport, AColorTreeUnderAnotherNameIsSaidAsTheWrongType) {
+  TempDir dir;
+  octomap::ColorOcTree tree(0.1);
+  for (int i = 0; i < 4; ++i) {
+    tree.updateNode(octomap::point3d(0.05f + 0.1f * static_cast<float>(i), 0.05f, 0.05f),
+                    i % 2 == 0)
+        ->setColor(10, 20, 30);
+  }
+  tree.updateInnerOccupancy();
+  ASSERT_TRUE(tree.write((dir / "color.ot").string()));
+  std::string bytes = test::read_file(dir / "color.ot");
+  const std::size_t id = bytes.find("id ColorOcTree\n");
+  ASSERT_NE(id, std::string::npos);
+  bytes.replace(id, 15, "id OcTree\n");
+  test::write_file(dir / "renamed.ot", bytes);
+  try {
+    (void)read_octomap(dir / "renamed.ot");
+    ADD_FAILURE() << "a color tree named OcTree was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("the header names tree type 'OcTree' (4 bytes a node), "
+                                         "but its data reads whole as "),
+              std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find(" ColorOcTree nodes (7 bytes each): the header names the "
+                                         "wrong type"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(OctomapImport, CropsOnlyWhenAsked) {
   TempDir dir;
   const GridSpec spec = aligned_spec();

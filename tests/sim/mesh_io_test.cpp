@@ -211,6 +211,22 @@ TEST_F(MeshFiles, CorruptFilesAreNamed) {
   }
 }
 
+// issue 53: an ASCII STL cut short was said as assimp's "Cannot parse string "" as a real number".
+TEST_F(MeshFiles, AnAsciiStlCutShortIsSaidAsSuch) {
+  const std::string stl = kStl;
+  const fs::path path = write("cut.stl", stl.substr(0, stl.find("endsolid") - 20));
+  try {
+    load_mesh(path);
+    ADD_FAILURE() << "a cut STL was read";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("cut.stl: the ASCII STL ends at byte "), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find(" without its 'endsolid' line: cut short"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(MeshFiles, ReadsJavaScriptMeshDataWithoutRunningIt) {
   const fs::path path = write(
       "mesh.js",

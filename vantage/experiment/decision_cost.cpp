@@ -257,10 +257,14 @@ double simulated_rays_per_scan(const sim::SensorConfig& sensor) {
          std::ceil(sensor.fov.v_fov / sensor.tilt_resolution);
 }
 
+double surface_truth_rays(const sim::Scene& scene, std::size_t candidates) {
+  const double scans = static_cast<double>(candidates + scene.start_poses.size());
+  return scans * simulated_rays_per_scan(scene.sensor);
+}
+
 void check_surface_truth(const sim::Scene& scene, std::size_t candidates,
                          const WorkBudget& budget) {
-  const double scans = static_cast<double>(candidates + scene.start_poses.size());
-  const double rays = scans * simulated_rays_per_scan(scene.sensor);
+  const double rays = surface_truth_rays(scene, candidates);
   const double seconds = rays * kNanosecondsPerSimulatedRay * 1e-9;
   if (seconds <= budget.max_seconds) return;
   throw WorkBudgetError(

@@ -78,6 +78,11 @@ std::optional<DecisionCost> estimate_run_decision(const sim::Scene& scene,
 /// Rays one simulated scan of `sensor` casts: a depth camera's pixels, a line scanner's beams.
 double simulated_rays_per_scan(const sim::SensorConfig& sensor);
 
+/// Simulated rays of a table-top run's surface yardstick: one noise-free scan of each of
+/// `candidates` views and of the scene's starts (compute_surface_truth), each
+/// kNanosecondsPerSimulatedRay of work.
+double surface_truth_rays(const sim::Scene& scene, std::size_t candidates);
+
 /// Throws WorkBudgetError, one line naming the estimate and --max-work, when a table-top run's
 /// surface yardstick (one noise-free scan of each of `candidates` views and of the scene's starts,
 /// compute_surface_truth) is estimated past `budget`'s time: the set-up before a run's first

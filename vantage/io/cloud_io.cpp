@@ -71,14 +71,38 @@ void check_finite(const PointCloud& cloud) {
   }
 }
 
+/// For a binary PLY file some of whose points are not finite: the byte order in which all of
+/// them are, when it is not the one its header names (a big-endian file that says little-endian,
+/// or the other way round: issue 53 found it blamed on a NaN); else empty.
+std::string_view other_byte_order(const std::string& bytes) {
+  static constexpr std::string_view kOrders[] = {"binary_big_endian", "binary_little_endian"};
+  const std::size_t end = bytes.find("end_header");
+  for (int i = 0; i < 2; ++i) {
+    const std::size_t at = bytes.find(cat("format ", kOrders[i], " "));
+    if (at == std::string::npos || at > end) continue;
+    std::string swapped = bytes;
+    swapped.replace(at + 7, kOrders[i].size(), kOrders[1 - i]);
+    try {
+      const PointCloud cloud = parse_ply_cloud(swapped);
+      if (!cloud.empty() && std::all_of(cloud.begin(), cloud.end(),
+                                        [](const Eigen::Vector3d& p) { return p.allFinite(); })) {
+        return kOrders[1 - i];
+      }
+    } catch (const FormatError&) {
+    }
+  }
+  return {};
+}
+
 }  // namespace
 
 PointCloud read_point_cloud(const fs::path& path, const CloudReadOptions& options,
                             CloudReadStats* stats) {
   const Format format = format_of(path);
   PointCloud cloud;
+  std::string bytes;
   try {
-    const std::string bytes = read_input_file(path, InputKind::kPointCloud);
+    bytes = read_input_file(path, InputKind::kPointCloud);
     // NOTE: an extension that lies is said as such, not as the other format's first complaint
     // (a PLY file named .pcd: "unknown PCD header key 'ply'").
     const std::string_view expected = format == Format::kPcd ? "a PCD point cloud" : "a PLY file";
@@ -100,6 +124,13 @@ PointCloud read_point_cloud(const fs::path& path, const CloudReadOptions& option
   try {
     check_finite(cloud);
   } catch (const FormatError& e) {
+    if (format == Format::kPly) {
+      if (const std::string_view order = other_byte_order(bytes); !order.empty()) {
+        throw std::runtime_error(cat(path.string(), ": ", e.what(), "; read as ", order,
+                                     " every point is finite: its header names the wrong byte "
+                                     "order"));
+      }
+    }
     throw NonFinitePointError(cat(path.string(), ": ", e.what()));
   }
   return cloud;

@@ -327,7 +327,15 @@ Manifest read_manifest(const fs::path& path, const ManifestReadOptions& read_opt
   } else {
     for (const auto& item :
          fs::directory_iterator(folder.empty() ? fs::path(".") : folder, error)) {
-      if (item.is_regular_file() && is_cloud_file(item.path())) {
+      if (!is_cloud_file(item.path())) continue;
+      // NOTE: an entry named as a cloud that is no file (a folder, a FIFO) is said by name, not
+      // skipped to be found missing later as "N poses but M clouds" (issue 53).
+      if (const std::string why = input_file_problem(item.path(), InputKind::kPointCloud);
+          !why.empty()) {
+        root.fail_as("clouds", cat("missing, so the folder's .pcd and .ply files are taken, and ",
+                                   item.path().string(), " ", why));
+      }
+      {
         ManifestCloud cloud;
         cloud.file = item.path().lexically_normal();
         manifest.clouds.push_back(cloud);

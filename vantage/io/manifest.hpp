@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -105,6 +106,16 @@ struct ManifestOptions {
   bool operator==(const ManifestOptions&) const = default;
 };
 
+/// A damaged recording read with `salvage` (issue 53): where the damage lies, and what was kept.
+struct RecordingSalvage {
+  std::string damage;        ///< what its reader found, in one line, naming the byte
+  std::uint64_t offset = 0;  ///< [byte] the first byte of the file that cannot be trusted
+  std::size_t frames = 0;    ///< whole frames of the topic before it (before `every`)
+  /// The frames of the topic its index counts after them; nothing when the index is lost with the
+  /// damage (a file cut short).
+  std::optional<std::uint64_t> dropped;
+};
+
 /// A checked manifest: plain values, nothing read from the clouds yet.
 struct Manifest {
   std::filesystem::path file;  ///< the manifest that was read
@@ -115,8 +126,9 @@ struct Manifest {
   /// `sensor.depth`: how the depth images among the clouds encode depth; needed with any (a TUM
   /// RGB-D folder's default: 5000 units a metre, 0 invalid).
   std::optional<DepthEncoding> depth;
-  std::optional<std::filesystem::path> tum;         ///< the TUM RGB-D folder the clouds came from
-  std::optional<std::filesystem::path> recording;   ///< the bag or MCAP file they came from
+  std::optional<std::filesystem::path> tum;        ///< the TUM RGB-D folder the clouds came from
+  std::optional<std::filesystem::path> recording;  ///< the bag or MCAP file they came from
+  std::optional<RecordingSalvage> salvage;  ///< the recording was damaged and read with salvage
   std::optional<std::filesystem::path> trajectory;  ///< the TUM file the poses came from, if any
   PoseMatch match = PoseMatch::kOrder;
   double max_time_difference = 0.02;  ///< [s], for PoseMatch::kTimestamp
@@ -138,6 +150,9 @@ struct ManifestReadOptions {
   std::optional<int> every = std::nullopt;
   std::optional<std::string> topic =
       std::nullopt;  ///< of a recording (`recording`), in place of its topic
+  /// Of a damaged recording, map the whole frames before the damage (Manifest::salvage says what
+  /// was dropped) rather than refuse it.
+  bool salvage = false;
 };
 
 /// Reads and checks a manifest: a YAML file, or a folder holding `manifest.yaml`. When the

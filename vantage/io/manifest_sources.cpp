@@ -79,9 +79,11 @@ void read_recording_key(const YamlField& recording, const std::filesystem::path&
   if (options.topic) read.topic = *options.topic;
   if (read.topic.empty()) recording.fail_as("recording.topic", "missing (or give --topic)");
   if (const auto frame = recording.get("fixed_frame")) read.fixed_frame = frame->text();
-  std::vector<RecordingFrame> frames = read_sequence(recording, "file", manifest_folder, options,
-                                                     read, manifest.recording, &read_recording);
-  for (RecordingFrame& frame : frames) {
+  read.salvage = options.salvage;
+  Recording frames = read_sequence(recording, "file", manifest_folder, options, read,
+                                   manifest.recording, &read_recording);
+  manifest.salvage = std::move(frames.salvage);
+  for (RecordingFrame& frame : frames.frames) {
     ManifestCloud cloud;
     char stamp[32];
     std::snprintf(stamp, sizeof(stamp), "%.6f", frame.stamp);

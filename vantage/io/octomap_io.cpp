@@ -356,12 +356,37 @@ OctomapImport read_octomap(const fs::path& path, const OctomapImportConfig& conf
   if (header.size > 0) {
     StructureCheck check(data, payload);
     std::uint64_t nodes = 0;
+    // NOTE: a full tree whose nodes are of another type than its header names (a ColorOcTree's
+    // data under "OcTree", issue 53) is said as such, not as the walk's first complaint.
+    const auto other_type = [&] {
+      if (header.format != OctomapFormat::kFull) return;
+      for (const auto& [other, bytes_a_node] :
+           {std::pair<std::string_view, std::size_t>{"OcTree", sizeof(float)},
+            {"ColorOcTree", sizeof(float) + 3},
+            {"OcTreeStamped", sizeof(float) + sizeof(std::uint32_t)}}) {
+        if (bytes_a_node == payload) continue;
+        StructureCheck alternative(data, bytes_a_node);
+        bool whole = false;
+        try {
+          whole = alternative.walk_full() == header.size && alternative.consumed() == data.size();
+        } catch (const std::runtime_error&) {
+        }
+        if (whole) {
+          fail(path,
+               cat("the header names tree type '", printable(header.id, 40), "' (", payload,
+                   " bytes a node), but its data reads whole as ", header.size, " ", other,
+                   " nodes (", bytes_a_node, " bytes each): the header names the wrong type"));
+        }
+      }
+    };
     try {
       nodes = header.format == OctomapFormat::kBinary ? check.walk_binary() : check.walk_full();
     } catch (const std::runtime_error& e) {
+      other_type();
       fail(path, e.what());
     }
     if (nodes != header.size) {
+      other_type();
       fail(path, cat("the header announces ", header.size, " nodes but the data holds ", nodes));
     }
     if (check.consumed() != data.size()) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "vantage/io/format_parsing.hpp"
+#include "vantage/map/grid_spec.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage::detail {
@@ -89,6 +90,13 @@ Eigen::Isometry3d viewpoint_pose(const std::vector<std::string_view>& values, in
       throw FormatError(cat("line ", n, ": VIEWPOINT value ", i + 1, " is not a finite number"));
     }
     v[i] = *value;
+  }
+  // NOTE: a sensor 1e300 m away is no pose (issue 53: it was mapped, with a warning that its
+  // points missed the roi).
+  if (std::max({std::abs(v[0]), std::abs(v[1]), std::abs(v[2])}) > kMaxWorldCoordinate) {
+    throw FormatError(cat("line ", n, ": the VIEWPOINT's position (", v[0], ", ", v[1], ", ", v[2],
+                          ") m lies farther from the origin than the ", kMaxWorldCoordinate,
+                          " m a world coordinate may"));
   }
   const Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
   // NOTE: writers print the quaternion with a few digits; a norm far from 1 is not a rotation.

@@ -1,6 +1,7 @@
 #include "vantage/io/recording.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -41,6 +42,15 @@ class TfTree {
       }
       edge.samples = std::move(unique);
     }
+  }
+  /// Every frame tf names, as a child or as a parent, sorted.
+  std::set<std::string> frames() const {
+    std::set<std::string> names;
+    for (const auto& [child, edge] : edges_) {
+      names.insert(child);
+      names.insert(edge.parent);
+    }
+    return names;
   }
   /// The root of `frame`'s chain of parents.
   std::string root(std::string frame) const {
@@ -83,10 +93,25 @@ class TfTree {
   std::map<std::string, Edge, std::less<>> edges_;
 };
 
+/// The one line a damaged recording is refused with: the damage, and the frames before it.
+std::string damage_line(const RecordingDamage& damage, const std::string& topic, std::size_t listed,
+                        double last_stamp, const RecordingIndex& index) {
+  std::string frames = "no whole frame of " + printable(topic, 60) + " lies before it";
+  if (listed > 0) {
+    char stamp[32];
+    std::snprintf(stamp, sizeof(stamp), "%.6f", last_stamp);
+    frames = cat("the last whole frame before it is frame ", listed, " of ", printable(topic, 60),
+                 " (stamp ", stamp, " s)");
+  }
+  const auto total = index.find(topic);
+  if (total != index.end()) frames += cat(", of the ", total->second, " its index counts");
+  return cat(damage.what(), "; ", frames,
+             listed > 0 ? "; --salvage maps the frames before it" : "");
+}
+
 }  // namespace
 
-std::vector<RecordingFrame> read_recording(const std::filesystem::path& path,
-                                           const RecordingOptions& options) {
+Recording read_recording(const std::filesystem::path& path, const RecordingOptions& options) {
   if (options.topic.empty()) throw std::invalid_argument("give the recording's topic");
   if (options.every < 1)
     throw std::invalid_argument(cat("every must be >= 1, got ", options.every));
@@ -153,10 +178,31 @@ std::vector<RecordingFrame> read_recording(const std::filesystem::path& path,
                               " s): ", e.what()));
       }
     };
-    if (ext == ".bag") {
-      read_rosbag(bytes, visit);
-    } else {
-      read_mcap(bytes, visit);
+    std::optional<RecordingSalvage> salvage;
+    double last_stamp = 0.0;  // [s] of the last frame listed
+    const auto listing = [&](const RecordedMessage& m) {
+      const std::size_t frames_before = frames.size();
+      visit(m);
+      if (frames.size() > frames_before) last_stamp = frames.back().stamp;
+    };
+    try {
+      if (ext == ".bag") {
+        read_rosbag(bytes, listing);
+      } else {
+        read_mcap(bytes, listing);
+      }
+    } catch (const RecordingDamage& e) {
+      // NOTE: every message given lies before the damage, and was checked there (its chunk's
+      // CRC or index); the index says how many frames the damage took, when it is not lost.
+      const RecordingIndex counted = ext == ".bag" ? index_rosbag(bytes) : index_mcap(bytes);
+      if (!options.salvage || listed == 0) {
+        throw FormatError(damage_line(e, options.topic, listed, last_stamp, counted));
+      }
+      salvage = RecordingSalvage{e.what(), e.offset(), listed, std::nullopt};
+      if (const auto total = counted.find(options.topic);
+          total != counted.end() && total->second >= listed) {
+        salvage->dropped = total->second - listed;
+      }
     }
     if (frames.empty()) {
       std::string names;
@@ -187,13 +233,38 @@ std::vector<RecordingFrame> read_recording(const std::filesystem::path& path,
       }
     }
     tf.finish();
+    if (!options.fixed_frame.empty()) {
+      // NOTE: a fixed frame tf never names would leave every frame unposed, and the frames
+      // placed by the table and registration instead, without a word (issue 53).
+      const std::set<std::string> known = tf.frames();
+      const bool own = std::any_of(frames.begin(), frames.end(), [&](const RecordingFrame& f) {
+        return f.frame_id == options.fixed_frame;
+      });
+      if (!own && !known.contains(options.fixed_frame)) {
+        std::string names;
+        for (const std::string& name : known) {
+          if (names.size() > 300) {
+            names += ", ...";
+            break;
+          }
+          names += cat(names.empty() ? "" : ", ", printable(name, 60));
+        }
+        throw FormatError(cat("fixed_frame ", printable(options.fixed_frame, 60),
+                              " is no frame of its tf (",
+                              known.empty() ? std::string("it holds no tf on /tf or /tf_static")
+                                            : cat("its frames: ", names),
+                              ")"));
+      }
+    }
     const std::string fixed =
         options.fixed_frame.empty() ? tf.root(frames.front().frame_id) : options.fixed_frame;
     for (RecordingFrame& frame : frames) {
       frame.T_fixed_cloud =
           tf.lookup(frame.frame_id, fixed, frame.stamp, options.max_time_difference);
     }
-    return frames;
+    std::optional<PinholeIntrinsics> intrinsics;
+    if (!infos.empty()) intrinsics = infos.front().intrinsics;
+    return {std::move(frames), std::move(salvage), intrinsics};
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(cat(where, ": ", e.what()));
   }

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <new>
 #include <optional>
 #include <span>
@@ -159,6 +161,27 @@ void require_mesh_format(const std::filesystem::path& path) {
   if (!content.empty() && content != format->content) {
     throw std::runtime_error(cat("mesh file ", path.string(), " holds ", content, ", not what its ",
                                  format->extension, " extension says"));
+  }
+  // NOTE: an ASCII STL cut short was said as assimp's "Cannot parse string \"\" as a real
+  // number" (issue 53); a binary STL may begin with "solid" too, and is told by its size.
+  if (format->extension == ".stl" && head.find_first_not_of(" \t\r\n") != std::string::npos &&
+      std::string_view(head).substr(head.find_first_not_of(" \t\r\n")).starts_with("solid")) {
+    std::error_code error;
+    const std::uintmax_t size = std::filesystem::file_size(path, error);
+    std::uint32_t triangles = 0;
+    if (head.size() >= 84) std::memcpy(&triangles, head.data() + 80, sizeof(triangles));
+    const bool binary = head.size() >= 84 && 84 + 50 * std::uintmax_t{triangles} == size;
+    if (!binary && !error) {
+      std::ifstream in(path, std::ios::binary);
+      const std::uintmax_t tail = std::min<std::uintmax_t>(size, 1024);
+      in.seekg(static_cast<std::streamoff>(size - tail));
+      std::string end(static_cast<std::size_t>(tail), '\0');
+      in.read(end.data(), static_cast<std::streamsize>(tail));
+      if (in && end.find("endsolid") == std::string::npos) {
+        throw std::runtime_error(cat("mesh file ", path.string(), ": the ASCII STL ends at byte ",
+                                     size, " without its 'endsolid' line: cut short"));
+      }
+    }
   }
   // NOTE: an OFF header states its counts; assimp reserves for them before it reads a vertex, so
   // counts that the file's bytes cannot hold (each vertex takes 6 bytes or more, each face 8) are

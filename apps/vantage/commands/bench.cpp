@@ -15,12 +15,15 @@
 #include "commands/commands.hpp"
 #include "commands/options.hpp"
 #include "shell.hpp"
+#include "vantage/experiment/decision_cost.hpp"
+#include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/results.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/sim/generate.hpp"
 #include "vantage/sim/object_scene.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/util/memory.hpp"
+#include "vantage/util/work.hpp"
 
 namespace vantage::cli {
 namespace {
@@ -53,6 +56,7 @@ struct BenchOptions {
   int objects = sim::PileConfig{}.objects;
   std::uint64_t generated_seed = 1;
   bool scenes_given = false;  ///< --scenes was on the command line
+  double max_setup = 3600.0;  ///< [s] of estimated set-up before the first trial (issue 53)
 };
 
 /// The comma-separated items of a list option.
@@ -148,6 +152,32 @@ BenchConfig bench_config(const BenchOptions& o) {
   return config;
 }
 
+/// Refuses a sweep whose set-up before its first trial is estimated past --max-setup (issue 53:
+/// `--generated 100000` printed nothing for minutes): every table top's surface yardstick, each
+/// generated pile's as the first one's (`scenes`' last).
+void check_setup(const BenchOptions& o, const BenchConfig& config,
+                 const std::vector<sim::Scene>& scenes) {
+  double rays = 0.0;
+  std::size_t table_tops = 0;
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    if (scenes[i].kind != sim::SceneKind::kTableTop) continue;
+    const std::size_t copies = config.generated > 0 && i + 1 == scenes.size()
+                                   ? static_cast<std::size_t>(config.generated)
+                                   : 1;
+    table_tops += copies;
+    rays += static_cast<double>(copies) *
+            surface_truth_rays(scenes[i], run_candidates(scenes[i], config.exploration).size());
+  }
+  const double seconds = rays * kNanosecondsPerSimulatedRay * 1e-9;
+  if (seconds <= o.max_setup) return;
+  throw UsageError(fmt::format(
+      "the sweep's set-up before its first trial, the surface yardstick's noise-free scans of {} "
+      "table tops ({} simulated rays at {} ns), is estimated at {}, more than --max-setup {} "
+      "allows: raise it, or bench fewer scenes",
+      table_tops, significant(rays), kNanosecondsPerSimulatedRay, describe_seconds(seconds),
+      describe_seconds(o.max_setup)));
+}
+
 void run(const BenchOptions& o) {
   const BenchConfig config = from_options([&] { return bench_config(o); });
 
@@ -178,6 +208,7 @@ void run(const BenchOptions& o) {
       }
     }
   }
+  check_setup(o, config, scenes);
   const std::size_t total = bench_trials(config).size();
   fmt::print("bench: {} trials in all, shard {}, {} job(s), into {}\n", total, o.shard, o.jobs,
              o.out);
@@ -247,6 +278,11 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
   cmd->add_flag("!--no-plots", o->plots, "skip plots and summary");
   add_memory_option(*cmd, o->max_memory);
   add_work_option(*cmd, o->max_work);
+  cmd->add_option("--max-setup", o->max_setup,
+                  "[s] of estimated work before the first trial (the table tops' surface "
+                  "yardsticks), past which the sweep is refused before it starts")
+      ->check(number_in(0.0, 1e9, /*open_low=*/true))
+      ->capture_default_str();
   if (o->kind == "objects") {
     cmd->add_flag("--revisit", o->revisit,
                   "views already taken stay candidates (the paper's loop taken literally)");

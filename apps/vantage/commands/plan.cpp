@@ -28,6 +28,7 @@
 #include "vantage/io/map_files.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/io/ply_export.hpp"
+#include "vantage/io/recording.hpp"
 #include "vantage/util/clock.hpp"
 #include "vantage/util/limits.hpp"
 #include "vantage/util/memory.hpp"
@@ -67,6 +68,45 @@ std::string segmentation_note(const RecordedCloud& c) {
                      u.thinned_points);
 }
 
+/// The manifest of a recording alone (issue 53): `plan FILE.bag --topic T`, its region and
+/// resolution from --roi and --resolution or derived (manifest_for_recording), said in one line.
+Manifest recording_alone(const PlanOptions& o) {
+  RecordingAloneOptions read;
+  read.read.topic = o.topic;
+  if (o.every > 0) read.read.every = o.every;
+  read.read.salvage = o.salvage;
+  if (!o.roi.empty()) {
+    const std::vector<double> v = parse_numbers(o.roi, "--roi");
+    if (v.size() != 6) throw UsageError("--roi takes six numbers: xmin,ymin,zmin,xmax,ymax,zmax");
+    for (int a = 0; a < 3; ++a) {
+      if (!(v[a] < v[a + 3]) || std::abs(v[a]) > kMaxWorldCoordinate ||
+          std::abs(v[a + 3]) > kMaxWorldCoordinate) {
+        throw UsageError(fmt::format(
+            "--roi: each min must lie below its max, within {} m of 0 (got {} and {} on axis {})",
+            kMaxWorldCoordinate, v[a], v[a + 3], "xyz"[a]));
+      }
+    }
+    read.roi =
+        Eigen::AlignedBox3d(Eigen::Vector3d(v[0], v[1], v[2]), Eigen::Vector3d(v[3], v[4], v[5]));
+  }
+  if (o.resolution > 0.0) read.resolution = o.resolution;
+  Manifest m = manifest_for_recording(o.input, read);
+  if (!o.json_only) {
+    const Eigen::Vector3d a = m.roi.min(), b = m.roi.max();
+    fmt::print(
+        "recording alone: sensor {:.1f} x {:.1f} deg, {}-{} m ({}, frame {}); roi ({:.4g}, "
+        "{:.4g}, {:.4g}) to ({:.4g}, {:.4g}, {:.4g}) m ({}); resolution {} m ({}); a manifest "
+        "says more (docs/manifest.md)\n",
+        m.fov.h_fov * 180.0 / std::numbers::pi, m.fov.v_fov * 180.0 / std::numbers::pi,
+        m.fov.min_range, m.fov.max_range,
+        m.intrinsics ? "from CameraInfo, its range the points'" : "from the points",
+        to_string(m.frame), a.x(), a.y(), a.z(), b.x(), b.y(), b.z(),
+        o.roi.empty() ? "the frames' extent" : "--roi", m.grid.resolution,
+        o.resolution > 0.0 ? "--resolution" : "for the sensor's range");
+  }
+  return m;
+}
+
 void run(const PlanOptions& o) {
   if (o.input.empty() && o.map.empty()) {
     throw UsageError("give a manifest or data folder, or --map FILE.bt|.ot, or both");
@@ -77,6 +117,12 @@ void run(const PlanOptions& o) {
     // from recorded clouds has none to fit to.
     throw UsageError(
         "--alpha auto fits a over an exploration's scans (explore, bench); plan takes a number");
+  }
+  if (o.planning.method == "greedy-oracle") {
+    // NOTE: plan --help lists explore's and bench's methods too; the oracle's is not "unknown".
+    throw UsageError(
+        "--method greedy-oracle needs the world's truth, which only a simulated table top has "
+        "(explore, bench); plan maps real scans: give a planner method");
   }
   // NOTE: the default planner weighs travel from the robot's pose: --pose, or a manifest's last
   // cloud's.
@@ -117,14 +163,15 @@ void run(const PlanOptions& o) {
   if (o.input.empty()) fov_from_options(o);  // throws for a bad --fov-deg or --range
   const bool named_candidates = !names_pose_file(o);
   if (!named_candidates) {
+    // NOTE: a folder or a missing file is bad input, exit 1, as --map's (issue 53).
     std::error_code error;
     if (fs::is_directory(o.candidates, error)) {
-      throw UsageError(fmt::format(
+      throw std::runtime_error(fmt::format(
           "--candidates '{}' is a folder: give one of {} or a pose file (TUM format)",
           o.candidates, candidate_set_names()));
     }
     if (!fs::exists(o.candidates, error)) {
-      throw UsageError(fmt::format(
+      throw std::runtime_error(fmt::format(
           "--candidates '{}' is neither one of {} nor an existing pose file", o.candidates,
           candidate_set_names()));
     }
@@ -156,11 +203,39 @@ void run(const PlanOptions& o) {
     throw UsageError(
         "--every and --topic choose frames of a TUM folder or a recording: give its manifest");
   }
-  if (!o.input.empty()) {
+  // NOTE: a recording alone plans without a manifest (issue 53): its sensor, region and
+  // resolution derived, or the region and resolution from the command line.
+  const std::string input_ext = lower_extension(o.input);
+  const bool alone = input_ext == ".bag" || input_ext == ".mcap";
+  if ((!o.roi.empty() || o.resolution > 0.0) && !alone) {
+    throw UsageError(
+        "--roi and --resolution set a recording's region and cells when it comes alone (FILE.bag "
+        "or FILE.mcap); a manifest gives its own (roi, resolution)");
+  }
+  if (alone && o.topic.empty()) {
+    throw UsageError(fmt::format(
+        "a recording alone needs --topic: its sensor_msgs/PointCloud2 or depth sensor_msgs/Image "
+        "topic (vantage plan {} --topic /camera/depth/points)",
+        o.input));
+  }
+  if (alone) manifest = recording_alone(o);
+  if (!o.input.empty() && !alone) {
     ManifestReadOptions read;
     if (o.every > 0) read.every = o.every;
     if (!o.topic.empty()) read.topic = o.topic;
+    read.salvage = o.salvage;
     manifest = read_manifest(o.input, read);
+  }
+  if (manifest) {
+    if (const auto& s = manifest->salvage) {
+      // NOTE: one line, said whatever --json (plan.json records it too, "salvage").
+      warn(
+          fmt::format("{}: damaged; mapped the {} whole frame(s) before byte {} and dropped {}: {}",
+                      manifest->recording->string(), s->frames, s->offset,
+                      s->dropped ? fmt::format("the {} its index counts after them", *s->dropped)
+                                 : std::string("the rest (its index is lost with it)"),
+                      s->damage));
+    }
   }
   const SensorFov fov = manifest ? manifest->fov : fov_from_options(o);
   const CloudFrame frame = manifest ? manifest->frame : CloudFrame::kOptical;
@@ -305,7 +380,8 @@ void run(const PlanOptions& o) {
   check_decision_budget(cost, budget, spec.num_cells(), o.planning.threads);
   const Plan plan = plan_next_view(grid, candidates, planner, /*seed=*/1);
   report_plan({o, plan, planner, units, candidates, poses, robot, robot_source, grid, frame, fov,
-               manifest ? manifest->clouds.size() : 0, map_seconds, dir, cost.seconds()});
+               manifest ? manifest->clouds.size() : 0, map_seconds, dir, cost.seconds(),
+               manifest && manifest->salvage ? &*manifest->salvage : nullptr});
 }
 
 }  // namespace
@@ -314,15 +390,29 @@ void add_plan_command(CLI::App& app) {
   auto o = std::make_shared<PlanOptions>();
   CLI::App* cmd = app.add_subcommand(
       "plan", "Real scans in, next view out: map recorded clouds and choose the next best view");
-  cmd->add_option("input", o->input, "manifest YAML, or a folder holding manifest.yaml");
+  cmd->add_option("input", o->input,
+                  "manifest YAML, a folder holding manifest.yaml, or a recording alone (a ROS 1 "
+                  "bag, an MCAP file) with --topic");
+  cmd->add_option("--roi", o->roi,
+                  "of a recording alone: the region xmin,ymin,zmin,xmax,ymax,zmax [m] (default: "
+                  "the frames' extent)");
+  cmd->add_option("--resolution", o->resolution,
+                  "of a recording alone: the cells' edge [m] (default: a 200th of the sensor's "
+                  "range, 0.01 m for a Kinect's)")
+      ->check(number_in(0.0, kMaxWorldCoordinate, /*open_low=*/true));
   cmd->add_option("--map", o->map, "start from this OctoMap (.bt or .ot)");
   cmd->add_option("--every", o->every,
                   "of a TUM RGB-D folder's depth frames or a recording's (the manifest's tum or "
                   "recording), the first and every n-th after it")
       ->check(CLI::Range(1, 1'000'000));
   cmd->add_option("--topic", o->topic,
-                  "the sensor_msgs/PointCloud2 topic of the manifest's recording (a ROS 1 bag or "
-                  "an MCAP file), in place of its recording.topic");
+                  "the sensor_msgs/PointCloud2 or depth sensor_msgs/Image topic of a recording "
+                  "alone, or of the manifest's recording (a ROS 1 bag or an MCAP file), in place "
+                  "of its recording.topic");
+  cmd->add_flag("--salvage", o->salvage,
+                "of a damaged recording (cut short, a CRC or an index that does not match), map "
+                "the whole frames before the damage, say how many it dropped and record it in "
+                "plan.json (salvage), rather than refuse it");
   std::string sets;
   for (const CandidateSetRow& row : candidate_sets()) {
     if (!row.needs_list) sets += fmt::format("{} ({}), ", row.name, row.help);

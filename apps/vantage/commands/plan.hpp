@@ -27,6 +27,12 @@ struct PlanOptions {
   std::string map;    // .bt / .ot to start from
   int every = 0;      // of a TUM folder's or a recording's frames, every n-th (0: not given)
   std::string topic;  // of a recording, in place of the manifest's
+
+  // issue 53: a damaged recording; a recording alone (the input a .bag or .mcap file).
+  bool salvage = false;     // of a damaged recording, map the whole frames before the damage
+  std::string roi;          // of a recording alone: xmin,ymin,zmin,xmax,ymax,zmax [m]
+  double resolution = 0.0;  // of a recording alone [m]; 0: suited to the sensor's range
+
   std::string candidates = "ring";
   double radius = 0.0;  // 0: from the ROI
   double height = std::numeric_limits<double>::quiet_NaN();
@@ -83,6 +89,8 @@ struct PlanReport {
   double map_seconds;  ///< [s]
   const std::filesystem::path& dir;
   double estimated_seconds;  ///< the work budget's estimate of the decision [s]
+
+  const RecordingSalvage* salvage = nullptr;  ///< the manifest's recording was damaged
 };
 
 /// Writes the results folder whole (plan.json, the maps, the picture) and prints plan.json

@@ -117,6 +117,12 @@ void report_plan(const PlanReport& report) {
         {"prediction", plan.prediction_seconds},
         {"estimate", report.estimated_seconds}}}};
   for (const std::size_t i : ranking) out["candidates"].push_back(nbv(i));
+  if (const RecordingSalvage* s = report.salvage) {
+    out["salvage"] = {{"damage", s->damage},
+                      {"byte", s->offset},
+                      {"frames_kept", s->frames},
+                      {"frames_dropped", s->dropped ? json(*s->dropped) : json()}};
+  }
 
   write_folder_atomically(dir, [&](const fs::path& partial) {
     write_atomically(partial / "plan.json", out.dump(2) + "\n");

@@ -14,6 +14,7 @@
 #include "commands/options.hpp"
 #include "shell.hpp"
 #include "vantage/io/cloud_io.hpp"
+#include "vantage/map/grid_spec.hpp"
 #include "vantage/sim/world.hpp"
 #include "vantage/util/text.hpp"
 
@@ -49,6 +50,25 @@ Eigen::Isometry3d chosen_pose(const ScanOptions& o, const sim::Scene& scene) {
                                             o.view, scene.name, views.size()));
   }
   return views[static_cast<std::size_t>(o.view)];
+}
+
+/// Whether `p` lies inside the scene's closed surfaces (a wall's box, an object): a level ray from
+/// it crosses them an odd number of times, on most of four such rays (issue 53: a start inside a
+/// wall was said as "hit nothing within range").
+bool inside_geometry(const sim::World& world, const Eigen::Vector3d& p) {
+  int odd = 0;
+  for (const Eigen::Vector3d& direction : {Eigen::Vector3d(1, 0, 0), Eigen::Vector3d(-1, 0, 0),
+                                           Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0)}) {
+    Eigen::Vector3d origin = p;
+    int crossings = 0;
+    for (; crossings < 256; ++crossings) {
+      const std::optional<double> hit = world.cast(origin, direction, kMaxWorldCoordinate);
+      if (!hit) break;
+      origin += direction * (*hit + 1e-6);
+    }
+    odd += crossings % 2;
+  }
+  return odd >= 3;
 }
 
 void run(const ScanOptions& o) {
@@ -114,6 +134,13 @@ void run(const ScanOptions& o) {
 
   if (o.out.empty()) return;
   if (points.empty()) {
+    if (inside_geometry(world, T_true.translation())) {
+      throw std::runtime_error(fmt::format(
+          "the scan hit nothing within range: the sensor at {} lies inside the scene's geometry "
+          "(a wall or an object), so every ray ends on its inside nearer than the sensor's "
+          "min_range; {} not written (move the pose, or the scene's start, out of it)",
+          describe_pose(T_true), o.out));
+    }
     throw std::runtime_error(
         fmt::format("the scan hit nothing within range; {} not written", o.out));
   }
