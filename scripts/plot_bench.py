@@ -670,7 +670,19 @@ def visible_cells_of(out):
     return cells
 
 
-def surface_summary(trials, budget, set_cover_rows, tolerance=1):
+def yardstick_starts(out):
+    """Per scene, the number of starts of the sweep's yardstick files (DIR/yardstick/)."""
+    starts = {}
+    folder = os.path.join(out, "yardstick")
+    if os.path.isdir(folder):
+        for name in os.listdir(folder):
+            if name.endswith(".json"):
+                with open(os.path.join(folder, name)) as f:
+                    starts[name[:-5]] = len(json.load(f)["starts"])
+    return starts
+
+
+def surface_summary(trials, budget, set_cover_rows, tolerance=1, starts=None):
     covered = ("a cell covered once a point lies in it" if tolerance == 0 else
                "a cell covered once a point lies in it or in one of its 26 neighbours")
     lines = ["## Surface coverage by scan points", "",
@@ -743,10 +755,10 @@ def surface_summary(trials, budget, set_cover_rows, tolerance=1):
         lines += ["## The set-cover bound", "",
                   "Per scene, start and level of the visible surface (scripts/set_cover.py, on the",
                   "noise-free hit sets of DIR/yardstick/): the views the greedy oracle takes on",
-                  "those hit sets, the fewest views that reach the level (set_cover.py's branch",
-                  "and bound on the integer program; cells hit by the same views merged; the",
-                  "greedy oracle's count as the upper bound), the proven lower bound and the",
-                  "relative gap (0 = proven the fewest), its time",
+                  "those hit sets, the fewest views that reach the level (set_cover.py: the",
+                  "integer program solved by HiGHS, with the counting bound, swaps and a branch",
+                  "and bound before it; its `solver` column says which proved it), the proven",
+                  "lower bound and the relative gap (0 = proven the fewest), its time",
                   "[s], and the shortest tour from",
                   "the start through the chosen views [m] (exact up to 12 views, else nearest",
                   "neighbour + 2-opt); '-' = no set of views reaches the level from that start.",
@@ -761,6 +773,62 @@ def surface_summary(trials, budget, set_cover_rows, tolerance=1):
                          f" {r['seconds'] or '-'} | {r['tour_m'] or '-'} |"
                          f" {r['greedy_tour_m'] or '-'} |")
         lines.append("")
+        lines += optimum_ratios(trials, budget, set_cover_rows, starts or {})
+    return lines
+
+
+def optimum_ratios(trials, budget, set_cover_rows, starts):
+    """Issue 49: per method and level, the views each trial took to reach the level (its scans
+    less the start's) divided by the fewest views from the same scene and start (set_cover.csv;
+    a trial's start is its number mod the scene's starts); the greedy oracle on the true hit sets
+    (set_cover.csv's greedy_views) beside them. A trial that never reaches the level counts its
+    budget's views, a lower bound on its ratio ('censored')."""
+    fewest = {(r["scene"], int(r["start"]), r["level"]): r for r in set_cover_rows
+              if r["set_cover_views"] not in ("", "0")}
+    if not fewest:
+        return []
+    levels = [lv for lv in SURFACE_LEVELS if any(k[2] == f"{100 * lv:g}" for k in fewest)]
+    lines = ["### Views to each level against the fewest", "",
+             "Per method and level: the mean over trials of (scans to the level - 1) / the fewest",
+             "views from the same scene and start (set_cover.csv; proven = cases whose fewest is",
+             "proven optimal, else the best cover found, so the ratio is then a lower bound), and",
+             f"in brackets the trials that never reach the level within {budget} scans (counted as",
+             f"{budget - 1} views, a lower bound too). The last row: the greedy oracle's order on",
+             "the noise-free hit sets (set_cover.csv's greedy_views).", "",
+             "| method | " + " | ".join(f"views to {round(100 * lv)}% / fewest" for lv in levels)
+             + " |", "|---|" + "---|" * len(levels)]
+    keys = sorted({(m["method"], m["setting"]) for m in trials},
+                  key=lambda ms: (ms[0], setting_order(ms[1])))
+
+    def cell(ratios, censored):
+        if not ratios:
+            return "-"
+        return f"{sum(ratios) / len(ratios):.2f} ({censored}/{len(ratios)} cens.)"
+
+    for method, setting in keys:
+        cells = []
+        for lv in levels:
+            ratios, censored = [], 0
+            for m in trials:
+                if (m["method"], m["setting"]) != (method, setting) or m["scene"] not in starts:
+                    continue
+                row = fewest.get((m["scene"], int(m["trial"]) % starts[m["scene"]],
+                                  f"{100 * lv:g}"))
+                if row is None:
+                    continue
+                scans = m[("scans_to", lv)]
+                censored += scans is None
+                views = budget - 1 if scans is None else scans - 1
+                ratios.append(views / int(row["set_cover_views"]))
+            cells.append(cell(ratios, censored))
+        lines.append(f"| {label(method, setting)} | " + " | ".join(cells) + " |")
+    oracle = []
+    for lv in levels:
+        rows = [r for k, r in fewest.items() if k[2] == f"{100 * lv:g}"]
+        ratios = [int(r["greedy_views"]) / int(r["set_cover_views"]) for r in rows]
+        proven = sum(r["status"] == "proven" for r in rows)
+        oracle.append(f"{sum(ratios) / len(ratios):.2f} ({proven}/{len(rows)} proven)")
+    lines += ["| greedy oracle, true hit sets | " + " | ".join(oracle) + " |", ""]
     return lines
 
 
@@ -883,7 +951,8 @@ def main(argv):
         surface = surface_metrics(g)
         extra = surface_summary(surface, budget, read_set_cover(out),
                                 # NOTE: a sweep from before the setting counted within one cell
-                                sweep_setting(out, "coverage_tolerance", 1))
+                                sweep_setting(out, "coverage_tolerance", 1),
+                                yardstick_starts(out))
         for ref in ["greedy"] + against:
             extra += pooled_surface_table(surface, budget, ref)
         extra += new_coverage_prediction(rows, visible_cells_of(out))

@@ -202,3 +202,28 @@ def test_the_full_cover_counts_what_the_start_and_the_candidates_hit(tmp_path, s
     assert got[("1", "full")]["set_cover_views"] == "1"
     assert got[("1", "full")]["views"] == "1"
     assert got[("1", "full")]["status"] == "proven"
+
+
+def test_the_summary_divides_each_trials_views_by_the_fewest(plot_bench):
+    # Scene s, 2 starts: trials 0 and 2 start from start 0 (fewest 2 views to 80 %), trial 1
+    # from start 1 (fewest 4). Greedy reaches 80 % at scans 3, 5 and never (budget 6).
+    cover = [{"scene": "s", "start": "0", "level": "80", "set_cover_views": "2",
+              "greedy_views": "3", "status": "proven"},
+             {"scene": "s", "start": "1", "level": "80", "set_cover_views": "4",
+              "greedy_views": "4", "status": "time limit"}]
+    levels = plot_bench.SURFACE_LEVELS
+
+    def trial(number, to80):
+        m = {"scene": "s", "method": "greedy", "setting": ("", ""), "trial": str(number)}
+        m.update({("scans_to", lv): None for lv in levels})
+        m[("scans_to", 0.80)] = to80
+        return m
+
+    lines = plot_bench.optimum_ratios([trial(0, 3), trial(1, 5), trial(2, None)], 6, cover,
+                                      {"s": 2})
+    row = next(line for line in lines if line.startswith("| greedy |"))
+    # (3 - 1) / 2 = 1, (5 - 1) / 4 = 1, censored (6 - 1) / 2 = 2.5: mean 1.5.
+    assert row == "| greedy | 1.50 (1/3 cens.) |"
+    oracle = next(line for line in lines if line.startswith("| greedy oracle"))
+    # 3 / 2 and 4 / 4: mean 1.25; one of the two optima proven.
+    assert oracle == "| greedy oracle, true hit sets | 1.25 (1/2 proven) |"
