@@ -1,38 +1,39 @@
 #!/usr/bin/python3
-"""The set-cover bound of a table-top sweep (issue 36, docs/yardstick.md): per scene and start,
+"""The fewest views of a sweep (issues 36 and 49, docs/yardstick.md): per scene, start and level,
 the fewest candidate views that, with the start's own scan, hit a given share of the visible
-object surface V, and the shortest tour from the start through them.
+object surface V, proven optimal where it can be, and the shortest tour from the start through
+them.
 
-Usage: set_cover.py DIR [--levels 80,90,95,99] [--time-limit 20]
+Usage: set_cover.py DIR [--levels 80,90,95,99,full] [--time-limit 60] [--scenes A,B,...]
 Reads DIR/yardstick/SCENE.json (written by `vantage bench`: each candidate's and start's
 noise-free hit set as indices into V, and the travel between them [m]) and, when present,
 DIR/scans.csv for the starts the sweep's trials used (else every start). Writes DIR/set_cover.csv
-(whole or not at all), one row per scene, start and level:
+(whole or not at all), one row per scene, start and level (`full`: every cell of V the start and
+the candidates hit, MA-SCVP's full cover; need_cells says how many):
 
 - greedy_views: the greedy oracle on the true hit sets (each step the view adding the most cells
   of V not yet hit; ties to the shorter travel from the current view, then the lower index): the
   views it takes until the start's and its hits reach the level; empty when no set of views does.
-- set_cover_views: the fewest views (an integer program, below); never more than greedy_views,
-  which it starts from as its upper bound.
-- lower_bound, gap: the proven lower bound on the number of views and the relative gap
-  (set_cover_views - lower_bound) / set_cover_views; 0 when the cover is proven optimal.
+- set_cover_views: the fewest views found; never more than greedy_views.
+- lower_bound, gap, status: the proven lower bound on the number of views, the relative gap
+  (set_cover_views - lower_bound) / set_cover_views, and `proven` (gap 0) or `time limit`.
+- solver: the steps that ran (below); seconds: their wall-clock time.
 - tour_m: the shortest path from the start through the chosen views (no return): exact (Held-Karp
   dynamic programme) up to 12 views, else nearest neighbour improved by 2-opt (tour_method says
   which); in the sweep's travel rule [m].
 - views: the chosen candidate indices, space-separated.
 
-The fewest views are found exactly, by a branch and bound on the integer program "fewest views
-x_v in {0, 1} whose hits reach the cells still needed": the cells the start does not hit are
-merged into groups hit by the same views (weighted by their number), a counting bound (k views
-hit at most the sum of the k largest new-cell counts) gives the first k, and for k = that bound,
-+1, ... a depth-first search proves that no k views reach the level, or finds k that do (the
-fewest). A node's children are its views by the new cells each adds, most first, the t-th
-excluding the t - 1 before it, and are cut where the k best counts left fall short (new cells only
-shrink as views are added). Time limit per level: --time-limit seconds; at the limit the greedy
-cover stands, with the k proven so far as its lower bound (status says so). SciPy's `milp`
-(HiGHS) on the same program, with a continuous share per group, was tried first: its linear
-relaxation is weak (its bound stayed at 1 view within 10 s on a 270-view hemisphere, RESULTS.md
-issue 36), so it proved few covers at 95-99 %.
+The integer program: the cells the start does not hit, merged into groups hit by the same views
+(weighted by their number); x_v in {0, 1} per view, y_g in [0, 1] per group, y_g <= the sum of
+x_v over the views hitting g, sum of w_g y_g >= the cells still needed; minimise the sum of x_v.
+A view whose groups lie in another's is dropped (valid for the count). Its steps, each stopping
+once the lower bound meets the best cover: the counting bound (k views hit at most the sum of
+the k largest new-cell counts); swaps that look for a cover of one view fewer (heuristic, for the
+upper bound); a branch and bound of our own for k <= 3 views (faster than the solver there); the
+linear relaxation, rounded up; the integer program, with at most the best cover - 1 views. The
+last two are solved by HiGHS through scipy.optimize.milp, their rows y_g <= ... added lazily
+(the groups left out count as hit, so every bound holds). Time limit per level: --time-limit
+seconds (wall clock), at which the best cover stands with the bound proven so far.
 """
 import csv
 import glob
