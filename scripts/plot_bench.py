@@ -670,6 +670,17 @@ def visible_cells_of(out):
     return cells
 
 
+def truth_measures(out):
+    """views_by_truth.py's measures of the sweep (each trial's views scored by their noise-free
+    hit sets), or None without yardstick files."""
+    if not os.path.isdir(os.path.join(out, "yardstick")):
+        return None
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import views_by_truth
+    rows, _ = views_by_truth.measures(out)
+    return rows or None
+
+
 def yardstick_starts(out):
     """Per scene, the number of starts of the sweep's yardstick files (DIR/yardstick/)."""
     starts = {}
@@ -682,7 +693,8 @@ def yardstick_starts(out):
     return starts
 
 
-def surface_summary(trials, budget, set_cover_rows, tolerance=1, starts=None):
+def surface_summary(trials, budget, set_cover_rows, tolerance=1, starts=None,
+                    truth_rows=None):
     covered = ("a cell covered once a point lies in it" if tolerance == 0 else
                "a cell covered once a point lies in it or in one of its 26 neighbours")
     lines = ["## Surface coverage by scan points", "",
@@ -773,16 +785,17 @@ def surface_summary(trials, budget, set_cover_rows, tolerance=1, starts=None):
                          f" {r['seconds'] or '-'} | {r['tour_m'] or '-'} |"
                          f" {r['greedy_tour_m'] or '-'} |")
         lines.append("")
-        lines += optimum_ratios(trials, budget, set_cover_rows, starts or {})
+        lines += optimum_ratios(trials, budget, set_cover_rows, starts or {}, truth_rows)
     return lines
 
 
-def optimum_ratios(trials, budget, set_cover_rows, starts):
+def optimum_ratios(trials, budget, set_cover_rows, starts, truth_rows=None):
     """Issue 49: per method and level, the views each trial took to reach the level (its scans
     less the start's) divided by the fewest views from the same scene and start (set_cover.csv;
     a trial's start is its number mod the scene's starts); the greedy oracle on the true hit sets
     (set_cover.csv's greedy_views) beside them. A trial that never reaches the level counts its
-    budget's views, a lower bound on its ratio ('censored')."""
+    budget's views, a lower bound on its ratio ('censored'). `truth_rows` (views_by_truth.py's
+    measures) add the same ratios by the trial's views' noise-free hit sets."""
     fewest = {(r["scene"], int(r["start"]), r["level"]): r for r in set_cover_rows
               if r["set_cover_views"] not in ("", "0")}
     if not fewest:
@@ -795,8 +808,14 @@ def optimum_ratios(trials, budget, set_cover_rows, starts):
              f"in brackets the trials that never reach the level within {budget} scans (counted as",
              f"{budget - 1} views, a lower bound too). The last row: the greedy oracle's order on",
              "the noise-free hit sets (set_cover.csv's greedy_views).", "",
-             "| method | " + " | ".join(f"views to {round(100 * lv)}% / fewest" for lv in levels)
-             + " |", "|---|" + "---|" * len(levels)]
+             "Registered: by the run's registered scan points (scans.csv), which noise can",
+             "carry into cells the noise-free scans miss, so a ratio below 1 is possible; by the",
+             "truth: the same trial's views scored by their noise-free hit sets",
+             "(views_by_truth.py), never below 1.", "",
+             "| method | " + " | ".join(f"views to {round(100 * lv)}% / fewest, registered"
+                                      for lv in levels)
+             + "".join(f" | by the truth, {round(100 * lv)}%" for lv in levels if truth_rows)
+             + " |", "|---|" + "---|" * len(levels) * (2 if truth_rows else 1)]
     keys = sorted({(m["method"], m["setting"]) for m in trials},
                   key=lambda ms: (ms[0], setting_order(ms[1])))
 
@@ -805,22 +824,28 @@ def optimum_ratios(trials, budget, set_cover_rows, starts):
             return "-"
         return f"{sum(ratios) / len(ratios):.2f} ({censored}/{len(ratios)} cens.)"
 
+    def ratios_of(scans_of, lv, mine):
+        ratios, censored = [], 0
+        for m in mine:
+            if m["scene"] not in starts:
+                continue
+            row = fewest.get((m["scene"], int(m["trial"]) % starts[m["scene"]], f"{100 * lv:g}"))
+            if row is None:
+                continue
+            scans = scans_of(m, lv)
+            censored += scans is None
+            views = budget - 1 if scans is None else scans - 1
+            ratios.append(views / int(row["set_cover_views"]))
+        return cell(ratios, censored)
+
     for method, setting in keys:
-        cells = []
-        for lv in levels:
-            ratios, censored = [], 0
-            for m in trials:
-                if (m["method"], m["setting"]) != (method, setting) or m["scene"] not in starts:
-                    continue
-                row = fewest.get((m["scene"], int(m["trial"]) % starts[m["scene"]],
-                                  f"{100 * lv:g}"))
-                if row is None:
-                    continue
-                scans = m[("scans_to", lv)]
-                censored += scans is None
-                views = budget - 1 if scans is None else scans - 1
-                ratios.append(views / int(row["set_cover_views"]))
-            cells.append(cell(ratios, censored))
+        mine = [m for m in trials if (m["method"], m["setting"]) == (method, setting)]
+        cells = [ratios_of(lambda m, lv: m[("scans_to", lv)], lv, mine) for lv in levels]
+        if truth_rows:
+            name = label(method, setting)
+            by_truth = [r for r in truth_rows if r["label"] == name]
+            cells += [ratios_of(lambda r, lv: r[lv] if r[lv] <= budget else None, lv, by_truth)
+                      for lv in levels]
         lines.append(f"| {label(method, setting)} | " + " | ".join(cells) + " |")
     oracle = []
     for lv in levels:
@@ -828,6 +853,8 @@ def optimum_ratios(trials, budget, set_cover_rows, starts):
         ratios = [int(r["greedy_views"]) / int(r["set_cover_views"]) for r in rows]
         proven = sum(r["status"] == "proven" for r in rows)
         oracle.append(f"{sum(ratios) / len(ratios):.2f} ({proven}/{len(rows)} proven)")
+    if truth_rows:
+        oracle = ["-"] * len(levels) + oracle
     lines += ["| greedy oracle, true hit sets | " + " | ".join(oracle) + " |", ""]
     return lines
 
@@ -952,7 +979,7 @@ def main(argv):
         extra = surface_summary(surface, budget, read_set_cover(out),
                                 # NOTE: a sweep from before the setting counted within one cell
                                 sweep_setting(out, "coverage_tolerance", 1),
-                                yardstick_starts(out))
+                                yardstick_starts(out), truth_measures(out))
         for ref in ["greedy"] + against:
             extra += pooled_surface_table(surface, budget, ref)
         extra += new_coverage_prediction(rows, visible_cells_of(out))

@@ -227,3 +227,19 @@ def test_the_summary_divides_each_trials_views_by_the_fewest(plot_bench):
     oracle = next(line for line in lines if line.startswith("| greedy oracle"))
     # 3 / 2 and 4 / 4: mean 1.25; one of the two optima proven.
     assert oracle == "| greedy oracle, true hit sets | 1.25 (1/2 proven) |"
+
+
+def test_the_summary_gives_the_same_ratios_by_the_truth(plot_bench):
+    cover = [{"scene": "s", "start": "0", "level": "80", "set_cover_views": "2",
+              "greedy_views": "2", "status": "proven"}]
+    m = {"scene": "s", "method": "greedy", "setting": ("", ""), "trial": "0"}
+    m.update({("scans_to", lv): None for lv in plot_bench.SURFACE_LEVELS})
+    m[("scans_to", 0.80)] = 2  # by the registered points: 1 view, half the fewest
+    truth = {"label": "greedy", "scene": "s", "trial": 0}
+    truth.update({lv: 7 for lv in plot_bench.SURFACE_LEVELS})  # 7 = budget + 1: never
+    truth[0.80] = 4  # by the truth: 3 views
+    lines = plot_bench.optimum_ratios([m], 6, cover, {"s": 1}, [truth])
+    row = next(line for line in lines if line.startswith("| greedy |"))
+    assert row == "| greedy | 0.50 (0/1 cens.) | 1.50 (0/1 cens.) |"
+    oracle = next(line for line in lines if line.startswith("| greedy oracle"))
+    assert oracle == "| greedy oracle, true hit sets | - | 1.00 (1/1 proven) |"
