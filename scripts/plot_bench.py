@@ -683,7 +683,31 @@ def visible_cells_of(out):
     return cells
 
 
-def surface_summary(trials, budget, set_cover_rows, tolerance=1, tolerance_m=0.0):
+def truth_measures(out):
+    """views_by_truth.py's measures of the sweep (each trial's views scored by their noise-free
+    hit sets), or None without yardstick files."""
+    if not os.path.isdir(os.path.join(out, "yardstick")):
+        return None
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    import views_by_truth
+    rows, _ = views_by_truth.measures(out)
+    return rows or None
+
+
+def yardstick_starts(out):
+    """Per scene, the number of starts of the sweep's yardstick files (DIR/yardstick/)."""
+    starts = {}
+    folder = os.path.join(out, "yardstick")
+    if os.path.isdir(folder):
+        for name in os.listdir(folder):
+            if name.endswith(".json"):
+                with open(os.path.join(folder, name)) as f:
+                    starts[name[:-5]] = len(json.load(f)["starts"])
+    return starts
+
+
+def surface_summary(trials, budget, set_cover_rows, tolerance=1, starts=None,
+                    truth_rows=None, tolerance_m=0.0):
     covered = (f"a cell covered once a point lies within {1e3 * tolerance_m:g} mm of it"
                if tolerance_m else
                "a cell covered once a point lies in it" if tolerance == 0 else
@@ -762,10 +786,10 @@ def surface_summary(trials, budget, set_cover_rows, tolerance=1, tolerance_m=0.0
         lines += ["## The set-cover bound", "",
                   "Per scene, start and level of the visible surface (scripts/set_cover.py, on the",
                   "noise-free hit sets of DIR/yardstick/): the views the greedy oracle takes on",
-                  "those hit sets, the fewest views that reach the level (set_cover.py's branch",
-                  "and bound on the integer program; cells hit by the same views merged; the",
-                  "greedy oracle's count as the upper bound), the proven lower bound and the",
-                  "relative gap (0 = proven the fewest), its time",
+                  "those hit sets, the fewest views that reach the level (set_cover.py: the",
+                  "integer program solved by HiGHS, with the counting bound, swaps and a branch",
+                  "and bound before it; its `solver` column says which proved it), the proven",
+                  "lower bound and the relative gap (0 = proven the fewest), its time",
                   "[s], and the shortest tour from",
                   "the start through the chosen views [m] (exact up to 12 views, else nearest",
                   "neighbour + 2-opt); '-' = no set of views reaches the level from that start.",
@@ -780,6 +804,77 @@ def surface_summary(trials, budget, set_cover_rows, tolerance=1, tolerance_m=0.0
                          f" {r['seconds'] or '-'} | {r['tour_m'] or '-'} |"
                          f" {r['greedy_tour_m'] or '-'} |")
         lines.append("")
+        lines += optimum_ratios(trials, budget, set_cover_rows, starts or {}, truth_rows)
+    return lines
+
+
+def optimum_ratios(trials, budget, set_cover_rows, starts, truth_rows=None):
+    """Issue 49: per method and level, the views each trial took to reach the level (its scans
+    less the start's) divided by the fewest views from the same scene and start (set_cover.csv;
+    a trial's start is its number mod the scene's starts); the greedy oracle on the true hit sets
+    (set_cover.csv's greedy_views) beside them. A trial that never reaches the level counts its
+    budget's views, a lower bound on its ratio ('censored'). `truth_rows` (views_by_truth.py's
+    measures) add the same ratios by the trial's views' noise-free hit sets."""
+    fewest = {(r["scene"], int(r["start"]), r["level"]): r for r in set_cover_rows
+              if r["set_cover_views"] not in ("", "0")}
+    if not fewest:
+        return []
+    levels = [lv for lv in SURFACE_LEVELS if any(k[2] == f"{100 * lv:g}" for k in fewest)]
+    lines = ["### Views to each level against the fewest", "",
+             "Per method and level: the mean over trials of (scans to the level - 1) / the fewest",
+             "views from the same scene and start (set_cover.csv; proven = cases whose fewest is",
+             "proven optimal, else the best cover found, so the ratio is then a lower bound), and",
+             f"in brackets the trials that never reach the level within {budget} scans (counted as",
+             f"{budget - 1} views, a lower bound too). The last row: the greedy oracle's order on",
+             "the noise-free hit sets (set_cover.csv's greedy_views).", "",
+             "Registered: by the run's registered scan points (scans.csv), which noise can",
+             "carry into cells the noise-free scans miss, so a ratio below 1 is possible; by the",
+             "truth: the same trial's views scored by their noise-free hit sets",
+             "(views_by_truth.py), never below 1.", "",
+             "| method | " + " | ".join(f"views to {round(100 * lv)}% / fewest, registered"
+                                      for lv in levels)
+             + "".join(f" | by the truth, {round(100 * lv)}%" for lv in levels if truth_rows)
+             + " |", "|---|" + "---|" * len(levels) * (2 if truth_rows else 1)]
+    keys = sorted({(m["method"], m["setting"]) for m in trials},
+                  key=lambda ms: (ms[0], setting_order(ms[1])))
+
+    def cell(ratios, censored):
+        if not ratios:
+            return "-"
+        return f"{sum(ratios) / len(ratios):.2f} ({censored}/{len(ratios)} cens.)"
+
+    def ratios_of(scans_of, lv, mine):
+        ratios, censored = [], 0
+        for m in mine:
+            if m["scene"] not in starts:
+                continue
+            row = fewest.get((m["scene"], int(m["trial"]) % starts[m["scene"]], f"{100 * lv:g}"))
+            if row is None:
+                continue
+            scans = scans_of(m, lv)
+            censored += scans is None
+            views = budget - 1 if scans is None else scans - 1
+            ratios.append(views / int(row["set_cover_views"]))
+        return cell(ratios, censored)
+
+    for method, setting in keys:
+        mine = [m for m in trials if (m["method"], m["setting"]) == (method, setting)]
+        cells = [ratios_of(lambda m, lv: m[("scans_to", lv)], lv, mine) for lv in levels]
+        if truth_rows:
+            name = label(method, setting)
+            by_truth = [r for r in truth_rows if r["label"] == name]
+            cells += [ratios_of(lambda r, lv: r[lv] if r[lv] <= budget else None, lv, by_truth)
+                      for lv in levels]
+        lines.append(f"| {label(method, setting)} | " + " | ".join(cells) + " |")
+    oracle = []
+    for lv in levels:
+        rows = [r for k, r in fewest.items() if k[2] == f"{100 * lv:g}"]
+        ratios = [int(r["greedy_views"]) / int(r["set_cover_views"]) for r in rows]
+        proven = sum(r["status"] == "proven" for r in rows)
+        oracle.append(f"{sum(ratios) / len(ratios):.2f} ({proven}/{len(rows)} proven)")
+    if truth_rows:
+        oracle = ["-"] * len(levels) + oracle
+    lines += ["| greedy oracle, true hit sets | " + " | ".join(oracle) + " |", ""]
     return lines
 
 
@@ -903,6 +998,7 @@ def main(argv):
         extra = surface_summary(surface, budget, read_set_cover(out),
                                 # NOTE: a sweep from before the setting counted within one cell
                                 sweep_setting(out, "coverage_tolerance", 1),
+                                yardstick_starts(out), truth_measures(out),
                                 sweep_setting(out, "coverage_tolerance_m", 0.0))
         for ref in ["greedy"] + against:
             extra += pooled_surface_table(surface, budget, ref)

@@ -1,12 +1,14 @@
-"""The set-cover bound (scripts/set_cover.py) on hand-made hit sets: a case where the greedy
-oracle takes one view too many, the tour through the chosen views worked out by hand, and random
-cases in which the cover reaches its level and never uses more views than the greedy oracle."""
+"""The fewest views (scripts/set_cover.py) on hand-made hit sets: a case where the greedy oracle
+takes one view too many, the tour through the chosen views worked out by hand, the full cover, and
+random cases (fixed seeds) in which the cover, the integer program (HiGHS) and the linear
+relaxation are held to the fewest views found by trying every subset."""
 
 import csv
 import itertools
 import json
 import random
 import sys
+import time
 
 import pytest
 
@@ -60,9 +62,10 @@ def test_the_cover_beats_the_greedy_oracle_where_greedy_overlaps(tmp_path, set_c
     # 50 %: 4 cells, the start's 1 and view 0's or view 2's: one view, which no fewer can beat
     # (the counting bound proves it without the solver).
     assert got["50"]["set_cover_views"] == "1"
-    assert got["50"]["status"] == "optimal (counting bound)"
+    assert got["50"]["status"] == "proven"
+    assert got["50"]["solver"] == "counting bound"
     # For all 8, two views hit at most 4 + 4 new cells: at least 2, and views 1 and 2 do it.
-    assert got["100"]["status"] == "optimal (branch and bound)"
+    assert got["100"]["status"] == "proven"
     truth = set_cover.load_truth(tmp_path / "yardstick" / "toy.json")
     assert set_cover.size_bound(truth, 0, 7) == 2
     assert set_cover.size_bound(truth, 0, 9) == 3
@@ -122,3 +125,121 @@ def test_the_cover_is_the_fewest_views_every_subset_finds(tmp_path, set_cover, s
         assert int(r["set_cover_views"]) == fewest, r
         assert int(r["lower_bound"]) == fewest, r
         assert float(r["gap"]) == 0.0
+
+
+def brute_fewest(views, start, need):
+    """The fewest views whose hits with `start` reach `need` cells, by trying every subset."""
+    return next(k for k in range(len(views) + 1)
+                if any(len(start.union(*(views[v] for v in subset))) >= need
+                       for subset in itertools.combinations(range(len(views)), k)))
+
+
+def random_truth(rng, cells, count, low, high):
+    views = [set(rng.sample(range(cells), rng.randint(low, high))) for _ in range(count)]
+    start = set(rng.sample(range(cells), 4))
+    truth = {"scene": "rand", "candidates": "ring", "views": views, "starts": [start],
+             "visible_cells": len(start.union(*views))}
+    return truth, views, start
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_the_integer_program_alone_finds_the_fewest_views(set_cover, seed):
+    # HiGHS on the whole program (every group a row), from no bound: its optimum and its proof
+    # against every subset, at each partial level and the full cover.
+    rng = random.Random(200 + seed)
+    truth, views, start = random_truth(rng, 60, 12, 5, 20)
+    groups = set_cover._Groups(truth, 0)
+    everything = range(len(groups.weight))
+    for level in (0.8, 0.9, 0.95, 0.99, 1.0):
+        need = set_cover.needed(truth, level)
+        fewest = brute_fewest(views, start, need)
+        if fewest == 0:
+            continue
+        remaining = need - len(start)
+        found, bound, proven = set_cover._milp(groups, remaining, everything, 0, len(views),
+                                               time.monotonic() + 30)
+        assert proven and bound == fewest and len(found) == fewest, (level, found, bound)
+        assert len(start.union(*(views[v] for v in found))) >= need
+        # From a few rows only, rows are added until the cover holds: the same optimum.
+        found, bound, proven = set_cover._milp(groups, remaining, [0], 0, len(views),
+                                               time.monotonic() + 30)
+        assert proven and len(found) == fewest
+        # The relaxation bounds it from below, and no view set below `fewest` exists.
+        value, _ = set_cover._lp_bound(groups, remaining, [0], time.monotonic() + 30)
+        assert value <= fewest + 1e-6
+        found, bound, proven = set_cover._milp(groups, remaining, everything, 0, fewest - 1,
+                                               time.monotonic() + 30)
+        assert found is None and proven and bound == fewest
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_swaps_and_the_branch_and_bound_never_claim_a_wrong_count(set_cover, seed):
+    rng = random.Random(300 + seed)
+    truth, views, start = random_truth(rng, 50, 12, 4, 16)
+    groups = set_cover._Groups(truth, 0)
+    need = set_cover.needed(truth, 0.95)
+    remaining = need - len(start)
+    fewest = brute_fewest(views, start, need)
+    deadline = time.monotonic() + 30
+    assert set_cover._cover_of(groups, fewest - 1, remaining, deadline) is None
+    assert len(set_cover._cover_of(groups, fewest, remaining, deadline)) <= fewest
+    found = set_cover._swap_search(groups, fewest, remaining, [], deadline)
+    assert found is None or len(start.union(*(views[v] for v in found))) >= need
+
+
+def test_the_full_cover_counts_what_the_start_and_the_candidates_hit(tmp_path, set_cover):
+    # Cell 3 is hit only by the second start: the full cover from the first is cells 0-2,
+    # needing both views (view 1 alone hits cell 2), and from the second all four cells, needing
+    # view 1 alone (the start hits 0, 1 and 3).
+    write_truth(tmp_path, "toy", [{0, 1}, {2}], [{0}, {0, 1, 3}], positions=[0.0, 1.0],
+                start_positions=[0.0, 1.0])
+    set_cover.main(["set_cover.py", str(tmp_path), "--levels", "full,100"])
+    got = {(r["start"], r["level"]): r for r in rows(tmp_path)}
+    assert got[("0", "full")]["need_cells"] == "3"
+    assert got[("0", "full")]["set_cover_views"] == "2"
+    assert got[("0", "100")]["status"] == "not reachable from this start"
+    assert got[("1", "full")]["need_cells"] == "4"
+    assert got[("1", "full")]["set_cover_views"] == "1"
+    assert got[("1", "full")]["views"] == "1"
+    assert got[("1", "full")]["status"] == "proven"
+
+
+def test_the_summary_divides_each_trials_views_by_the_fewest(plot_bench):
+    # Scene s, 2 starts: trials 0 and 2 start from start 0 (fewest 2 views to 80 %), trial 1
+    # from start 1 (fewest 4). Greedy reaches 80 % at scans 3, 5 and never (budget 6).
+    cover = [{"scene": "s", "start": "0", "level": "80", "set_cover_views": "2",
+              "greedy_views": "3", "status": "proven"},
+             {"scene": "s", "start": "1", "level": "80", "set_cover_views": "4",
+              "greedy_views": "4", "status": "time limit"}]
+    levels = plot_bench.SURFACE_LEVELS
+
+    def trial(number, to80):
+        m = {"scene": "s", "method": "greedy", "setting": ("", ""), "trial": str(number)}
+        m.update({("scans_to", lv): None for lv in levels})
+        m[("scans_to", 0.80)] = to80
+        return m
+
+    lines = plot_bench.optimum_ratios([trial(0, 3), trial(1, 5), trial(2, None)], 6, cover,
+                                      {"s": 2})
+    row = next(line for line in lines if line.startswith("| greedy |"))
+    # (3 - 1) / 2 = 1, (5 - 1) / 4 = 1, censored (6 - 1) / 2 = 2.5: mean 1.5.
+    assert row == "| greedy | 1.50 (1/3 cens.) |"
+    oracle = next(line for line in lines if line.startswith("| greedy oracle"))
+    # 3 / 2 and 4 / 4: mean 1.25; one of the two optima proven.
+    assert oracle == "| greedy oracle, true hit sets | 1.25 (1/2 proven) |"
+
+
+def test_the_summary_gives_the_same_ratios_by_the_truth(plot_bench):
+    cover = [{"scene": "s", "start": "0", "level": "80", "set_cover_views": "2",
+              "greedy_views": "2", "status": "proven"}]
+    m = {"scene": "s", "method": "greedy", "setting": ("", ""), "trial": "0"}
+    m.update({("scans_to", lv): None for lv in plot_bench.SURFACE_LEVELS})
+    m[("scans_to", 0.80)] = 2  # by the registered points: 1 view, half the fewest
+    truth = {"label": "greedy", "scene": "s", "trial": 0}
+    truth.update({lv: 7 for lv in plot_bench.SURFACE_LEVELS})  # 7 = budget + 1: never
+    truth[0.80] = 4  # by the truth: 3 views
+    lines = plot_bench.optimum_ratios([m], 6, cover, {"s": 1}, [truth])
+    row = next(line for line in lines if line.startswith("| greedy |"))
+    assert row == "| greedy | 0.50 (0/1 cens.) | 1.50 (0/1 cens.) |"
+    oracle = next(line for line in lines if line.startswith("| greedy oracle"))
+    assert oracle == "| greedy oracle, true hit sets | - | 1.00 (1/1 proven) |"
