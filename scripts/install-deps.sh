@@ -7,9 +7,10 @@ set -euo pipefail
 core=(cmake g++ make pkg-config libeigen3-dev libtbb-dev libgtest-dev libbenchmark-dev
       libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libyaml-cpp-dev
       python3-matplotlib python3-scipy pybind11-dev python3-dev python3-numpy python3-pytest)
+# assimp-testmodels: meshes another tool wrote, for the object protocol's test (cli.objects).
 # chromium: the test that renders `vantage view`'s page headless (skipped without it).
 # zlib1g-dev: the CRC32s of MCAP files (issue 53), named though libpng-dev brings it.
-edge=(liboctomap-dev libembree-dev libassimp-dev libpcl-dev libnanoflann-dev npm chromium
+edge=(liboctomap-dev libembree-dev libassimp-dev assimp-testmodels libpcl-dev libnanoflann-dev npm chromium
       libpng-dev libzstd-dev liblz4-dev zlib1g-dev)
 # The recordings tests' ROS 1 bag is written by Debian's python3-rosbag (issue 38).
 edge+=(python3-rosbag python3-sensor-msgs python3-tf2-msgs)
