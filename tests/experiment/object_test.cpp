@@ -50,7 +50,7 @@ TEST(Objects, TheGreedyOracleCoversTheBunnyOnItsSphereInAFewViews) {
   EXPECT_GT(last, 0.95);
 }
 
-TEST(Objects, TheDefaultViewsLieOnTheSphereAndTheRunIsSeeded) {
+TEST(Objects, TheSameSeedGivesTheSameRunAndItsCoverageGrows) {
   const ExplorationResult one = explore_bunny(false, 4);
   const ExplorationResult two = explore_bunny(false, 4);
   ASSERT_EQ(one.scans.size(), two.scans.size());

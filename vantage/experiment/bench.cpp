@@ -243,8 +243,9 @@ void write_yardstick_file(const fs::path& path, const sim::Scene& scene,
     }
     return out;
   };
-  const std::vector<Eigen::Isometry3d> views = run_candidates(scene, config);
-  const TravelRule travel = run_travel_rule(scene, config);
+  const PlacedViews placed = run_candidate_views(scene, config);
+  const std::vector<Eigen::Isometry3d>& views = placed.poses;
+  const TravelRule& travel = placed.travel;
   auto travel_from = [&](const std::vector<Eigen::Isometry3d>& from) {
     nlohmann::json rows = nlohmann::json::array();
     for (const Eigen::Isometry3d& a : from) {

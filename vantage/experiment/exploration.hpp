@@ -92,7 +92,7 @@ struct ExplorationConfig {
   /// sphere, view-sphere); empty: the scene's own (a table top's ring, an object's view sphere).
   std::string candidates;
   /// The set's radius and view count (CandidateParams; 0: the set's or the scene's own). The
-  /// hemisphere's radii and spacing are `hemisphere`'s.
+  /// hemisphere's rings are `hemisphere`'s.
   CandidateParams views;
   /// The hemisphere's radii, elevations and spacing; the centre is the scene's target (the
   /// ring's), the base and reach `arm`'s, else the scene's arm's, else unlimited.

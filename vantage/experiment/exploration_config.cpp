@@ -151,8 +151,7 @@ PlacedViews run_candidate_views(const sim::Scene& scene, const ExplorationConfig
   site.sphere = scene.view_sphere;
   site.arm = config.arm ? config.arm : scene.arm;
   CandidateParams params = config.views;
-  params.radii = config.hemisphere.radii;
-  params.spacing = config.hemisphere.spacing;
+  params.hemisphere = config.hemisphere;
   return build_candidates(run_candidate_set(scene, config), site, params);
 }
 

@@ -366,6 +366,13 @@ std::vector<std::string> builtin_model_names() {
   return names;
 }
 
+bool is_builtin_model(std::string_view name) {
+  for (const BuiltinModel& model : kBuiltinModels) {
+    if (model.name == name) return true;
+  }
+  return false;
+}
+
 std::filesystem::path models_dir() {
   if (const char* env = std::getenv("VANTAGE_MODELS_DIR"); env != nullptr && *env != '\0') {
     return env;

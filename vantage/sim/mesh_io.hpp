@@ -31,6 +31,8 @@ TriangleMesh load_js_mesh(const std::filesystem::path& path);
 
 /// Names of the scanned models built in: "bunny", "dragon", "teapot".
 std::vector<std::string> builtin_model_names();
+/// Whether `name` is one of them.
+bool is_builtin_model(std::string_view name);
 
 /// Folder that holds the fetched models: $VANTAGE_MODELS_DIR, else the source tree's
 /// `.cache/models` (filled by `make deps` or scripts/fetch-models.sh).

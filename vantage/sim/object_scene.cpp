@@ -22,10 +22,7 @@ constexpr double kMarginCells = 2.0;
 bool positive_finite(double v) { return v > 0.0 && std::isfinite(v); }
 
 TriangleMesh read_object_mesh(const std::string& mesh, const std::filesystem::path& base_dir) {
-  const std::vector<std::string> models = builtin_model_names();
-  if (std::find(models.begin(), models.end(), mesh) != models.end()) {
-    return load_builtin_model(mesh);
-  }
+  if (is_builtin_model(mesh)) return load_builtin_model(mesh);
   std::filesystem::path path = mesh;
   if (path.is_relative() && !base_dir.empty()) path = base_dir / path;
   return load_mesh(path);
@@ -182,9 +179,8 @@ Scene object_scene(std::string name, std::span<const ObjectPlacement> objects,
 }
 
 Scene single_object_scene(const std::string& mesh, const ObjectProtocol& protocol) {
-  const std::vector<std::string> models = builtin_model_names();
-  const bool builtin = std::find(models.begin(), models.end(), mesh) != models.end();
-  const std::string name = builtin ? mesh : std::filesystem::path(mesh).stem().string();
+  const std::string name =
+      is_builtin_model(mesh) ? mesh : std::filesystem::path(mesh).stem().string();
   const ObjectPlacement object{mesh, Eigen::Isometry3d::Identity(), 0.0};
   Scene scene = object_scene(name.empty() ? std::string("object") : name,
                              std::span<const ObjectPlacement>(&object, 1), protocol);

@@ -96,8 +96,7 @@ Scene load_scene(const std::string& name_or_yaml_path) {
 }
 
 bool is_object_source(const std::string& name_or_path) {
-  const std::vector<std::string> models = builtin_model_names();
-  if (std::find(models.begin(), models.end(), name_or_path) != models.end()) return true;
+  if (is_builtin_model(name_or_path)) return true;
   std::string ext = std::filesystem::path(name_or_path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });

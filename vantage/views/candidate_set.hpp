@@ -35,8 +35,9 @@ struct CandidateParams {
                         ///< middle of three radii 0.75 r, r, 1.25 r [m]
   int views = 0;        ///< ring: positions x yaw offsets; sphere, view-sphere: views
   double height = std::numeric_limits<double>::quiet_NaN();  ///< ring: the sensor height [m]
-  std::vector<double> radii;  ///< hemisphere: the rings' radii, overriding `radius` [m]
-  double spacing = 0.0;       ///< hemisphere: arc between neighbouring views [m]
+  /// hemisphere: its rings' radii, elevations and spacing, overriding `radius`; its centre and
+  /// reach are the site's (target, arm).
+  std::optional<HemisphereConfig> hemisphere;
   /// frontier: the sensor's height band [m]; none: every height.
   std::optional<std::pair<double, double>> band;
   std::vector<Eigen::Isometry3d> listed;  ///< file: the user's poses (T_world_sensor)

@@ -96,16 +96,13 @@ std::vector<Eigen::Isometry3d> hemisphere_poses(const HemisphereConfig& config) 
 }
 
 PlacedViews hemisphere_candidates(const CandidateSite& site, const CandidateParams& params) {
-  HemisphereConfig hemisphere;
+  HemisphereConfig hemisphere = params.hemisphere.value_or(HemisphereConfig{});
   hemisphere.center = site.target;
-  if (!params.radii.empty()) {
-    hemisphere.radii = params.radii;
-  } else if (params.radius > 0.0 || !site.ring) {
+  if (!params.hemisphere && (params.radius > 0.0 || !site.ring)) {
     // NOTE: an arm's views (issue 26): rings at 0.75, 1 and 1.25 times the ring's radius.
     const double r = params.radius > 0.0 ? params.radius : default_ring(site.region).radius;
     hemisphere.radii = {0.75 * r, r, 1.25 * r};
   }
-  if (params.spacing > 0.0) hemisphere.spacing = params.spacing;
   if (site.arm) {
     hemisphere.base = site.arm->base;
     hemisphere.reach = site.arm->reach;
