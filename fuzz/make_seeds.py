@@ -308,15 +308,20 @@ def rosbag_damaged_seeds(tiny):
     write("rosbag", "unclosed.bag", bytes(unclosed))
 
 
-def mcap_seeds():
-    """Tiny MCAP files by hand (mcap.dev/spec): the messages in ROS 1 serialization, one file
-    without chunks and one with an uncompressed chunk."""
-    def record(op, body):
-        return bytes([op]) + struct.pack("<Q", len(body)) + body
+def mcap_record(op, body):
+    """An MCAP record: its opcode, its length (8 bytes), its body."""
+    return bytes([op]) + struct.pack("<Q", len(body)) + body
 
-    def string(text):
-        return struct.pack("<I", len(text)) + text.encode()
-    cloud, tf = cloud_and_tf_ros1()
+
+def mcap_string(text):
+    """An MCAP string: its length (4 bytes), its bytes."""
+    return struct.pack("<I", len(text)) + text.encode()
+
+
+def mcap_ros1_schemas_and_channels():
+    """The schema (3) and channel (4) records of a cloud on /camera/depth/points (1) and tf on
+    /tf (2), in ROS 1 serialization."""
+    record, string = mcap_record, mcap_string
     schemas = (record(3, struct.pack("<H", 1) + string("sensor_msgs/PointCloud2") + string("ros1msg") +
                       struct.pack("<I", 0)) +
                record(3, struct.pack("<H", 2) + string("tf2_msgs/TFMessage") + string("ros1msg") +
@@ -325,6 +330,15 @@ def mcap_seeds():
                        struct.pack("<I", 0)) +
                 record(4, struct.pack("<HH", 2, 2) + string("/tf") + string("ros1") +
                        struct.pack("<I", 0)))
+    return schemas, channels
+
+
+def mcap_seeds():
+    """Tiny MCAP files by hand (mcap.dev/spec): the messages in ROS 1 serialization, one file
+    without chunks and one with an uncompressed chunk."""
+    record, string = mcap_record, mcap_string
+    cloud, tf = cloud_and_tf_ros1()
+    schemas, channels = mcap_ros1_schemas_and_channels()
     messages = (record(5, struct.pack("<HIQQ", 2, 0, 7_000_000_500, 7_000_000_500) + tf) +
                 record(5, struct.pack("<HIQQ", 1, 1, 7_000_000_500, 7_000_000_500) + cloud))
     magic = b"\x89MCAP0\r\n"
@@ -358,21 +372,10 @@ def mcap_whole_and_damaged_seeds():
     damages it (issue 53)."""
     import zlib
 
-    def record(op, body):
-        return bytes([op]) + struct.pack("<Q", len(body)) + body
-
-    def string(text):
-        return struct.pack("<I", len(text)) + text.encode()
+    record, string = mcap_record, mcap_string
     cloud, tf = cloud_and_tf_ros1()
     magic = b"\x89MCAP0\r\n"
-    schemas = (record(3, struct.pack("<H", 1) + string("sensor_msgs/PointCloud2") + string("ros1msg") +
-                      struct.pack("<I", 0)) +
-               record(3, struct.pack("<H", 2) + string("tf2_msgs/TFMessage") + string("ros1msg") +
-                      struct.pack("<I", 0)))
-    channels = (record(4, struct.pack("<HH", 1, 1) + string("/camera/depth/points") + string("ros1") +
-                       struct.pack("<I", 0)) +
-                record(4, struct.pack("<HH", 2, 2) + string("/tf") + string("ros1") +
-                       struct.pack("<I", 0)))
+    schemas, channels = mcap_ros1_schemas_and_channels()
     inner = schemas + channels
     offsets = {}
     for channel, payload in ((2, tf), (1, cloud)):
