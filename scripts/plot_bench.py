@@ -671,16 +671,21 @@ def new_coverage_prediction(rows, visible_cells):
     return lines + [""]
 
 
-def visible_cells_of(out):
-    """Per scene, the visible surface cells of the sweep's yardstick files (DIR/yardstick/)."""
-    cells = {}
+def yardstick_field(out, field):
+    """Per scene, `field` of each of the sweep's yardstick files (DIR/yardstick/SCENE.json)."""
+    values = {}
     folder = os.path.join(out, "yardstick")
     if os.path.isdir(folder):
         for name in os.listdir(folder):
             if name.endswith(".json"):
                 with open(os.path.join(folder, name)) as f:
-                    cells[name[:-5]] = json.load(f)["visible_cells"]
-    return cells
+                    values[name[:-5]] = field(json.load(f))
+    return values
+
+
+def visible_cells_of(out):
+    """Per scene, the visible surface cells of the sweep's yardstick files."""
+    return yardstick_field(out, lambda truth: truth["visible_cells"])
 
 
 def truth_measures(out):
@@ -695,15 +700,8 @@ def truth_measures(out):
 
 
 def yardstick_starts(out):
-    """Per scene, the number of starts of the sweep's yardstick files (DIR/yardstick/)."""
-    starts = {}
-    folder = os.path.join(out, "yardstick")
-    if os.path.isdir(folder):
-        for name in os.listdir(folder):
-            if name.endswith(".json"):
-                with open(os.path.join(folder, name)) as f:
-                    starts[name[:-5]] = len(json.load(f)["starts"])
-    return starts
+    """Per scene, the number of starts of the sweep's yardstick files."""
+    return yardstick_field(out, lambda truth: len(truth["starts"]))
 
 
 def surface_summary(trials, budget, set_cover_rows, tolerance=1, starts=None,
