@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "vantage/gain/detail/metric_rays.hpp"
 #include "vantage/gain/free_space.hpp"
@@ -48,36 +49,66 @@ std::vector<float> occupied_distance(const GainMap& map, double radius, int num_
     float distance;
   };
   const std::ptrdiff_t sy = spec.dims.x(), sz = sy * spec.dims.y();
-  // The ball's offsets by ascending z; those of z = dz from first[dz + r] to first[dz + r + 1].
-  std::vector<Offset> ball;
-  std::vector<std::size_t> first;
-  for (int z = -r; z <= r; ++z) {
-    first.push_back(ball.size());
-    for (int y = -r; y <= r; ++y) {
-      for (int x = -r; x <= r; ++x) {
-        const double d = std::sqrt(static_cast<double>(x * x + y * y + z * z));
-        if (d <= radius)
-          ball.push_back({Index3(x, y, z), x + sy * y + sz * z, static_cast<float>(d)});
+  // NOTE: a cell whose nearest occupied cell is c never lies on the side of an occupied face
+  // neighbour of c (that neighbour would lie nearer), so c stamps only the part of its ball on
+  // no such side: per set of occupied face neighbours (bit 2a: the one at +1 on axis a, bit 2a +
+  // 1: at -1), the ball's offsets o with o_a <= 0, resp. >= 0. A wall's cell stamps a line.
+  // Each part by ascending z; those of z = dz from first[dz + r] to first[dz + r + 1].
+  constexpr int kSides = 64;
+  std::vector<std::vector<Offset>> ball(kSides);
+  std::vector<std::vector<std::size_t>> first(kSides);
+  for (int sides = 0; sides < kSides; ++sides) {
+    for (int z = -r; z <= r; ++z) {
+      first[static_cast<std::size_t>(sides)].push_back(
+          ball[static_cast<std::size_t>(sides)].size());
+      for (int y = -r; y <= r; ++y) {
+        for (int x = -r; x <= r; ++x) {
+          const Index3 o(x, y, z);
+          bool kept = true;
+          for (int a = 0; a < 3; ++a) {
+            if (((sides >> (2 * a)) & 1) && o[a] > 0) kept = false;
+            if (((sides >> (2 * a + 1)) & 1) && o[a] < 0) kept = false;
+          }
+          const double d = std::sqrt(static_cast<double>(x * x + y * y + z * z));
+          if (kept && d <= radius) {
+            ball[static_cast<std::size_t>(sides)].push_back(
+                {o, x + sy * y + sz * z, static_cast<float>(d)});
+          }
+        }
       }
     }
+    first[static_cast<std::size_t>(sides)].push_back(ball[static_cast<std::size_t>(sides)].size());
   }
-  first.push_back(ball.size());
-  // NOTE: each occupied cell stamps the ball of `radius` around it; the minimum does not depend
-  // on the order. Slabs of slices in parallel: each first lists its occupied cells, then writes
-  // its own slices from the occupied cells within r slices of it, each stamping only the part of
-  // its ball in the slab: the same for any thread count.
+  // NOTE: each occupied cell stamps its part of the ball of `radius` around it; the minimum does
+  // not depend on the order. Slabs of slices in parallel: each first lists its occupied cells
+  // with their occupied face neighbours, then writes its own slices from the occupied cells
+  // within r slices of it, each stamping only the part of its ball in the slab: the same for any
+  // thread count.
   constexpr int kSlab = 8;
   const int slabs = (spec.dims.z() + kSlab - 1) / kSlab;
-  std::vector<std::vector<std::uint32_t>> occupied(static_cast<std::size_t>(slabs));
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> occupied(
+      static_cast<std::size_t>(slabs));
+  const auto is_occupied = [&](const Index3& c) {
+    return spec.contains(c) && map.value(spec.linear(c)).state == CellState::kOccupied;
+  };
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(0, slabs, [&](int slab) {
       const std::size_t from =
           static_cast<std::size_t>(slab * kSlab) * static_cast<std::size_t>(sz);
       const std::size_t to = std::min(map.size(), from + kSlab * static_cast<std::size_t>(sz));
-      std::vector<std::uint32_t>& mine = occupied[static_cast<std::size_t>(slab)];
+      auto& mine = occupied[static_cast<std::size_t>(slab)];
       for (std::size_t i = from; i < to; ++i) {
-        if (map.value(i).state == CellState::kOccupied)
-          mine.push_back(static_cast<std::uint32_t>(i));
+        if (map.value(i).state != CellState::kOccupied) continue;
+        const Index3 c = spec.unravel(i);
+        int sides = 0;
+        for (int a = 0; a < 3; ++a) {
+          Index3 n = c;
+          n[a] += 1;
+          if (is_occupied(n)) sides |= 1 << (2 * a);
+          n[a] -= 2;
+          if (is_occupied(n)) sides |= 1 << (2 * a + 1);
+        }
+        mine.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint8_t>(sides));
       }
     });
     tbb::parallel_for(0, slabs, [&](int slab) {
@@ -85,14 +116,16 @@ std::vector<float> occupied_distance(const GainMap& map, double radius, int num_
       const int reach = (r + kSlab - 1) / kSlab;
       for (int other = std::max(0, slab - reach); other <= std::min(slabs - 1, slab + reach);
            ++other) {
-        for (const std::uint32_t i : occupied[static_cast<std::size_t>(other)]) {
+        for (const auto& [i, sides] : occupied[static_cast<std::size_t>(other)]) {
           const Index3 c = spec.unravel(i);
           const int dz_lo = std::max(-r, z0 - c.z()), dz_hi = std::min(r, z1 - 1 - c.z());
           if (dz_lo > dz_hi) continue;
           const bool inside = (c.array() >= r).all() && (c.array() < spec.dims.array() - r).all();
-          const std::size_t k_end = first[static_cast<std::size_t>(dz_hi + r + 1)];
-          for (std::size_t k = first[static_cast<std::size_t>(dz_lo + r)]; k < k_end; ++k) {
-            const Offset& o = ball[k];
+          const std::vector<Offset>& part = ball[sides];
+          const std::vector<std::size_t>& at = first[sides];
+          const std::size_t k_end = at[static_cast<std::size_t>(dz_hi + r + 1)];
+          for (std::size_t k = at[static_cast<std::size_t>(dz_lo + r)]; k < k_end; ++k) {
+            const Offset& o = part[k];
             if (!inside && !spec.contains(Index3(c + o.d))) continue;
             float& slot = near[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + o.linear)];
             slot = std::min(slot, o.distance);
