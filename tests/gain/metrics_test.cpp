@@ -469,6 +469,7 @@ TEST(Metrics, ARayProvedBlockedNeverReachesItsCell) {
   const GainMap map(s.grid, 1);
   const GridSpec& spec = map.spec();
   const std::vector<float> near = occupied_distance(map, kProximityCells, 1);
+  const std::vector<std::uint8_t> reach = detail::reach_codes(map, near, 1);
   const detail::MetricContext ctx{.map = map, .near = near, .spacing = 0.7071, .subsample = 1};
   std::vector<std::uint64_t> credited((map.size() + 63) / 64, 0), seen_bits(credited.size(), 0);
   std::size_t rays = 0, proved = 0, reached = 0;
@@ -486,8 +487,7 @@ TEST(Metrics, ARayProvedBlockedNeverReachesItsCell) {
             const Eigen::Vector3d d = to - image.origin;
             GridWalk walk(spec, image.origin, to);
             if (!walk.entered()) continue;
-            const bool proof =
-                detail::blocked_before(spec, map.values(), codes, near, image.origin, d, c);
+            const bool proof = detail::blocked_before(spec, reach.data(), image.origin, d, c);
             Surface metric = detail::make_metric<Surface>(ctx);
             Stamp credit{credited}, seen{seen_bits};
             ViewGain unused;
@@ -517,13 +517,12 @@ TEST(Metrics, ARayAlongCellFacesIsProvedBlockedOnlyThroughACell) {
   for (std::size_t i = 0; i < spec.num_cells(); ++i) grid.set_probability(i, 0.5);
   grid.set_probability(spec.linear(Index3(3, 3, 3)), grid.params().p_max);
   const GainMap map(grid, 1);
-  const std::vector<float> near;  // none: unobserved cells never end the steps back
+  // NOTE: every unobserved cell at distance 0: none ends the steps back.
+  const std::vector<std::uint8_t> reach =
+      detail::reach_codes(map, std::vector<float>(map.size(), 0.0f), 1);
   const Index3 target(6, 3, 3);
   const auto proves = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
-    const Eigen::Vector3d d = to - from;
-    return with_codes(map, [&](const auto* codes) {
-      return detail::blocked_before(spec, map.values(), codes, near, from, d, target);
-    });
+    return detail::blocked_before(spec, reach.data(), from, to - from, target);
   };
   // Through the middle of cell (3, 3, 3): blocked.
   EXPECT_TRUE(proves({0.5, 3.5, 3.5}, {7.5, 3.5, 3.5}));

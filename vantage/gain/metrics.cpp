@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "vantage/gain/detail/metric_cells.hpp"
 #include "vantage/gain/detail/metric_rays.hpp"
 #include "vantage/gain/free_space.hpp"
 #include "vantage/gain/methods.hpp"
@@ -306,6 +307,8 @@ namespace detail {
 struct Spaces {
   const FreeSpace *free = nullptr, *uniform = nullptr, *far = nullptr, *open = nullptr;
   const Eigen::AlignedBox3d* occupied = nullptr;  // detail::MetricContext::occupied
+  const OctantShadows* shadows = nullptr;         // detail::MetricContext::shadows
+  const std::uint8_t* reach = nullptr;            // detail::MetricContext::reach
 };
 
 }  // namespace detail
@@ -330,7 +333,9 @@ detail::MetricContext context(const GainMap& map, const std::vector<float>& near
           .occupied = spaces.occupied,
           .count_cells = count_cells,
           .coarseness = coarseness,
-          .surface_rates = config.surface_rates};
+          .surface_rates = config.surface_rates,
+          .shadows = spaces.shadows,
+          .reach = spaces.reach};
 }
 
 /// The metric's rays at `coarseness` times the pitch `config` asks for, by the jumping walk over
@@ -366,12 +371,20 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       near_(distances_for(map_, config)),
       far_(method_traits(config.method).crosses_far ? far_space(map_, near_) : FreeSpace{}),
       occupied_(occupied_cells(map_, config.method)),
-      creditable_(creditable_cells(map_, near_, config.method)) {}
+      creditable_(creditable_cells(map_, near_, config.method)),
+      shadows_(lists_cells() ? OctantShadows(grid.spec(), grid.classes(), config.num_threads)
+                             : OctantShadows{}),
+      reach_(lists_cells() ? detail::reach_codes(map_, near_, config.num_threads)
+                           : std::vector<std::uint8_t>{}) {}
 
 Spaces MetricEvaluator::spaces() const {
-  return Spaces{&free_, uniform_.empty() ? nullptr : &uniform_, far_.empty() ? nullptr : &far_,
+  return Spaces{&free_,
+                uniform_.empty() ? nullptr : &uniform_,
+                far_.empty() ? nullptr : &far_,
                 occupied_.open.empty() ? nullptr : &occupied_.open,
-                occupied_.box ? &*occupied_.box : nullptr};
+                occupied_.box ? &*occupied_.box : nullptr,
+                shadows_.empty() ? nullptr : &shadows_,
+                reach_.empty() ? nullptr : reach_.data()};
 }
 
 std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int coarseness,

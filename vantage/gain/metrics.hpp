@@ -21,6 +21,7 @@
 
 #include "vantage/gain/free_space.hpp"
 #include "vantage/gain/metrics/shared.hpp"
+#include "vantage/gain/octant_shadows.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/types.hpp"
 #include "vantage/views/frustum.hpp"
@@ -111,6 +112,9 @@ class MetricEvaluator {
   /// The cells such a metric may credit, ascending: the unobserved cells within D of an occupied
   /// cell; empty for another metric.
   const std::vector<std::uint32_t>& creditable() const { return creditable_; }
+  /// For such a metric, the occupied cells' shadows (OctantShadows), which its lists read; empty
+  /// for another.
+  const OctantShadows& shadows() const { return shadows_; }
   /// Per cell of the map, how many bits earlier a race's samples take it (cells_by_sample's
   /// boost): a creditable cell 3 less its distance class (surface_class), so that a cell face to
   /// face with a surface is sampled 8 times as often as one 4 cells off, as both metrics credit it
@@ -135,6 +139,9 @@ class MetricEvaluator {
   FreeSpace far_;  // empty when the metric crosses none
   detail::OccupiedCells occupied_;
   std::vector<std::uint32_t> creditable_;
+  // Empty unless the metric's value is a sum of cell credits: what its lists read.
+  OctantShadows shadows_;
+  std::vector<std::uint8_t> reach_;  // detail::reach_codes
 };
 
 /// The reference the evaluation above is held to (tests/gain/metrics_test.cpp): the same rays,

@@ -33,6 +33,8 @@ class CellClasses {
   void reset() { std::fill(bits_.begin(), bits_.end(), std::uint8_t{0}); }
   /// Bytes it holds.
   std::size_t bytes() const { return bits_.size(); }
+  /// The packed classes: cell i in bits 2 (i % 4) and up of byte i / 4.
+  const std::uint8_t* packed() const { return bits_.data(); }
 
  private:
   static_assert(static_cast<int>(CellState::kUnobserved) == 0);

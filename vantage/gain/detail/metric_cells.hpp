@@ -9,10 +9,12 @@
 /// that its value is such a sum (optional; false by default):
 ///   static constexpr bool kCellSum;  // value() is the sum of the credits cell() gives, and a
 ///                                    // cell's credit depends on the cells before it on its ray
+///                                    // through their states and distances only
 /// Only the unobserved cells within D of an occupied cell (kNearRays) are credited.
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -21,6 +23,7 @@
 #include <vector>
 
 #include "vantage/gain/detail/metric_rays.hpp"
+#include "vantage/gain/octant_shadows.hpp"
 
 namespace vantage::detail {
 
@@ -81,6 +84,53 @@ inline bool rays_through_cell(const RayImage& image, const GridSpec& spec, const
          range(v_lo, v_hi, image.tan_v, image.sv, image.rows, row_lo, row_hi);
 }
 
+/// What a listed cell's walks read of a cell (reach_codes), a byte a cell where the snapshot's
+/// codes and the distances take five: an unobserved cell within D of an occupied one is coded by
+/// its squared distance to the nearest occupied cell's centre, 0-16 [cells^2]; the others by
+/// their class.
+inline constexpr std::uint8_t kFarCode = 17;  ///< unobserved, beyond D of every occupied cell
+inline constexpr std::uint8_t kFreeCode = 18;
+inline constexpr std::uint8_t kOccupiedCode = 19;
+
+/// The distance [cells] of a code below kFarCode, as occupied_distance gives it, bit for bit.
+inline const std::array<float, kFarCode> kCodeDistance = [] {
+  std::array<float, kFarCode> out{};
+  for (std::size_t n = 0; n < out.size(); ++n) {
+    out[n] = static_cast<float>(std::sqrt(static_cast<double>(n)));
+  }
+  return out;
+}();
+
+/// The state a code stands for.
+inline CellState code_state(std::uint8_t code) {
+  return code < kFreeCode ? CellState::kUnobserved
+                          : (code == kFreeCode ? CellState::kFree : CellState::kOccupied);
+}
+
+/// Every cell's code (kFarCode's note) from the snapshot and the distances (occupied_distance,
+/// within D), on `num_threads` threads; the same for any number.
+inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const float> near,
+                                             int num_threads) {
+  std::vector<std::uint8_t> out(map.size());
+  run_with_threads(num_threads, [&] {
+    tbb::parallel_for(std::size_t{0}, map.size(), std::size_t{1} << 14, [&](std::size_t from) {
+      const std::size_t to = std::min(map.size(), from + (std::size_t{1} << 14));
+      for (std::size_t i = from; i < to; ++i) {
+        const CellState state = map.value(i).state;
+        if (state != CellState::kUnobserved) {
+          out[i] = state == CellState::kFree ? kFreeCode : kOccupiedCode;
+        } else if (!(near[i] <= kProximityCells)) {
+          out[i] = kFarCode;
+        } else {
+          const double d = near[i];
+          out[i] = static_cast<std::uint8_t>(std::lround(d * d));
+        }
+      }
+    });
+  });
+  return out;
+}
+
 /// How many cells before a target `blocked_before` looks back along a ray at most.
 inline constexpr int kLookBack = 64;
 
@@ -92,15 +142,13 @@ inline constexpr int kLookBack = 64;
 /// can step around it or put it after the target; false proves nothing.
 ///
 /// The steps back stop after `cells` cells, at the grid's edge, at the origin, and on a free cell
-/// or an unobserved one beyond D of every occupied cell (`near`, occupied_distance): a listed
-/// cell lies within D of an occupied one, and most rays to it that do not reach it end on that
-/// surface, a few cells back; past it, in free space or a deep shadow, the walk forward is the
-/// cheaper way to the answer (it crosses free space in cubes; docs/decision.md, "A metric raced
-/// cell by cell").
-template <typename Code>
-bool blocked_before(const GridSpec& spec, std::span<const GainMap::Value> values, const Code* codes,
-                    std::span<const float> near, const Eigen::Vector3d& o, const Eigen::Vector3d& d,
-                    const Index3& target, int cells = kLookBack) {
+/// or an unobserved one beyond D of every occupied cell (`reach`, reach_codes): a listed cell lies
+/// within D of an occupied one, and most rays to it that do not reach it end on that surface, a
+/// few cells back; past it, in free space or a deep shadow, the walk forward is the cheaper way to
+/// the answer (it crosses free space in cubes; docs/decision.md, "A metric raced cell by cell").
+inline bool blocked_before(const GridSpec& spec, const std::uint8_t* reach,
+                           const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Index3& target,
+                           int cells = kLookBack) {
   const auto clip = [&](const Index3& cell, double grow) {
     const Eigen::Vector3d lo = spec.origin + cell.cast<double>() * spec.resolution;
     return clip_to_box(lo.array() - grow * spec.resolution,
@@ -115,16 +163,60 @@ bool blocked_before(const GridSpec& spec, std::span<const GainMap::Value> values
   for (int k = 0; k < cells && !walk.at_end(); ++k) {
     walk.advance();
     if (walk.ends_outside() && !spec.contains(walk.cell())) return false;  // left the grid
-    const CellState state = values[codes[walk.linear()]].state;
-    if (state == CellState::kFree) return false;
-    if (state == CellState::kUnobserved) {
-      if (!near.empty() && near[walk.linear()] > kProximityCells) return false;
-      continue;
-    }
+    const std::uint8_t code = reach[walk.linear()];
+    if (code >= kFarCode && code != kOccupiedCode) return false;  // free, or beyond D
+    if (code < kFarCode) continue;
     const auto [x_in, x_out] = clip(walk.cell(), -kCellSpare);
     if (x_in < x_out && x_out <= t_in && x_in >= 0.0) return true;
   }
   return false;
+}
+
+/// Walks one ray of `image` towards the cell `target` as walk_ray does, without cell counts and
+/// at the metric's own pitch, but reading the cells' codes (reach_codes) where walk_ray reads the
+/// snapshot and the distances: the metric is handed the same cells, each with its state's value
+/// (a cell-sum metric reads a cell's state, distance and range only) and its distance, so it
+/// credits the target alike, bit for bit. True when the walk reaches the target.
+template <typename Metric>
+bool reaches_target(const MetricContext& ctx, const RayImage& image, const std::uint8_t* reach,
+                    GridWalk& walk, Metric& metric, Stamp& credit, const Index3& target) {
+  static const std::array<GainMap::Value, 3> kValues = {
+      GainMap::Value{0.5, 1.0, CellState::kUnobserved}, GainMap::Value{0.0, 0.0, CellState::kFree},
+      GainMap::Value{1.0, 0.0, CellState::kOccupied}};
+  const GridSpec& spec = ctx.map.spec();
+  const float far = std::numeric_limits<float>::infinity();
+  const int octant = walk.octant();
+  for (;;) {
+    for (int a = 0; a < 3; ++a) {
+      const int ahead =
+          ((octant >> a) & 1) ? walk.cell()[a] - target[a] : target[a] - walk.cell()[a];
+      if (ahead > 0) return false;  // passed it
+    }
+    const std::size_t linear = walk.linear();
+    const std::uint8_t code = reach[linear];
+    const CellState state = code_state(code);
+    const bool in_range = image.all_in_range ||
+                          (spec.center(walk.cell()) - image.origin).squaredNorm() >= image.min_r2;
+    metric.cell(RayCell{linear, kValues[static_cast<std::size_t>(state)], 1.0,
+                        code < kFarCode ? kCodeDistance[code] : far, in_range, 1.0},
+                credit);
+    if (walk.cell() == target) return true;
+    if (state == CellState::kOccupied) return false;
+    if constexpr (quiet_cells<Metric>() == QuietCells::kFar) {
+      if (ctx.far != nullptr && code >= kFarCode && ctx.far->cross(walk, spec)) {
+        if (!spec.contains(walk.cell())) return false;  // left the grid
+        continue;
+      }
+    }
+    if (free_inert<Metric>() && ctx.free != nullptr && state == CellState::kFree &&
+        ctx.free->cross(walk, spec)) {
+      if (!spec.contains(walk.cell())) return false;  // left the grid
+      continue;
+    }
+    if (walk.at_end()) return false;
+    walk.advance();
+    if (walk.ends_outside() && !spec.contains(walk.cell())) return false;  // left the grid
+  }
 }
 
 /// One view's credits under `Metric` (cell_sum) on `cells`, linear indices ascending: each cell's
@@ -133,8 +225,10 @@ bool blocked_before(const GridSpec& spec, std::span<const GainMap::Value> values
 /// cells some ray of the view's image may pass through). The sum of the credits of all cells is
 /// view_rays' value at the metric's own pitch without cell counts, up to the order of the
 /// additions. `at` holds the cells' indices (GridSpec::unravel). `taken` has a bit per cell of the
-/// map, every one set; it is left so. A ray that blocked_before proves not to reach the cell is not
-/// walked: the same credits, bit for bit.
+/// map, every one set; it is left so. A cell the context's shadows hide from the view's origin
+/// (OctantShadows::hides) is credited 0 without a look at its rays, and a ray that blocked_before
+/// proves not to reach the cell is not walked: the same credits, bit for bit. ViewCells::targets
+/// counts the cells some ray of the view's image may pass through, the hidden ones left out.
 template <typename Metric>
 ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
                             std::span<const std::uint32_t> cells, std::span<const Index3> at,
@@ -143,17 +237,19 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
   const GridSpec& spec = ctx.map.spec();
   const RayImage image(spec, ctx.spacing, ctx.subsample, 1, view);
   const Eigen::Vector3d& o = image.origin;
+  const OctantShadows* shadows = ctx.shadows;
+  const std::uint8_t open = shadows != nullptr ? shadows->open_octants(o) : 0;
+  const std::uint8_t* reach = ctx.reach;
   // NOTE: a stamp that takes no cell but the one listed: every bit set but its own.
   Stamp credit{taken};
-  std::vector<std::uint64_t> no_marks;
-  Stamp seen{no_marks};
   ViewCells out;
-  const std::span<const GainMap::Value> values = ctx.map.values();
   const double half = (0.5 + kCellSpare) * spec.resolution;
-  with_codes(ctx.map, [&](const auto* codes) {
+  {
     for (std::size_t k = 0; k < cells.size(); ++k) {
       const std::uint32_t i = cells[k];
       const Index3& c = at[k];
+      // NOTE: most listed cells lie inside the objects, hidden from every side.
+      if (shadows != nullptr && shadows->hides(o, open, c)) continue;
       int row_lo, row_hi, col_lo, col_hi;
       if (!rays_through_cell(image, spec, c, row_lo, row_hi, col_lo, col_hi)) continue;
       const Eigen::Vector3d lo = spec.center(c).array() - half, hi = spec.center(c).array() + half;
@@ -168,12 +264,11 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
           const auto [s_in, s_out] = clip_to_box(lo, hi, o, d);
           if (std::max(s_in, 0.0) > std::min(s_out, 1.0)) continue;
           // NOTE: most rays to a listed cell end on the surface it lies next to.
-          if (blocked_before(spec, values, codes, ctx.near, o, d, c)) continue;
+          if (blocked_before(spec, reach, o, d, c)) continue;
           GridWalk walk(spec, o, to);
           if (!walk.entered()) continue;
-          ViewGain unused;
           metric.begin_ray();
-          reached = walk_ray(ctx, image, codes, walk, metric, credit, seen, unused, &c).reached;
+          reached = reaches_target(ctx, image, reach, walk, metric, credit, c);
         }
       }
       taken[i >> 6] |= std::uint64_t{1} << (i & 63);
@@ -184,15 +279,22 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
       }
       ++out.targets;
     }
-  });
+  }
   return out;
 }
 
 /// Every view's credits under `Metric` on `cells` (view_cell_credits); views in parallel, each
 /// listed in cell order, so the same for any thread count.
 template <typename Metric>
-std::vector<ViewCells> all_view_cells(const MetricContext& ctx, std::span<const Frustum> views,
+std::vector<ViewCells> all_view_cells(const MetricContext& given, std::span<const Frustum> views,
                                       std::span<const std::uint32_t> cells, int num_threads) {
+  // NOTE: the codes the walks read, built here when the context has none.
+  MetricContext ctx = given;
+  std::vector<std::uint8_t> codes;
+  if (ctx.reach == nullptr) {
+    codes = reach_codes(ctx.map, ctx.near, num_threads);
+    ctx.reach = codes.data();
+  }
   std::vector<ViewCells> out(views.size());
   const std::size_t words = (ctx.map.size() + 63) / 64;
   tbb::enumerable_thread_specific<std::vector<std::uint64_t>> taken(

@@ -48,6 +48,7 @@
 #include "vantage/gain/detail/ray_image.hpp"
 #include "vantage/gain/free_space.hpp"
 #include "vantage/gain/metrics/shared.hpp"
+#include "vantage/gain/octant_shadows.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/types.hpp"
 #include "vantage/map/traversal.hpp"
@@ -127,6 +128,12 @@ struct MetricContext {
   int coarseness = 1;
   /// The surface model's chances (GainConfig::surface_rates).
   SurfaceRates surface_rates = kSurfacePrior;
+  /// For a metric listed cell by cell (detail/metric_cells.hpp), the occupied cells' shadows,
+  /// which prove cells unreached before their rays are looked at; nullptr: none.
+  const OctantShadows* shadows = nullptr;
+  /// For such a metric, every cell's code (reach_codes in detail/metric_cells.hpp), which its
+  /// lists' walks read; nullptr for another.
+  const std::uint8_t* reach = nullptr;
 };
 
 /// Which cells besides free ones change nothing for a metric after the first of them on a ray.

@@ -188,9 +188,15 @@ Plan run_cell_sum(const SearchInput& in, const MetricEvaluator& metric) {
   const std::size_t first_sample =
       std::max(kPaperLeastSample, kSample * kFinal / std::max<std::size_t>(all.size(), 1));
   const std::vector<std::uint8_t> boost = metric.sample_boost();
+  // NOTE: the cells hidden from every candidate's origin are credited 0 by every candidate: left
+  // out of the samples, the race's samples hold more of the cells that tell the views apart.
+  std::vector<Eigen::Vector3d> origins;
+  for (const Frustum& view : in.views.frusta) origins.push_back(view.origin());
+  const std::vector<std::uint32_t> reachable =
+      metric.shadows().empty() ? metric.creditable()
+                               : metric.shadows().reachable(origins, metric.creditable());
   const detail::Race race = detail::race_candidates(
-      cells_by_sample(metric.creditable(), first_sample, boost), in.views.frusta, in.views.first,
-      factor,
+      cells_by_sample(reachable, first_sample, boost), in.views.frusta, in.views.first, factor,
       [&](std::span<const Frustum> raced, std::span<const std::uint32_t> cells) {
         return metric.cells(raced, cells);
       },
