@@ -469,7 +469,7 @@ TEST(Metrics, ARayProvedBlockedNeverReachesItsCell) {
   const GainMap map(s.grid, 1);
   const GridSpec& spec = map.spec();
   const std::vector<float> near = occupied_distance(map, kProximityCells, 1);
-  const std::vector<std::uint8_t> reach = detail::reach_codes(map, near, 1);
+  const std::vector<std::uint8_t> reach = detail::reach_codes(map, near, FreeSpace{}, 1);
   const detail::MetricContext ctx{.map = map, .near = near, .spacing = 0.7071, .subsample = 1};
   std::vector<std::uint64_t> credited((map.size() + 63) / 64, 0), seen_bits(credited.size(), 0);
   std::size_t rays = 0, proved = 0, reached = 0;
@@ -519,7 +519,7 @@ TEST(Metrics, ARayAlongCellFacesIsProvedBlockedOnlyThroughACell) {
   const GainMap map(grid, 1);
   // NOTE: every unobserved cell at distance 0: none ends the steps back.
   const std::vector<std::uint8_t> reach =
-      detail::reach_codes(map, std::vector<float>(map.size(), 0.0f), 1);
+      detail::reach_codes(map, std::vector<float>(map.size(), 0.0f), FreeSpace{}, 1);
   const Index3 target(6, 3, 3);
   const auto proves = [&](const Eigen::Vector3d& from, const Eigen::Vector3d& to) {
     return detail::blocked_before(spec, reach.data(), from, to - from, target);

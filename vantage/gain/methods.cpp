@@ -32,7 +32,11 @@ template <typename Metric>
 constexpr MethodTraits metric(GainMethod method, std::string_view name,
                               bool needs_distances = false) {
   MetricCellsFn cells = nullptr;
-  if constexpr (detail::cell_sum<Metric>()) cells = &all_view_cells<Metric>;
+  MetricFn rays = &all_views<Metric>;
+  if constexpr (detail::cell_sum<Metric>()) {
+    cells = &all_view_cells<Metric>;
+    rays = &all_views<Metric, detail::CodeWalk>;
+  }
   return {method,
           name,
           MethodKind::kMetric,
@@ -40,7 +44,7 @@ constexpr MethodTraits metric(GainMethod method, std::string_view name,
           false,
           false,
           needs_distances,
-          &all_views<Metric>,
+          rays,
           cells,
           detail::free_dims<Metric>(),
           detail::quiet_cells<Metric>() == detail::QuietCells::kFar};

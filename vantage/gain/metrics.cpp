@@ -374,7 +374,7 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       creditable_(creditable_cells(map_, near_, config.method)),
       shadows_(lists_cells() ? OctantShadows(grid.spec(), grid.classes(), config.num_threads)
                              : OctantShadows{}),
-      reach_(lists_cells() ? detail::reach_codes(map_, near_, config.num_threads)
+      reach_(lists_cells() ? detail::reach_codes(map_, near_, free_, config.num_threads)
                            : std::vector<std::uint8_t>{}) {}
 
 Spaces MetricEvaluator::spaces() const {

@@ -89,8 +89,9 @@ inline bool rays_through_cell(const RayImage& image, const GridSpec& spec, const
 /// its squared distance to the nearest occupied cell's centre, 0-16 [cells^2]; the others by
 /// their class.
 inline constexpr std::uint8_t kFarCode = 17;  ///< unobserved, beyond D of every occupied cell
-inline constexpr std::uint8_t kFreeCode = 18;
-inline constexpr std::uint8_t kOccupiedCode = 19;
+inline constexpr std::uint8_t kFreeCode = 18;       ///< free, in a block of 4^3 cells not all free
+inline constexpr std::uint8_t kFreeBlockCode = 19;  ///< free, in a block of free cells only
+inline constexpr std::uint8_t kOccupiedCode = 20;
 
 /// The distance [cells] of a code below kFarCode, as occupied_distance gives it, bit for bit.
 inline const std::array<float, kFarCode> kCodeDistance = [] {
@@ -104,21 +105,26 @@ inline const std::array<float, kFarCode> kCodeDistance = [] {
 /// The state a code stands for.
 inline CellState code_state(std::uint8_t code) {
   return code < kFreeCode ? CellState::kUnobserved
-                          : (code == kFreeCode ? CellState::kFree : CellState::kOccupied);
+                          : (code < kOccupiedCode ? CellState::kFree : CellState::kOccupied);
 }
 
-/// Every cell's code (kFarCode's note) from the snapshot and the distances (occupied_distance,
-/// within D), on `num_threads` threads; the same for any number.
+/// Every cell's code (kFarCode's note) from the snapshot, the distances (occupied_distance,
+/// within D) and the free space's blocks, on `num_threads` threads; the same for any number.
 inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const float> near,
-                                             int num_threads) {
+                                             const FreeSpace& free, int num_threads) {
+  const GridSpec& spec = map.spec();
   std::vector<std::uint8_t> out(map.size());
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(std::size_t{0}, map.size(), std::size_t{1} << 14, [&](std::size_t from) {
       const std::size_t to = std::min(map.size(), from + (std::size_t{1} << 14));
       for (std::size_t i = from; i < to; ++i) {
         const CellState state = map.value(i).state;
-        if (state != CellState::kUnobserved) {
-          out[i] = state == CellState::kFree ? kFreeCode : kOccupiedCode;
+        if (state == CellState::kFree) {
+          // NOTE: a block of free cells only lies in a free cube of every octant.
+          out[i] =
+              !free.empty() && free.extent_at(0, spec.unravel(i)) > 0 ? kFreeBlockCode : kFreeCode;
+        } else if (state == CellState::kOccupied) {
+          out[i] = kOccupiedCode;
         } else if (!(near[i] <= kProximityCells)) {
           out[i] = kFarCode;
         } else {
@@ -172,25 +178,31 @@ inline bool blocked_before(const GridSpec& spec, const std::uint8_t* reach,
   return false;
 }
 
-/// Walks one ray of `image` towards the cell `target` as walk_ray does, without cell counts and
-/// at the metric's own pitch, but reading the cells' codes (reach_codes) where walk_ray reads the
-/// snapshot and the distances: the metric is handed the same cells, each with its state's value
-/// (a cell-sum metric reads a cell's state, distance and range only) and its distance, so it
-/// credits the target alike, bit for bit. True when the walk reaches the target.
+/// Walks one ray of `image` as walk_ray does (the same cells handed to `metric`, the same cubes
+/// crossed, the same counts), at the metric's own pitch, but reading the cells' codes (`reach`,
+/// reach_codes) where walk_ray reads the snapshot and the distances: a cell-sum metric reads a
+/// cell's state, distance and range only, so it is handed each cell with its state's value and its
+/// distance (RayCell::visibility 1) and credits alike, bit for bit. A free cell in a block not all
+/// free is stepped without a look at the free cubes, which hold no such block.
 template <typename Metric>
-bool reaches_target(const MetricContext& ctx, const RayImage& image, const std::uint8_t* reach,
-                    GridWalk& walk, Metric& metric, Stamp& credit, const Index3& target) {
+RayEnd walk_codes(const MetricContext& ctx, const RayImage& image, const std::uint8_t* reach,
+                  GridWalk& walk, Metric& metric, Stamp& credit, Stamp& seen, ViewGain& result,
+                  const Index3* target = nullptr) {
+  static_assert(cell_sum<Metric>() && !free_dims<Metric>());
   static const std::array<GainMap::Value, 3> kValues = {
       GainMap::Value{0.5, 1.0, CellState::kUnobserved}, GainMap::Value{0.0, 0.0, CellState::kFree},
       GainMap::Value{1.0, 0.0, CellState::kOccupied}};
   const GridSpec& spec = ctx.map.spec();
   const float far = std::numeric_limits<float>::infinity();
   const int octant = walk.octant();
+  bool previous_unknown = false;
   for (;;) {
-    for (int a = 0; a < 3; ++a) {
-      const int ahead =
-          ((octant >> a) & 1) ? walk.cell()[a] - target[a] : target[a] - walk.cell()[a];
-      if (ahead > 0) return false;  // passed it
+    if (target != nullptr) {
+      for (int a = 0; a < 3; ++a) {
+        const int ahead =
+            ((octant >> a) & 1) ? walk.cell()[a] - (*target)[a] : (*target)[a] - walk.cell()[a];
+        if (ahead > 0) return {};  // passed it
+      }
     }
     const std::size_t linear = walk.linear();
     const std::uint8_t code = reach[linear];
@@ -200,24 +212,41 @@ bool reaches_target(const MetricContext& ctx, const RayImage& image, const std::
     metric.cell(RayCell{linear, kValues[static_cast<std::size_t>(state)], 1.0,
                         code < kFarCode ? kCodeDistance[code] : far, in_range, 1.0},
                 credit);
-    if (walk.cell() == target) return true;
-    if (state == CellState::kOccupied) return false;
+    if (target != nullptr && walk.cell() == *target) return {false, true};
+    if (state == CellState::kOccupied) return {previous_unknown, false};
+    previous_unknown = state == CellState::kUnobserved;
+    if (ctx.count_cells && previous_unknown && in_range && seen.take(linear)) result.cells += 1.0;
     if constexpr (quiet_cells<Metric>() == QuietCells::kFar) {
-      if (ctx.far != nullptr && code >= kFarCode && ctx.far->cross(walk, spec)) {
-        if (!spec.contains(walk.cell())) return false;  // left the grid
+      if (!ctx.count_cells && ctx.far != nullptr && code >= kFarCode &&
+          ctx.far->cross(walk, spec)) {
+        if (!spec.contains(walk.cell())) return {};  // left the grid
         continue;
       }
     }
-    if (free_inert<Metric>() && ctx.free != nullptr && state == CellState::kFree &&
+    if (free_inert<Metric>() && ctx.free != nullptr && code == kFreeBlockCode &&
         ctx.free->cross(walk, spec)) {
-      if (!spec.contains(walk.cell())) return false;  // left the grid
+      if (!spec.contains(walk.cell())) return {};  // left the grid
       continue;
     }
-    if (walk.at_end()) return false;
+    if (walk.at_end()) return {};
     walk.advance();
-    if (walk.ends_outside() && !spec.contains(walk.cell())) return false;  // left the grid
+    if (walk.ends_outside() && !spec.contains(walk.cell())) return {};  // left the grid
   }
 }
+
+/// The walk a cell-sum metric's view_rays takes with the context's codes (walk_codes); walk_ray
+/// without them, by the reference walk, or at a coarser pitch.
+struct CodeWalk {
+  template <typename Metric, typename Code>
+  RayEnd operator()(const MetricContext& ctx, const RayImage& image, const Code* codes,
+                    GridWalk& walk, Metric& metric, Stamp& credit, Stamp& seen,
+                    ViewGain& result) const {
+    if (ctx.reach == nullptr || ctx.free == nullptr || image.weight_scale > 0.0) {
+      return walk_ray(ctx, image, codes, walk, metric, credit, seen, result);
+    }
+    return walk_codes(ctx, image, ctx.reach, walk, metric, credit, seen, result);
+  }
+};
 
 /// One view's credits under `Metric` (cell_sum) on `cells`, linear indices ascending: each cell's
 /// credit by the first of the view's rays (view_rays' order: rows, then columns) that reaches it,
@@ -244,41 +273,40 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
   Stamp credit{taken};
   ViewCells out;
   const double half = (0.5 + kCellSpare) * spec.resolution;
-  {
-    for (std::size_t k = 0; k < cells.size(); ++k) {
-      const std::uint32_t i = cells[k];
-      const Index3& c = at[k];
-      // NOTE: most listed cells lie inside the objects, hidden from every side.
-      if (shadows != nullptr && shadows->hides(o, open, c)) continue;
-      int row_lo, row_hi, col_lo, col_hi;
-      if (!rays_through_cell(image, spec, c, row_lo, row_hi, col_lo, col_hi)) continue;
-      const Eigen::Vector3d lo = spec.center(c).array() - half, hi = spec.center(c).array() + half;
-      Metric metric = make_metric<Metric>(ctx);
-      taken[i >> 6] &= ~(std::uint64_t{1} << (i & 63));
-      bool reached = false;
-      for (int row = row_lo; row <= row_hi && !reached; row += image.step) {
-        for (int col = col_lo; col <= col_hi && !reached; col += image.step) {
-          const Eigen::Vector3d to = o + image.max_range * image.direction(row, col);
-          const Eigen::Vector3d d = to - o;
-          // NOTE: the walk visits the cells the segment passes through (kCellSpare).
-          const auto [s_in, s_out] = clip_to_box(lo, hi, o, d);
-          if (std::max(s_in, 0.0) > std::min(s_out, 1.0)) continue;
-          // NOTE: most rays to a listed cell end on the surface it lies next to.
-          if (blocked_before(spec, reach, o, d, c)) continue;
-          GridWalk walk(spec, o, to);
-          if (!walk.entered()) continue;
-          metric.begin_ray();
-          reached = reaches_target(ctx, image, reach, walk, metric, credit, c);
-        }
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const std::uint32_t i = cells[k];
+    const Index3& c = at[k];
+    // NOTE: most listed cells lie inside the objects, hidden from every side.
+    if (shadows != nullptr && shadows->hides(o, open, c)) continue;
+    int row_lo, row_hi, col_lo, col_hi;
+    if (!rays_through_cell(image, spec, c, row_lo, row_hi, col_lo, col_hi)) continue;
+    const Eigen::Vector3d lo = spec.center(c).array() - half, hi = spec.center(c).array() + half;
+    Metric metric = make_metric<Metric>(ctx);
+    taken[i >> 6] &= ~(std::uint64_t{1} << (i & 63));
+    bool reached = false;
+    for (int row = row_lo; row <= row_hi && !reached; row += image.step) {
+      for (int col = col_lo; col <= col_hi && !reached; col += image.step) {
+        const Eigen::Vector3d to = o + image.max_range * image.direction(row, col);
+        const Eigen::Vector3d d = to - o;
+        // NOTE: the walk visits the cells the segment passes through (kCellSpare).
+        const auto [s_in, s_out] = clip_to_box(lo, hi, o, d);
+        if (std::max(s_in, 0.0) > std::min(s_out, 1.0)) continue;
+        // NOTE: most rays to a listed cell end on the surface it lies next to.
+        if (blocked_before(spec, reach, o, d, c)) continue;
+        GridWalk walk(spec, o, to);
+        if (!walk.entered()) continue;
+        metric.begin_ray();
+        ViewGain unused;
+        reached = walk_codes(ctx, image, reach, walk, metric, credit, credit, unused, &c).reached;
       }
-      taken[i >> 6] |= std::uint64_t{1} << (i & 63);
-      const double value = metric.value(1.0);
-      if (value > 0.0) {
-        out.cells.push_back(i);
-        out.seen.push_back(value);
-      }
-      ++out.targets;
     }
+    taken[i >> 6] |= std::uint64_t{1} << (i & 63);
+    const double value = metric.value(1.0);
+    if (value > 0.0) {
+      out.cells.push_back(i);
+      out.seen.push_back(value);
+    }
+    ++out.targets;
   }
   return out;
 }
@@ -288,11 +316,13 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
 template <typename Metric>
 std::vector<ViewCells> all_view_cells(const MetricContext& given, std::span<const Frustum> views,
                                       std::span<const std::uint32_t> cells, int num_threads) {
-  // NOTE: the codes the walks read, built here when the context has none.
+  // NOTE: the codes the walks read, built here when the context has none; no cell counts.
   MetricContext ctx = given;
+  ctx.count_cells = false;
   std::vector<std::uint8_t> codes;
   if (ctx.reach == nullptr) {
-    codes = reach_codes(ctx.map, ctx.near, num_threads);
+    codes =
+        reach_codes(ctx.map, ctx.near, ctx.free != nullptr ? *ctx.free : FreeSpace{}, num_threads);
     ctx.reach = codes.data();
   }
   std::vector<ViewCells> out(views.size());

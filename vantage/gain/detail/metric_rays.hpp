@@ -328,14 +328,25 @@ std::optional<Eigen::AlignedBox3d> reach_box(const MetricContext& ctx) {
   return std::nullopt;
 }
 
+/// The walk view_rays hands each ray to by default: walk_ray, on the snapshot.
+struct SnapshotWalk {
+  template <typename Metric, typename Code>
+  RayEnd operator()(const MetricContext& ctx, const RayImage& image, const Code* codes,
+                    GridWalk& walk, Metric& metric, Stamp& credit, Stamp& seen,
+                    ViewGain& result) const {
+    return walk_ray(ctx, image, codes, walk, metric, credit, seen, result);
+  }
+};
+
 /// Casts one view's rays and feeds them to `metric`; returns the metric's value and the count of
 /// unobserved cells reached. With the context's free cubes, the jumping walk: only the rays that
 /// meet the grid, and a free-inert metric's rays cross free cubes in one step (GridWalk::leave_box,
 /// which lands where stepping lands), the reference's values to the last bit (docs/model.md, "The
-/// metrics at speed"). Without, the reference: every ray, cell by cell.
-template <typename Metric>
+/// metrics at speed"). Without, the reference: every ray, cell by cell. Each ray is walked by
+/// `walk_one` (SnapshotWalk's signature), which must hand the metric what walk_ray hands it.
+template <typename Metric, typename Walk = SnapshotWalk>
 ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
-                   Stamp& seen) {
+                   Stamp& seen, const Walk& walk_one = {}) {
   const GridSpec& spec = ctx.map.spec();
   const RayImage image(ctx.map.spec(), ctx.spacing, ctx.subsample, ctx.coarseness, view);
   const Eigen::Vector3d& o = image.origin;
@@ -368,7 +379,7 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
             continue;
           }
         }
-        metric.end_ray(walk_ray(ctx, image, codes, walk, metric, credit, seen, result).rear_side,
+        metric.end_ray(walk_one(ctx, image, codes, walk, metric, credit, seen, result).rear_side,
                        credit);
       }
     }
@@ -390,8 +401,9 @@ Metric make_metric(const MetricContext& ctx) {
 }
 
 /// Every view's value under `Metric`; views in parallel, each view's rays in order on one thread,
-/// so the result does not depend on threads. The jumping walk when the context has free cubes.
-template <typename Metric>
+/// so the result does not depend on threads. The jumping walk when the context has free cubes;
+/// each ray walked by `Walk` (view_rays).
+template <typename Metric, typename Walk = SnapshotWalk>
 std::vector<ViewGain> all_views(const MetricContext& ctx, std::span<const Frustum> views,
                                 int num_threads) {
   std::vector<ViewGain> gains(views.size());
@@ -409,7 +421,7 @@ std::vector<ViewGain> all_views(const MetricContext& ctx, std::span<const Frustu
       credit.clear();
       seen.clear();
       Metric metric = make_metric<Metric>(ctx);
-      gains[v] = view_rays(ctx, views[v], metric, credit, seen);
+      gains[v] = view_rays(ctx, views[v], metric, credit, seen, Walk{});
     });
   });
   return gains;
