@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -398,10 +399,21 @@ std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int
 bool MetricEvaluator::lists_cells() const { return method_traits(config_.method).cells != nullptr; }
 
 std::vector<std::uint8_t> MetricEvaluator::sample_boost() const {
-  std::vector<std::uint8_t> out(map_.size(), 0);
-  for (const std::uint32_t i : creditable_) {
-    out[i] = static_cast<std::uint8_t>(kSurfaceClasses - 2 - surface_class(near_[i]));
+  // NOTE: 3 less the distance class, as both metrics credit a nearer cell more: the proximity
+  // count by D - d, the surface model by its rates, so by at most log2 of the class's rate over
+  // the farthest near class's (none under equal rates, the prior's).
+  std::array<std::uint8_t, kSurfaceClasses - 1> boost{};
+  const SurfaceRates& r = config_.surface_rates;
+  for (std::size_t k = 0; k + 1 < kSurfaceClasses; ++k) {
+    int b = static_cast<int>(kSurfaceClasses - 2 - k);
+    if (config_.method == GainMethod::kSurface) {
+      const double ratio = r[k] / r[kSurfaceClasses - 2];
+      b = std::clamp(static_cast<int>(std::lround(std::log2(ratio > 0.0 ? ratio : 1.0))), 0, b);
+    }
+    boost[k] = static_cast<std::uint8_t>(b);
   }
+  std::vector<std::uint8_t> out(map_.size(), 0);
+  for (const std::uint32_t i : creditable_) out[i] = boost[surface_class(near_[i])];
   return out;
 }
 
