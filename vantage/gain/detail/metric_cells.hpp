@@ -311,8 +311,9 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
   return out;
 }
 
-/// Every view's credits under `Metric` on `cells` (view_cell_credits); views in parallel, each
-/// listed in cell order, so the same for any thread count.
+/// Every view's credits under `Metric` on `cells` (view_cell_credits); views, and runs of the cells
+/// when the views are few, in parallel, each view's list joined in cell order, so the same for any
+/// thread count.
 template <typename Metric>
 std::vector<ViewCells> all_view_cells(const MetricContext& given, std::span<const Frustum> views,
                                       std::span<const std::uint32_t> cells, int num_threads) {
@@ -331,11 +332,31 @@ std::vector<ViewCells> all_view_cells(const MetricContext& given, std::span<cons
       [words] { return std::vector<std::uint64_t>(words, ~std::uint64_t{0}); });
   std::vector<Index3> at(cells.size());
   for (std::size_t k = 0; k < cells.size(); ++k) at[k] = ctx.map.spec().unravel(cells[k]);
+  // NOTE: at least 16 tasks when the cells allow runs of 256, so that a round of few views keeps
+  // both threads busy to its end.
+  constexpr std::size_t kTasks = 16, kLeastRun = 256;
+  const std::size_t runs =
+      std::clamp<std::size_t>((kTasks + views.size() - 1) / views.size(), 1,
+                              std::max<std::size_t>(1, cells.size() / kLeastRun));
+  const std::size_t run_cells = (cells.size() + runs - 1) / runs;
+  std::vector<ViewCells> parts(views.size() * runs);
   run_with_threads(num_threads, [&] {
-    tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
-      out[v] = view_cell_credits<Metric>(ctx, views[v], cells, at, taken.local());
+    tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t task) {
+      const std::size_t v = task / runs, from = std::min(cells.size(), task % runs * run_cells);
+      const std::size_t n = std::min(cells.size() - from, run_cells);
+      parts[task] =
+          view_cell_credits<Metric>(ctx, views[v], cells.subspan(from, n),
+                                    std::span<const Index3>(at).subspan(from, n), taken.local());
     });
   });
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    for (std::size_t r = 0; r < runs; ++r) {
+      ViewCells& part = parts[v * runs + r];
+      out[v].cells.insert(out[v].cells.end(), part.cells.begin(), part.cells.end());
+      out[v].seen.insert(out[v].seen.end(), part.seen.begin(), part.seen.end());
+      out[v].targets += part.targets;
+    }
+  }
   return out;
 }
 
