@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <limits>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "vantage/gain/detail/metric_rays.hpp"
@@ -155,24 +156,50 @@ inline constexpr int kLookBack = 64;
 inline bool blocked_before(const GridSpec& spec, const std::uint8_t* reach,
                            const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Index3& target,
                            int cells = kLookBack) {
+  // NOTE: a walk of its own, in reciprocals: only an occupied cell's own clip decides, and the
+  // clips' margins (kCellSpare of a cell) dwarf the reciprocals' rounding.
+  const Eigen::Vector3d inv = d.cwiseInverse();
   const auto clip = [&](const Index3& cell, double grow) {
     const Eigen::Vector3d lo = spec.origin + cell.cast<double>() * spec.resolution;
-    return clip_to_box(lo.array() - grow * spec.resolution,
-                       (lo.array() + (1.0 + grow) * spec.resolution).matrix(), o, d);
+    double t_in = -std::numeric_limits<double>::infinity(), t_out = -t_in;
+    for (int a = 0; a < 3; ++a) {
+      const double lo_a = lo[a] - grow * spec.resolution;
+      const double hi_a = lo[a] + (1.0 + grow) * spec.resolution;
+      if (d[a] == 0.0) {
+        if (o[a] < lo_a || o[a] > hi_a) return std::pair{1.0, 0.0};
+        continue;
+      }
+      double t0 = (lo_a - o[a]) * inv[a], t1 = (hi_a - o[a]) * inv[a];
+      if (t0 > t1) std::swap(t0, t1);
+      t_in = std::max(t_in, t0);
+      t_out = std::min(t_out, t1);
+    }
+    return std::pair{t_in, t_out};
   };
   const auto [t_in, t_out] = clip(target, 0.0);
   if (!(t_in < t_out)) return false;
-  // NOTE: the project's walk, from the middle of the segment's part in the target back to the
-  // origin; only an occupied cell's own clip decides, so the walk's rounding cannot.
-  GridWalk walk(spec, o + 0.5 * (t_in + t_out) * d, o);
-  if (!walk.entered()) return false;
-  for (int k = 0; k < cells && !walk.at_end(); ++k) {
-    walk.advance();
-    if (walk.ends_outside() && !spec.contains(walk.cell())) return false;  // left the grid
-    const std::uint8_t code = reach[walk.linear()];
+  // The steps back from the target towards the origin: on each axis the parameter of the next
+  // face crossed, largest first.
+  Index3 c = target;
+  double next[3];
+  double dt[3];
+  int step[3];
+  for (int a = 0; a < 3; ++a) {
+    step[a] = d[a] > 0.0 ? -1 : 1;
+    dt[a] = spec.resolution * std::abs(inv[a]);
+    const double face = spec.origin[a] + (c[a] + (d[a] > 0.0 ? 0 : 1)) * spec.resolution;
+    next[a] = d[a] == 0.0 ? -std::numeric_limits<double>::infinity() : (face - o[a]) * inv[a];
+  }
+  for (int k = 0; k < cells; ++k) {
+    const int a = next[0] >= next[1] ? (next[0] >= next[2] ? 0 : 2) : (next[1] >= next[2] ? 1 : 2);
+    if (!(next[a] > 0.0)) return false;  // in the origin's cell
+    c[a] += step[a];
+    next[a] -= dt[a];
+    if (!spec.contains(c)) return false;  // left the grid
+    const std::uint8_t code = reach[spec.linear(c)];
     if (code >= kFarCode && code != kOccupiedCode) return false;  // free, or beyond D
     if (code < kFarCode) continue;
-    const auto [x_in, x_out] = clip(walk.cell(), -kCellSpare);
+    const auto [x_in, x_out] = clip(c, -kCellSpare);
     if (x_in < x_out && x_out <= t_in && x_in >= 0.0) return true;
   }
   return false;
