@@ -55,7 +55,7 @@ OccupancyGrid shells() {
 TEST(OctantShadows, BitsAreTheRecurrenceSolvedCellByCell) {
   const OccupancyGrid grid = shells();
   const GridSpec& spec = grid.spec();
-  const OctantShadows shadows(spec, grid.classes(), 2);
+  const OctantShadows shadows(spec, grid.classes(), grid.census(), 2);
   std::size_t set = 0;
   for (int o = 0; o < 8; ++o) {
     const Index3 step((o & 1) ? 1 : -1, (o & 2) ? 1 : -1, (o & 4) ? 1 : -1);
@@ -108,7 +108,7 @@ bool reaches(const OccupancyGrid& grid, const Eigen::Vector3d& from, const Eigen
 TEST(OctantShadows, NoWalkReachesACellTheyHide) {
   const OccupancyGrid grid = shells();
   const GridSpec& spec = grid.spec();
-  const OctantShadows shadows(spec, grid.classes(), 1);
+  const OctantShadows shadows(spec, grid.classes(), grid.census(), 1);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const Eigen::Vector3d lo = spec.origin, size = spec.max_corner() - spec.origin;

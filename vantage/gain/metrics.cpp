@@ -373,8 +373,9 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       far_(method_traits(config.method).crosses_far ? far_space(map_, near_) : FreeSpace{}),
       occupied_(occupied_cells(map_, config.method)),
       creditable_(creditable_cells(map_, near_, config.method)),
-      shadows_(lists_cells() ? OctantShadows(grid.spec(), grid.classes(), config.num_threads)
-                             : OctantShadows{}),
+      shadows_(lists_cells()
+                   ? OctantShadows(grid.spec(), grid.classes(), grid.census(), config.num_threads)
+                   : OctantShadows{}),
       reach_(lists_cells() ? detail::reach_codes(map_, near_, free_, config.num_threads)
                            : std::vector<std::uint8_t>{}) {}
 

@@ -11,8 +11,8 @@ namespace {
 
 /// Per row (y, z) of cells along x, the occupied cells' bits in `words` words a row: bit x into
 /// `up`, bit dims.x - 1 - x into `down`.
-void occupied_rows(const GridSpec& spec, const CellClasses& classes, std::size_t words,
-                   int num_threads, std::vector<std::uint64_t>& up,
+void occupied_rows(const GridSpec& spec, const CellClasses& classes, const BlockCensus& census,
+                   std::size_t words, int num_threads, std::vector<std::uint64_t>& up,
                    std::vector<std::uint64_t>& down) {
   const int nx = spec.dims.x();
   const std::size_t rows = static_cast<std::size_t>(spec.dims.y()) * spec.dims.z();
@@ -25,6 +25,15 @@ void occupied_rows(const GridSpec& spec, const CellClasses& classes, std::size_t
       std::uint64_t* row_up = up.data() + r * words;
       std::uint64_t* row_down = down.data() + r * words;
       const std::size_t first = r * static_cast<std::size_t>(nx);
+      // NOTE: most rows cross blocks with no occupied cell only (the census says so).
+      const Index3 cell(0, static_cast<int>(r % spec.dims.y()),
+                        static_cast<int>(r / spec.dims.y()));
+      const std::size_t block = census.block_of(cell);
+      bool any = false;
+      for (int b = 0; b < census.dims().x() && !any; ++b) {
+        any = census.count(block + static_cast<std::size_t>(b), CellState::kOccupied) > 0;
+      }
+      if (!any) return;
       for (int x = 0; x < nx; ++x) {
         const std::size_t i = first + static_cast<std::size_t>(x);
         if (((packed[i >> 2] >> ((i & 3u) * 2)) & 3u) != 2u) continue;
@@ -38,13 +47,14 @@ void occupied_rows(const GridSpec& spec, const CellClasses& classes, std::size_t
 
 }  // namespace
 
-OctantShadows::OctantShadows(const GridSpec& spec, const CellClasses& classes, int num_threads)
+OctantShadows::OctantShadows(const GridSpec& spec, const CellClasses& classes,
+                             const BlockCensus& census, int num_threads)
     : spec_(spec), words_((static_cast<std::size_t>(spec.dims.x()) + 63) / 64) {
   const int ny = spec.dims.y(), nz = spec.dims.z();
   const std::size_t rows = static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
   const std::size_t words = words_;
   std::vector<std::uint64_t> up, down;
-  occupied_rows(spec, classes, words, num_threads, up, down);
+  occupied_rows(spec, classes, census, words, num_threads, up, down);
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(0, 8, [&](int octant) {
       const std::vector<std::uint64_t>& occupied = (octant & 1) ? up : down;

@@ -16,6 +16,7 @@
 #include <span>
 #include <vector>
 
+#include "vantage/map/block_census.hpp"
 #include "vantage/map/cell_classes.hpp"
 #include "vantage/map/grid_spec.hpp"
 
@@ -33,9 +34,11 @@ namespace vantage {
 class OctantShadows {
  public:
   OctantShadows() = default;
-  /// The shadows of the occupied cells among `classes` (a grid of `spec`), the eight octants on
-  /// `num_threads` threads (0: all cores); the same for any number.
-  OctantShadows(const GridSpec& spec, const CellClasses& classes, int num_threads = 0);
+  /// The shadows of the occupied cells among `classes` (a grid of `spec`, whose blocks' counts
+  /// `census` holds), the eight octants on `num_threads` threads (0: all cores); the same for any
+  /// number.
+  OctantShadows(const GridSpec& spec, const CellClasses& classes, const BlockCensus& census,
+                int num_threads = 0);
 
   bool empty() const { return words_ == 0; }
   /// The cell's eight bits (bit o: shadowed for octant o).

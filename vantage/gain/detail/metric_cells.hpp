@@ -115,22 +115,27 @@ inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const
                                              const FreeSpace& free, int num_threads) {
   const GridSpec& spec = map.spec();
   std::vector<std::uint8_t> out(map.size());
+  const std::size_t nx = static_cast<std::size_t>(spec.dims.x());
   run_with_threads(num_threads, [&] {
-    tbb::parallel_for(std::size_t{0}, map.size(), std::size_t{1} << 14, [&](std::size_t from) {
-      const std::size_t to = std::min(map.size(), from + (std::size_t{1} << 14));
-      for (std::size_t i = from; i < to; ++i) {
-        const CellState state = map.value(i).state;
-        if (state == CellState::kFree) {
-          // NOTE: a block of free cells only lies in a free cube of every octant.
-          out[i] =
-              !free.empty() && free.extent_at(0, spec.unravel(i)) > 0 ? kFreeBlockCode : kFreeCode;
-        } else if (state == CellState::kOccupied) {
-          out[i] = kOccupiedCode;
-        } else if (!(near[i] <= kProximityCells)) {
-          out[i] = kFarCode;
-        } else {
-          const double d = near[i];
-          out[i] = static_cast<std::uint8_t>(std::lround(d * d));
+    tbb::parallel_for(0, spec.dims.z(), [&](int z) {
+      for (int y = 0; y < spec.dims.y(); ++y) {
+        const std::size_t row = spec.linear(Index3(0, y, z));
+        for (std::size_t x = 0; x < nx; ++x) {
+          const std::size_t i = row + x;
+          const CellState state = map.value(i).state;
+          if (state == CellState::kFree) {
+            // NOTE: a block of free cells only lies in a free cube of every octant.
+            const bool cube =
+                !free.empty() && free.extent_at(0, Index3(static_cast<int>(x), y, z)) > 0;
+            out[i] = cube ? kFreeBlockCode : kFreeCode;
+          } else if (state == CellState::kOccupied) {
+            out[i] = kOccupiedCode;
+          } else if (!(near[i] <= kProximityCells)) {
+            out[i] = kFarCode;
+          } else {
+            const double d = near[i];
+            out[i] = static_cast<std::uint8_t>(std::lround(d * d));
+          }
         }
       }
     });
