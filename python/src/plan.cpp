@@ -269,6 +269,10 @@ void bind_plan(py::module_& m) {
         params.views = views;
         if (poses) params.listed = to_poses(*poses, "poses");
         const CandidateSetRow& row = find_candidate_set(name);
+        if (row.needs_robot) {
+          throw std::invalid_argument(
+              cat("candidate set '", name, "' is an office robot's: explore an office with it"));
+        }
         if (row.needs_map) {
           throw std::invalid_argument(
               cat("candidate set '", name, "' is found in a map: plan with it (vt.plan)"));

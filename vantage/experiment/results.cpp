@@ -49,8 +49,7 @@ json config_json(const ExplorationConfig& config, const sim::Scene& scene) {
       {"swept_rays", config.planner.swept_rays},
       {"epsilon", gain.epsilon},
       {"lambda", config.planner.lambda},
-      {"candidates", scene.kind == sim::SceneKind::kOffice ? std::string("frontier stops")
-                                                           : run_candidate_set(scene, config)},
+      {"candidates", run_candidate_set(scene, config)},
       // NOTE: what "travel" measures, said where the figures are.
       {"travel_rule", scene.kind == sim::SceneKind::kOffice
                           ? "the path driven on the floor [m]"

@@ -32,8 +32,8 @@
 #include "vantage/util/clock.hpp"
 #include "vantage/util/limits.hpp"
 #include "vantage/util/memory.hpp"
-#include "vantage/views/frontier.hpp"
 #include "vantage/views/candidate_sets.hpp"
+#include "vantage/views/frontier.hpp"
 #include "vantage/views/hemisphere.hpp"
 #include "vantage/views/ring.hpp"
 #include "vantage/views/sphere.hpp"
@@ -162,25 +162,31 @@ void run(const PlanOptions& o) {
 
   if (o.input.empty()) fov_from_options(o);  // throws for a bad --fov-deg or --range
   const bool named_candidates = !names_pose_file(o);
+  if (named_candidates && find_candidate_set(o.candidates).needs_robot) {
+    throw UsageError(fmt::format(
+        "--candidates {}: an office robot's stops, which explore builds as it drives; plan from a "
+        "map with frontier",
+        o.candidates));
+  }
   if (!named_candidates) {
     // NOTE: a folder or a missing file is bad input, exit 1, as --map's (issue 53).
     std::error_code error;
     if (fs::is_directory(o.candidates, error)) {
-      throw std::runtime_error(fmt::format(
-          "--candidates '{}' is a folder: give one of {} or a pose file (TUM format)",
-          o.candidates, candidate_set_names()));
+      throw std::runtime_error(
+          fmt::format("--candidates '{}' is a folder: give one of {} or a pose file (TUM format)",
+                      o.candidates, candidate_set_names()));
     }
     if (!fs::exists(o.candidates, error)) {
-      throw std::runtime_error(fmt::format(
-          "--candidates '{}' is neither one of {} nor an existing pose file", o.candidates,
-          candidate_set_names()));
+      throw std::runtime_error(
+          fmt::format("--candidates '{}' is neither one of {} nor an existing pose file",
+                      o.candidates, candidate_set_names()));
     }
   }
 
   // NOTE: the views --views makes are counted before the map is built (issue 39: a million ring
   // positions, 3 M views, ran out of memory after minutes of mapping).
-  if (o.views > 0 && (o.candidates == "ring" || o.candidates == "sphere" ||
-                     o.candidates == "view-sphere")) {
+  if (o.views > 0 &&
+      (o.candidates == "ring" || o.candidates == "sphere" || o.candidates == "view-sphere")) {
     const std::uint64_t views = static_cast<std::uint64_t>(o.views) *
                                 (o.candidates == "ring" ? RingConfig{}.yaw_offsets.size() : 1);
     if (views > kMaxCandidateViews) {
@@ -415,7 +421,9 @@ void add_plan_command(CLI::App& app) {
                 "plan.json (salvage), rather than refuse it");
   std::string sets;
   for (const CandidateSetRow& row : candidate_sets()) {
-    if (!row.needs_list) sets += fmt::format("{} ({}), ", row.name, row.help);
+    if (!row.needs_list && !row.needs_robot) {
+      sets += fmt::format("{} ({}), ", row.name, row.help);
+    }
   }
   cmd->add_option("--candidates,-c", o->candidates,
                   sets + "or a TUM-format file of candidate poses")
