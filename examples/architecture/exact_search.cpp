@@ -9,7 +9,7 @@
 // and tests/architecture/worked_examples_test.cpp compiles this file and runs it behind the
 // interface.
 
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/search.hpp"
 

@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "vantage/gain/class_map.hpp"
-#include "vantage/gain/detail/target_predictors.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
+#include "vantage/gain/models/target_predictors.hpp"
 #include "vantage/gain/snapshot.hpp"
-#include "vantage/gain/swept.hpp"
-#include "vantage/gain/view_cells.hpp"
 
 namespace vantage {
 namespace {

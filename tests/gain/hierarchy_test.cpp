@@ -1,17 +1,17 @@
-// The hierarchical walk and the bounds (vantage/gain/hierarchy.hpp, bounds.hpp) against their
-// references: block-crossing counts against cell-by-cell ones and the exact evaluation, bit for
-// bit, and the upper bounds against every view's exact value. The walker's jump itself:
+// The hierarchical walk and the bounds (vantage/gain/evaluators/hierarchy.hpp, bounds.hpp) against
+// their references: block-crossing counts against cell-by-cell ones and the exact evaluation, bit
+// for bit, and the upper bounds against every view's exact value. The walker's jump itself:
 // tests/map/traversal_test.cpp.
 
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
 
-#include "vantage/gain/bounds.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/bounds.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 
 namespace vantage {
 namespace {

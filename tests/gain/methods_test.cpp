@@ -12,8 +12,8 @@
 #include <string>
 
 #include "row_grid.hpp"
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/view_gain.hpp"
 

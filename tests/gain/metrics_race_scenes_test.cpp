@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/methods.hpp"
-#include "vantage/gain/metrics.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/generate.hpp"

@@ -1,9 +1,9 @@
-// The swept estimate (vantage/gain/swept.hpp) against what it estimates: the volume of an
-// unobstructed frustum inside an unobserved grid (greedy's count of cells), nothing in free space
-// or behind a wall, the survival reading below greedy on the same rays, and the same numbers for
-// any thread count.
+// The swept estimate (vantage/gain/evaluators/swept.hpp) against what it estimates: the volume of
+// an unobstructed frustum inside an unobserved grid (greedy's count of cells), nothing in free
+// space or behind a wall, the survival reading below greedy on the same rays, and the same numbers
+// for any thread count.
 
-#include "vantage/gain/swept.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 
 namespace vantage {
 namespace {

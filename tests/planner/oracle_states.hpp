@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"

@@ -14,9 +14,9 @@
 #include <limits>
 #include <vector>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/hierarchy.hpp"
-#include "vantage/gain/view_cells.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/planner/choose.hpp"
 
 namespace vantage {

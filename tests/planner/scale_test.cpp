@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "vantage/experiment/recorded.hpp"
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"

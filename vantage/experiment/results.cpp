@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/cloud_io.hpp"
 #include "vantage/io/map_files.hpp"

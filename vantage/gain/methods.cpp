@@ -4,16 +4,16 @@
 #include <array>
 #include <stdexcept>
 
-#include "vantage/gain/detail/metric_cells.hpp"
-#include "vantage/gain/detail/metric_rays.hpp"
-#include "vantage/gain/metrics/area_factor.hpp"
-#include "vantage/gain/metrics/average_entropy.hpp"
-#include "vantage/gain/metrics/occlusion_aware.hpp"
-#include "vantage/gain/metrics/proximity_count.hpp"
-#include "vantage/gain/metrics/rear_side_entropy.hpp"
-#include "vantage/gain/metrics/rear_side_voxel.hpp"
-#include "vantage/gain/metrics/surface.hpp"
-#include "vantage/gain/metrics/unobserved_voxel.hpp"
+#include "vantage/gain/models/metric_cells.hpp"
+#include "vantage/gain/models/metric_rays.hpp"
+#include "vantage/gain/models/metrics/area_factor.hpp"
+#include "vantage/gain/models/metrics/average_entropy.hpp"
+#include "vantage/gain/models/metrics/occlusion_aware.hpp"
+#include "vantage/gain/models/metrics/proximity_count.hpp"
+#include "vantage/gain/models/metrics/rear_side_entropy.hpp"
+#include "vantage/gain/models/metrics/rear_side_voxel.hpp"
+#include "vantage/gain/models/metrics/surface.hpp"
+#include "vantage/gain/models/metrics/unobserved_voxel.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
@@ -27,7 +27,7 @@ constexpr MethodTraits target_model(GainMethod method, std::string_view name, Ta
   return {method, name, MethodKind::kTargetModel, ray, has_objective, counts, false, nullptr};
 }
 
-/// A metric's row, what it asks of the evaluation read off its type (detail/metric_rays.hpp).
+/// A metric's row, what it asks of the evaluation read off its type (models/metric_rays.hpp).
 template <typename Metric>
 constexpr MethodTraits metric(GainMethod method, std::string_view name,
                               bool needs_distances = false) {
@@ -92,6 +92,17 @@ GainMethod parse_gain_method(std::string_view name) {
     expected += cat(i == 0 ? "" : (i + 1 == kMethods.size() ? " or " : ", "), kMethods[i].name);
   }
   throw std::invalid_argument(cat("unknown gain method '", name, "' (expected ", expected, ")"));
+}
+
+bool is_volumetric_metric(GainMethod method) {
+  return method_traits(method).kind == MethodKind::kMetric;
+}
+
+void require_model_method(const GainConfig& config, std::string_view who) {
+  if (is_volumetric_metric(config.method)) {
+    throw std::invalid_argument(cat(who, ": ", to_string(config.method),
+                                    " is a volumetric metric; evaluate it with evaluate_views"));
+  }
 }
 
 }  // namespace vantage

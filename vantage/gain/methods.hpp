@@ -2,8 +2,8 @@
 /// @file
 /// The gain methods' one registry: each GainMethod's name and what the rest of the library asks
 /// of it, so that no other file switches on the method. Adding a method takes its own file (a
-/// target predictor in detail/target_predictors.hpp's shape, or a metric under gain/metrics/) and
-/// one row in methods.cpp.
+/// target predictor in models/target_predictors.hpp's shape, or a metric under
+/// gain/models/metrics/) and one row in methods.cpp.
 
 #include <cstdint>
 #include <optional>
@@ -25,11 +25,11 @@ enum class MethodKind {
   /// A prediction per unobserved target cell in the frustum, each on its own ray from the sensor
   /// (docs/model.md "One view"): exact.hpp.
   kTargetModel,
-  /// A sum over the cells the view's pinhole rays cross (metrics.hpp).
+  /// A sum over the cells the view's pinhole rays cross (evaluators/metric_evaluator.hpp).
   kMetric,
 };
 
-/// The ray a target model walks to each target (detail/target_predictors.hpp).
+/// The ray a target model walks to each target (models/target_predictors.hpp).
 enum class TargetRay {
   kPaper,      ///< the paper's visibility HMM and occupancy filter (model.hpp)
   kSurvival,   ///< the survival reading of it (survival.hpp)
@@ -37,11 +37,11 @@ enum class TargetRay {
   kNone,       ///< a metric
 };
 
-/// A metric's evaluation of every view (detail/metric_rays.hpp).
+/// A metric's evaluation of every view (models/metric_rays.hpp).
 using MetricFn = std::vector<ViewGain> (*)(const detail::MetricContext&, std::span<const Frustum>,
                                            int num_threads);
 
-/// A metric's credits cell by cell on a list of cells (detail/metric_cells.hpp).
+/// A metric's credits cell by cell on a list of cells (models/metric_cells.hpp).
 using MetricCellsFn = std::vector<ViewCells> (*)(const detail::MetricContext&,
                                                  std::span<const Frustum>,
                                                  std::span<const std::uint32_t> cells,
@@ -78,5 +78,13 @@ const MethodTraits& method_traits(GainMethod method);
 std::span<const MethodTraits> gain_methods();
 /// The method named `name`, if one is.
 std::optional<GainMethod> find_gain_method(std::string_view name);
+
+/// Whether `method` is one of the field's metrics (MethodKind::kMetric).
+bool is_volumetric_metric(GainMethod method);
+
+/// Throws std::invalid_argument, naming `who`, when `config.method` is one of the metrics: the
+/// paper's evaluations (exact, fast) compute the paper's model or greedy's count only, and would
+/// otherwise silently give the paper's model for a metric.
+void require_model_method(const GainConfig& config, std::string_view who);
 
 }  // namespace vantage

@@ -22,8 +22,8 @@ enum class GainMethod {
   /// unobserved cell with probability alpha, free cells always, occupied cells never; the
   /// paper's occupancy filter on top.
   kSurvival,
-  // The field's volumetric metrics (vantage/gain/metrics.hpp, docs/model.md "The field's
-  // metrics"): sums over the cells the view's rays cross, not per-target predictions.
+  // The field's volumetric metrics (vantage/gain/evaluators/metric_evaluator.hpp, docs/model.md
+  // "The field's metrics"): sums over the cells the view's rays cross, not per-target predictions.
   kOcclusionAware,   ///< entropy weighted by visibility, eq. M1
   kUnobservedVoxel,  ///< unobserved cells reached, eq. M2
   kRearSideVoxel,    ///< occupied cells reached from unobserved ones, eq. M3
@@ -31,9 +31,9 @@ enum class GainMethod {
   kProximityCount,   ///< unobserved cells near occupied ones, eq. M5
   kAverageEntropy,   ///< Kriegel's mean entropy of the cells reached, eq. M6
   kAreaFactor,       ///< Vasquez-Gomez's area factor, eq. M7
-  /// The surface the view's rays reach first (issue 37, gain/metrics/surface.hpp): the survival
-  /// reading on the metrics' rays, with the chance that an unobserved cell holds a surface taken
-  /// by its distance to the nearest occupied cell (GainConfig::surface_rates, fitted online).
+  /// The surface the view's rays reach first (issue 37, gain/models/metrics/surface.hpp): the
+  /// survival reading on the metrics' rays, with the chance that an unobserved cell holds a surface
+  /// taken by its distance to the nearest occupied cell (GainConfig::surface_rates, fitted online).
   kSurface,
 };
 
@@ -48,15 +48,15 @@ GainMethod parse_gain_method(std::string_view name);
 /// the fast evaluation that cast rays outward instead cost as much or more in every state
 /// measured and was removed (BENCHMARK.md, "One planner").
 enum class GainEvaluation {
-  kExact,  ///< a metric's every pixel ray (metrics.hpp)
-  kAuto,   ///< a metric's every third ray along each image axis (metrics.hpp)
+  kExact,  ///< a metric's every pixel ray (evaluators/metric_evaluator.hpp)
+  kAuto,   ///< a metric's every third ray along each image axis (evaluators/metric_evaluator.hpp)
 };
 
 std::string_view to_string(GainEvaluation evaluation);
 /// Parses "exact" or "auto"; throws std::invalid_argument naming the value.
 GainEvaluation parse_gain_evaluation(std::string_view name);
 
-/// The surface model's distance classes (gain/metrics/surface.hpp): an unobserved cell whose
+/// The surface model's distance classes (gain/models/metrics/surface.hpp): an unobserved cell whose
 /// centre lies within 1, 2, 3 or 4 cells of the nearest occupied cell's, or farther.
 inline constexpr std::size_t kSurfaceClasses = 5;
 
@@ -108,7 +108,7 @@ struct ViewGain {
 };
 
 /// One view's unobserved targets with a value above 0, in ascending linear index: their v_M
-/// (view_cells.hpp), or a metric's credits (detail/metric_cells.hpp).
+/// (view_cells.hpp), or a metric's credits (models/metric_cells.hpp).
 struct ViewCells {
   std::vector<std::uint32_t> cells;  ///< linear indices of the targets, ascending
   std::vector<double> seen;          ///< v_M of each, in (0, 1] [cells]; or its credit

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/util/clock.hpp"

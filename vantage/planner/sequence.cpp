@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/util/clock.hpp"

@@ -10,9 +10,9 @@
 #include <limits>
 #include <numeric>
 
-#include "vantage/gain/bounds.hpp"
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/bounds.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/planner/search.hpp"
 

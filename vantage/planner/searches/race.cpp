@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <utility>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/view_cells.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/planner/choose.hpp"
 
 namespace vantage::detail {

@@ -1,26 +1,26 @@
 // The swept search (DecisionSearch::kSwept; docs/decision.md, "The swept search"): every
-// candidate ranked by its swept estimate (gain/swept.hpp: a thousand rays cast outward a view,
-// each crediting the volume it sweeps through unobserved cells); the leaders cast again at twice
-// the rays a side; the leaders of that raced on nested samples of their cells up to all of them
-// (race.hpp); the winner's full prediction after. Under the paper's model no ray sweeps a volume,
-// so every candidate enters the race on the model's exact per-target v_M. A metric's rounds cast
-// the metric's own rays, coarser but in the last (run_metric); a metric whose value is a sum of
-// cell credits races every candidate on samples of those cells (run_cell_sum; docs/decision.md,
+// candidate ranked by its swept estimate (gain/evaluators/swept.hpp: a thousand rays cast outward a
+// view, each crediting the volume it sweeps through unobserved cells); the leaders cast again at
+// twice the rays a side; the leaders of that raced on nested samples of their cells up to all of
+// them (race.hpp); the winner's full prediction after. Under the paper's model no ray sweeps a
+// volume, so every candidate enters the race on the model's exact per-target v_M. A metric's rounds
+// cast the metric's own rays, coarser but in the last (run_metric); a metric whose value is a sum
+// of cell credits races every candidate on samples of those cells (run_cell_sum; docs/decision.md,
 // "A metric raced cell by cell"). Statistical, with the exhaustive exact search's choice, or one
 // within 0.5 % of it, in every oracle state but one raced cell by cell (0.9915)
 // (tests/planner/swept_scenes_test.cpp, tests/gain/metrics_race_scenes_test.cpp).
 
-#include "vantage/gain/swept.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <optional>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/gain/methods.hpp"
-#include "vantage/gain/metrics.hpp"
-#include "vantage/gain/view_cells.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/planner/searches/race.hpp"
@@ -50,7 +50,8 @@ bool paper_race(const PlannerConfig& config) {
          config.objective == GainObjective::kCells;
 }
 
-/// Whether the search serves a metric (metrics.hpp): its rounds cast the metric's rays.
+/// Whether the search serves a metric (evaluators/metric_evaluator.hpp): its rounds cast the
+/// metric's rays.
 bool metric_race(const PlannerConfig& config) {
   return ranks_by_gain(config.method) && config.method.ranking != Ranking::kSequence &&
          method_traits(config.method.gain).kind == MethodKind::kMetric;
@@ -310,9 +311,8 @@ Plan run(const SearchInput& in) {
   const CandidateViews finalists = in.views.subset(final_round);
   std::vector<double> factor;
   for (const std::size_t c : final_round) factor.push_back(in.travel_factor(c));
-  const detail::Race race =
-      detail::race_candidates(map, finalists.frusta, finalists.first, factor, in.gain, kSample,
-                              kSweptTolerance);
+  const detail::Race race = detail::race_candidates(map, finalists.frusta, finalists.first, factor,
+                                                    in.gain, kSample, kSweptTolerance);
   return finish(in, final_round, factor, race, std::move(plan));
 }
 

@@ -1,4 +1,4 @@
-#include "vantage/gain/swept.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
 
 #include <tbb/parallel_for.h>
 

@@ -1,4 +1,4 @@
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -8,8 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "vantage/gain/detail/target_sums.hpp"
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/evaluators/target_sums.hpp"
 #include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/parallel.hpp"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "vantage/gain/class_map.hpp"
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {

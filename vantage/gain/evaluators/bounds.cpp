@@ -1,4 +1,4 @@
-#include "vantage/gain/bounds.hpp"
+#include "vantage/gain/evaluators/bounds.hpp"
 
 #include <tbb/parallel_for.h>
 

@@ -1,4 +1,4 @@
-#include "vantage/gain/view_cells.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -6,9 +6,9 @@
 #include <optional>
 #include <stdexcept>
 
-#include "vantage/gain/detail/target_predictors.hpp"
-#include "vantage/gain/detail/target_sums.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/target_sums.hpp"
+#include "vantage/gain/evaluators/with_predictor.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"

@@ -7,7 +7,7 @@
 #include <span>
 #include <vector>
 
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/map/grid_spec.hpp"
 #include "vantage/views/frustum.hpp"
