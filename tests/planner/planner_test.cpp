@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tests/planner/views_around.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/ring.hpp"
@@ -72,6 +73,7 @@ TEST(Planner, TheDefaultSearchIsTheFastestThatServesTheMethod) {
     config.gain.alpha = 0.99;
     const std::string what = cat(to_string(c.method), " by ", to_string(c.objective));
     EXPECT_EQ(resolve_search(config), c.expected) << what;
+    EXPECT_EQ(decision_quantity(config), method_traits(c.method.gain).quantity(c.objective));
     const Plan plan = plan_next_view(s.grid, s.candidates, config);
     EXPECT_EQ(plan.search, c.expected) << what;
     config.search = DecisionSearch::kExhaustive;

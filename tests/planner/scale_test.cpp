@@ -66,8 +66,9 @@ TEST(DecisionAtScale, TheSweptChoiceIsTheExhaustiveExactOneOnTheKinectTableTop) 
     gain.method = method.gain;
     const bool greedy = method == PlannerMethod::kGreedy;
     std::vector<double> exact;
-    for (const ViewGain& g : count_view_gains(
-             map, &blocks, views, greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain)) {
+    for (const ViewGain& g :
+         count_view_gains(map, &blocks, views,
+                          greedy ? GainQuantity::kCount : GainQuantity::kSurvivalCells, gain)) {
       exact.push_back(greedy ? g.gain : g.cells);
     }
     const std::size_t best = choose_best(exact);

@@ -153,7 +153,9 @@ DecisionCost cost_of(const ViewCost& v, std::size_t views, std::size_t candidate
     cost.steps = n * full;
   }
   // NOTE: a counting method's gains are greedy's, and its reference costs nothing (search.cpp).
-  if (config.greedy_reference && !traits.counts) cost.steps += n * exact;
+  if (config.greedy_reference && decision_quantity(config) != GainQuantity::kCount) {
+    cost.steps += n * exact;
+  }
   return cost;
 }
 

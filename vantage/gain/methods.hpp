@@ -5,6 +5,7 @@
 /// target predictor in models/target_predictors.hpp's shape, or a metric under
 /// gain/models/metrics/) and one row in methods.cpp.
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -47,18 +48,23 @@ using MetricCellsFn = std::vector<ViewCells> (*)(const detail::MetricContext&,
                                                  std::span<const std::uint32_t> cells,
                                                  int num_threads);
 
+/// A round of a metric's race (the swept search, docs/decision.md "The swept search"): the views
+/// still in the race estimated by every `coarseness`-th of the metric's rays along each image axis
+/// (MetricEvaluator::gains), the best `keep` of them passed on to the next round.
+struct MetricRound {
+  int coarseness;
+  std::size_t keep;
+};
+
 /// What the library asks of a gain method.
 struct MethodTraits {
   GainMethod method;
   std::string_view name;  ///< as the CLI, the files and the plots spell it
   MethodKind kind;
   TargetRay ray;  ///< kNone for a metric
-  /// Ranks by bits or by expected cells as GainObjective says, and has the observability
-  /// parameter a; the others have one score, their gain.
-  bool has_objective;
-  /// Its gain is a count of cells, the same in bits and in cells: integer sums, and the
-  /// hierarchical count (hierarchy.hpp) serves it.
-  bool counts;
+  /// What it computes ranked by bits and by cells (GainObjective): two quantities for a model
+  /// with the observability parameter a, the same one for greedy's count and a metric.
+  GainQuantity by_bits, by_cells;
   /// A metric that reads each cell's distance to the nearest occupied cell.
   bool needs_distances;
   MetricFn metric;  ///< a metric's evaluation; nullptr for a target model
@@ -70,6 +76,20 @@ struct MethodTraits {
   /// A metric whose rays cross cubes of free cells and unobserved ones far from every occupied
   /// cell (MetricContext::far).
   bool crosses_far = false;
+  /// A metric changed only by rays that end on a rear side (MetricContext::open, occupied).
+  bool rear_side_rays = false;
+  /// The rounds of a metric's race before the last, which evaluates the views left exactly;
+  /// empty when its coarser rays rank too poorly to race, so that every view is evaluated
+  /// exactly, or raced cell by cell (`cells`).
+  std::span<const MetricRound> race_rounds = {};
+
+  /// What it computes when it ranks by `objective`: the one answer to "which quantity".
+  constexpr GainQuantity quantity(GainObjective objective) const {
+    return objective == GainObjective::kCells ? by_cells : by_bits;
+  }
+  /// Whether it ranks by bits or by expected cells as GainObjective says (and has the
+  /// observability parameter a); the others have one value, their gain.
+  constexpr bool has_objective() const { return by_bits != by_cells; }
 };
 
 /// The traits of `method`.

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// The gain layer's shared types, at its bottom (docs/architecture.md): which model predicts a
-/// cell's gain (GainMethod, whose traits live in the registry, methods.hpp), how a view's gain is
+/// cell's gain (GainMethod, whose traits live in the registry, methods.hpp), what a decision
+/// ranks by (GainObjective) and so which quantity it computes (GainQuantity), how a view's gain is
 /// evaluated (GainEvaluation), the settings (GainConfig) and the result (ViewGain).
 
 #include <array>
@@ -42,6 +43,43 @@ std::string_view to_string(GainMethod method);
 /// unobserved-voxel, rear-side-voxel, rear-side-entropy, proximity-count, average-entropy,
 /// area-factor) or "surface"; throws std::invalid_argument naming the value.
 GainMethod parse_gain_method(std::string_view name);
+
+/// What a model with the observability parameter a (the paper's, the survival reading) ranks by;
+/// the others have one value, whatever it says.
+enum class GainObjective {
+  kBits,   ///< the expected information gain of eq. (1), ViewGain::gain [bits]
+  kCells,  ///< the expected number of unobserved cells seen, ViewGain::cells [cells]
+};
+
+std::string_view to_string(GainObjective objective);
+/// Parses "bits" or "cells"; throws std::invalid_argument naming the value.
+GainObjective parse_gain_objective(std::string_view name);
+
+/// Which quantity a decision computes for every view: the one type that says it. The registry
+/// answers it from a method and its objective (MethodTraits::quantity, methods.hpp); the searches
+/// rank by it, the bounds bound it (evaluators/bounds.hpp), and the hierarchical count
+/// (evaluators/hierarchy.hpp) and the swept rays (evaluators/swept.hpp) compute those that read
+/// the cells' classes alone (counts_classes).
+enum class GainQuantity {
+  kPaperBits,      ///< the paper's eq. (4) gain, at most H(p) a target: ViewGain::gain [bits]
+  kPaperCells,     ///< the paper's expected cells seen, the sum of v_M: ViewGain::cells [cells]
+  kSurvivalBits,   ///< the survival reading's eq. (4) gain: ViewGain::gain [bits]
+  kSurvivalCells,  ///< the survival reading's expected cells seen: ViewGain::cells [cells]
+  kCount,          ///< greedy's count of the targets nothing occupied hides: both fields [cells]
+  kMetric,         ///< a metric's value: ViewGain::gain
+};
+
+/// Whether `quantity` is a sum over cells [cells] (ViewGain::cells), not ViewGain::gain.
+constexpr bool in_cells(GainQuantity quantity) {
+  return quantity == GainQuantity::kPaperCells || quantity == GainQuantity::kSurvivalCells ||
+         quantity == GainQuantity::kCount;
+}
+
+/// Whether `quantity` reads the cells' classes alone, not their occupancy (the survival reading's
+/// cells, greedy's count): what the hierarchical count and the swept rays compute.
+constexpr bool counts_classes(GainQuantity quantity) {
+  return quantity == GainQuantity::kSurvivalCells || quantity == GainQuantity::kCount;
+}
 
 /// How finely a view's gain is computed. The target models always take one ray from the sensor
 /// to the centre of every unobserved cell in the frustum (the paper's definition, exact.hpp):
@@ -97,6 +135,18 @@ struct ViewGain {
   double cells = 0.0;
   /// The unobserved cells inside the frustum.
   std::size_t targets = 0;
+
+  /// Its value of `quantity`: ViewGain::cells for a quantity in cells (greedy's count too, whose
+  /// gain equals it), else ViewGain::gain.
+  double value(GainQuantity quantity) const { return in_cells(quantity) ? cells : gain; }
+  /// A gain that holds `value` as `quantity`, the other field 0 (both for greedy's count, whose
+  /// gain is its count) and no targets: a search's estimate or bound.
+  static ViewGain of(GainQuantity quantity, double value) {
+    ViewGain out;
+    (in_cells(quantity) ? out.cells : out.gain) = value;
+    if (quantity == GainQuantity::kCount) out.gain = value;
+    return out;
+  }
 
   /// Adds `other`'s three sums: the gain of several views (a candidate's, a view's rows).
   ViewGain& operator+=(const ViewGain& other) {

@@ -7,7 +7,6 @@
 #include <string>
 
 #include "vantage/gain/evaluators/exact.hpp"
-#include "vantage/gain/methods.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/util/clock.hpp"
 #include "vantage/util/text.hpp"
@@ -157,7 +156,7 @@ void report_choice(const SearchInput& input, Plan& plan) {
     if (!plan.estimated.empty()) plan.estimated[plan.best] = false;
     plan.prediction_seconds = seconds_since(predict_start);
   }
-  if (method_traits(input.gain.method).counts) {
+  if (input.quantity() == GainQuantity::kCount) {
     // A counting method's gains are greedy's: the reference costs nothing.
     plan.greedy_gains.clear();
     for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);

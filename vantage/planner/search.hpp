@@ -54,6 +54,8 @@ struct SearchInput {
   std::vector<double> travel_factors() const;
   /// Seconds since `start`.
   double seconds() const;
+  /// Which quantity the decision computes and ranks by (decision_quantity, types.hpp).
+  GainQuantity quantity() const { return decision_quantity(config); }
 };
 
 /// A search: its name, what it guarantees, which decisions it serves and how it runs.

@@ -130,8 +130,11 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
                            const SequenceConfig& config) {
   gain.validate();
   config.validate();
-  const bool greedy = method_traits(gain.method).counts;
-  if (!greedy && method_traits(gain.method).ray != TargetRay::kSurvival) {
+  // NOTE: a sequence ranks by cells, on the cells' classes alone (the survival reading's cells,
+  // greedy's count): what count_view_gains and exact_view_cells compute.
+  const GainQuantity quantity = method_traits(gain.method).quantity(GainObjective::kCells);
+  const bool greedy = quantity == GainQuantity::kCount;
+  if (!counts_classes(quantity)) {
     throw std::invalid_argument(
         cat("plan_sequence: gain.method must be survival or greedy, got ", to_string(gain.method)));
   }
@@ -157,8 +160,7 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
     }
   } else {
     const ClassBlocks blocks = summarize_classes(map, views, gain.num_threads);
-    plan.gains = count_view_gains(map, &blocks, views,
-                                  greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain);
+    plan.gains = count_view_gains(map, &blocks, views, quantity, gain);
   }
   double best_value = 0.0;
   for (const ViewGain& g : plan.gains) best_value = std::max(best_value, g.cells);
@@ -298,7 +300,7 @@ Plan decide_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> ca
   plan.sequence = std::move(sequence.tour);
   plan.tour_length = sequence.tour_length;
   plan.sequence_value = sequence.value;
-  const bool counts = method_traits(gain.method).counts;
+  const bool counts = decision_quantity(config) == GainQuantity::kCount;
   const bool sampled = sequence_config.sample_bits > 0;
   if (sampled) plan.estimated.assign(plan.gains.size(), true);
   if (counts) {

@@ -14,22 +14,15 @@
 
 namespace vantage {
 
-/// What a bound bounds.
-enum class BoundKind {
-  kSurvivalCells,  ///< the survival reading's expected cells seen [cells]
-  kCount,          ///< greedy's count [cells]
-  kAllCells,       ///< any per-target value in [0, 1], such as the paper's v_M [cells]
-  kSurvivalBits,   ///< the survival reading's eq. (4) gain, at most H(p) of a reachable cell [bits]
-  kEntropy,        ///< any per-target gain at most H(p), such as the paper's eq. (4) [bits]
-};
-
-/// An upper bound on each view's sum, from the blocks its frustum may touch: their unobserved
-/// cells (reachable ones, but for kEntropy and kAllCells), each weighted for kSurvivalCells by
-/// alpha^n with n a lower bound on the unobserved cells before it on any ray from the view's origin
-/// (its depth in unobserved space on the origin's side). The views must be among those `blocks` was
-/// made for.
+/// An upper bound on each view's `quantity` (types.hpp), from the blocks its frustum may touch:
+/// their unobserved cells (reachable ones, but for the paper's model, whose visibility never
+/// reaches 0), each weighted for kSurvivalCells by alpha^n with n a lower bound on the unobserved
+/// cells before it on any ray from the view's origin (its depth in unobserved space on the
+/// origin's side); in bits, their H(p) (a target's eq. (4) gain is at most its H(p)); for
+/// kPaperCells any per-target value in [0, 1]. The views must be among those `blocks` was made
+/// for. Throws std::invalid_argument for a metric's value, which no block bounds.
 std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec& spec,
                                       const GainMap& map, std::span<const Frustum> views,
-                                      BoundKind kind, double alpha);
+                                      GainQuantity quantity, double alpha);
 
 }  // namespace vantage

@@ -119,10 +119,10 @@ FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
 
 /// The occupied cells' box and cubes that `method` needs (detail::OccupiedCells).
 detail::OccupiedCells occupied_cells(const GainMap& map, GainMethod method) {
-  const bool rear_side =
-      method == GainMethod::kRearSideVoxel || method == GainMethod::kRearSideEntropy;
+  const MethodTraits& traits = method_traits(method);
+  const bool rear_side = traits.rear_side_rays;
   detail::OccupiedCells out;
-  if (!rear_side && !method_traits(method).needs_distances) return out;
+  if (!rear_side && !traits.needs_distances) return out;
   const GridSpec& spec = map.spec();
   const Index3 d = block_dims(spec);
   std::vector<std::int64_t> label(rear_side ? static_cast<std::size_t>(d.prod()) : 0, 0);
@@ -279,34 +279,6 @@ std::vector<ViewCells> MetricEvaluator::cells(std::span<const Frustum> views,
   }
   return traits.cells(context(map_, near_, spaces(), config_, 1, /*count_cells=*/false), views,
                       cells, config_.num_threads);
-}
-
-std::span<const MetricRound> metric_race_rounds(GainMethod method) {
-  // NOTE: the worst rank of the exact best view among the estimates of all views, over the 48
-  // oracle states: occlusion aware 5 by every 27th ray; unobserved voxel 40 by every 9th and 17
-  // by every 3rd; average entropy 28 and 12; area factor 34 and 5. Each round keeps about twice
-  // that (BENCHMARK.md, "The metrics raced").
-  // The surface model, like the proximity count, sits on the few rays that pass near a surface:
-  // raced with rounds of (9, 96) and (3, 32) it chose views of 0.86-0.998 of the best's value in
-  // 5 of the 48 states (tabletop-1 after 7 and 8 scans, tabletop-2 and pile-b after 8, pile-a
-  // after 6). Both are raced cell by cell instead (MetricEvaluator::cells).
-  static constexpr MetricRound kOcclusionAware[] = {{27, 12}};
-  static constexpr MetricRound kUnobservedVoxel[] = {{9, 64}, {3, 24}};
-  static constexpr MetricRound kAverageEntropy[] = {{9, 48}, {3, 20}};
-  static constexpr MetricRound kAreaFactor[] = {{9, 56}, {3, 10}};
-
-  switch (method) {
-    case GainMethod::kOcclusionAware:
-      return kOcclusionAware;
-    case GainMethod::kUnobservedVoxel:
-      return kUnobservedVoxel;
-    case GainMethod::kAverageEntropy:
-      return kAverageEntropy;
-    case GainMethod::kAreaFactor:
-      return kAreaFactor;
-    default:
-      return {};
-  }
 }
 
 std::vector<ViewGain> metric_view_gains_reference(const GainMap& map,

@@ -46,22 +46,6 @@ std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frus
 std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                         const GainConfig& config);
 
-/// A round of a metric's race (the swept search, docs/decision.md "The swept search"): the views
-/// still in the race estimated by every `coarseness`-th of the metric's rays along each image axis
-/// (MetricEvaluator::gains), the best `keep` of them passed on to the next round.
-struct MetricRound {
-  int coarseness;
-  std::size_t keep;
-};
-
-/// The rounds of `method`'s race before the last, which evaluates the views left exactly; empty
-/// when the metric's coarser rays rank too poorly to race (the rear side metrics, the proximity
-/// count and the surface model, whose value sits on few rays: the race would need most views to
-/// keep its choice), so that every view is evaluated exactly, or raced cell by cell
-/// (MetricEvaluator::cells). Sized on the oracle states of
-/// tests/gain/metrics_race_scenes_test.cpp (docs/model.md, "The metrics at speed").
-std::span<const MetricRound> metric_race_rounds(GainMethod method);
-
 namespace detail {
 
 struct Spaces;
