@@ -52,11 +52,12 @@ DecisionSearch parse_decision_search(std::string_view name) {
   throw std::invalid_argument(cat("unknown decision search '", name, "' (expected ", names, ")"));
 }
 
-DecisionSearch resolve_search(const PlannerConfig& config) {
+Decider resolve_decider(const PlannerConfig& config) {
+  if (sequence_of(config).active()) return {};
   std::string serving;
   for (const SearchTraits& s : decision_searches()) {
     if (!s.serves(config)) continue;
-    if (!config.search || *config.search == s.search) return s.search;
+    if (!config.search || *config.search == s.search) return {s.search};
     serving += cat(serving.empty() ? "" : ", ", s.search.name);
   }
   const std::string what = has_observability(config.method)

@@ -128,8 +128,8 @@ struct PlannerConfig {
   /// Gain evaluation settings; `gain.method` is set from `method.gain`.
   GainConfig gain;
   double lambda = 0.5;  ///< kLatombe's travel penalty [1/m]
-  /// The search; none: the fastest that serves the method (resolve_search, search.hpp). A
-  /// search named here that does not serve the method is refused by resolve_search, which
+  /// The search; none: the fastest that serves the method (resolve_decider, search.hpp). A
+  /// search named here that does not serve the method is refused by resolve_decider, which
   /// plan_next_view calls, naming the searches that do.
   std::optional<DecisionSearch> search;
   /// The swept search's rays across a view's image (SweptConfig::rays_across), in [1, 4096].

@@ -145,9 +145,7 @@ void run(const ExploreOptions& o) {
         "exploring {} with {} ({} evaluation, {} search{}), {} scans from start {}, "
         "seed {}\n",
         scene.name, config.greedy_oracle ? o.planning.method : to_string(config.planner.method),
-        o.planning.evaluation,
-        sequence_of(config.planner).active() ? "sequence"
-                                             : to_string(resolve_search(config.planner)),
+        o.planning.evaluation, resolve_decider(config.planner).name(),
         has_observability(config.planner.method)
             ? fmt::format(", a = {}, ranking by {}", alpha.label(),
                           to_string(config.planner.objective))
@@ -173,8 +171,7 @@ void run(const ExploreOptions& o) {
   write_folder_atomically(out, [&](const fs::path& dir) {
     write_run_files(dir, scene, config, result, mapper);
     if (truth) {
-      write_yardstick_file(dir / kYardstickFolder / (scene.name + ".json"), scene, config,
-                           *truth);
+      write_yardstick_file(dir / kYardstickFolder / (scene.name + ".json"), scene, config, *truth);
       run_plot_script("set_cover.py", {dir.string()});
     }
     if (o.plots) run_plot_script("plot_run.py", {dir.string()});
