@@ -29,6 +29,15 @@ struct Pruning {
   std::size_t evaluated = 0;    ///< candidates evaluated exactly
 };
 
+/// The views' exact values: counted across the map's blocks for a quantity of the cells'
+/// classes alone (hierarchy.hpp), else evaluated exactly (exact.hpp).
+std::vector<ViewGain> exact_values(const GainMap& map, const ClassBlocks& blocks,
+                                   std::span<const Frustum> views, GainQuantity quantity,
+                                   const GainConfig& config) {
+  return counts_classes(quantity) ? count_view_gains(map, &blocks, views, quantity, config)
+                                  : exact_view_gains(map, views, config);
+}
+
 /// Chooses among the candidates whose views are `frusta[first[c] .. first[c + 1])`; candidate c's
 /// score is the sum over its views of the view's `quantity` times `factor[c]`, in view order,
 /// exactly as the exhaustive search sums it.
@@ -91,9 +100,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
       views.insert(views.end(), frusta.begin() + static_cast<std::ptrdiff_t>(first[b]),
                    frusta.begin() + static_cast<std::ptrdiff_t>(first[b + 1]));
     }
-    const std::vector<ViewGain> gains =
-        counts_classes(quantity) ? count_view_gains(map, &blocks, views, quantity, config)
-                                 : exact_view_gains(map, views, config);
+    const std::vector<ViewGain> gains = exact_values(map, blocks, views, quantity, config);
     std::size_t v = 0;
     for (const std::size_t b : batch) {
       ViewGain sum;
