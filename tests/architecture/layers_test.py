@@ -3,6 +3,9 @@
 
 - layers: every include under vantage/ runs to the file's own layer or one below it, as
   vantage/layers.txt writes the layers down;
+- folders: a folder within a stage's (vantage/gain/models/, vantage/experiment/detail/, ...)
+  holds the files of one layer, so that the folders read as the layers, and no file sits beside a
+  folder of its own name (gain/metrics.hpp beside gain/metrics/);
 - sizes: no source file of the library, the CLI or the bindings is over 400 lines, and the
   decision's entry point (vantage/planner/planner.cpp) is under 200;
 - functions: no function there is over 80 lines, from the first line of its declaration to its
@@ -72,6 +75,28 @@ def layer_violations(root):
             elif theirs[0] > mine[0]:
                 problems.append(f"vantage/{relative} ({mine[1]}) includes vantage/{included} "
                                 f"({theirs[1]}), a higher layer")
+    return problems
+
+
+def folder_violations(root):
+    """Every folder within a stage's that spans layers, and every file named as a folder beside it."""
+    layers = read_layers(root / "vantage" / "layers.txt")
+    problems = []
+    spans = {}
+    for path in sorted((root / "vantage").rglob("*")):
+        relative = path.relative_to(root / "vantage")
+        if path.is_dir():
+            if path.with_suffix(".hpp").exists() or path.with_suffix(".cpp").exists():
+                problems.append(f"vantage/{relative.as_posix()}/ has a file of its name beside it")
+            continue
+        if path.suffix not in (".hpp", ".cpp", ".h") or len(relative.parts) < 3:
+            continue
+        mine = layer_of(relative.as_posix(), layers)
+        if mine is not None:
+            spans.setdefault("/".join(relative.parts[:2]), set()).add(mine[1])
+    for folder, names in sorted(spans.items()):
+        if len(names) > 1:
+            problems.append(f"vantage/{folder}/ spans the layers {', '.join(sorted(names))}")
     return problems
 
 
@@ -300,6 +325,16 @@ def self_check():
         found = layer_violations(root)
         assert any("includes vantage/high/h.hpp (high), a higher layer" in p for p in found), found
         assert any("other.hpp: in no layer" in p for p in found), found
+        assert folder_violations(root) == [], folder_violations(root)
+        (root / "vantage" / "layers.txt").write_text("low: low/*\nhigh: high/* low/sub/h*\n")
+        (root / "vantage" / "low" / "sub").mkdir()
+        (root / "vantage" / "low" / "sub" / "l.hpp").write_text("\n")
+        (root / "vantage" / "low" / "sub" / "h.hpp").write_text("\n")
+        (root / "vantage" / "low" / "sub.hpp").write_text("\n")
+        found = folder_violations(root)
+        assert any("low/sub/ spans the layers high, low" in p for p in found), found
+        assert any("low/sub/ has a file of its name" in p for p in found), found
+
     assert functions(KNOWN_FUNCTIONS) == KNOWN, functions(KNOWN_FUNCTIONS)
     with tempfile.TemporaryDirectory() as tmp:
         root = pathlib.Path(tmp)
@@ -376,7 +411,8 @@ KNOWN = [("c_function", 7, 9), ("kRows (a lambda)", 16, 18), ("kHelper", 21, 23)
 def main():
     root = pathlib.Path(sys.argv[1]).resolve()
     self_check()
-    checks = {"layers": layer_violations(root), "sizes": size_violations(root),
+    checks = {"layers": layer_violations(root), "folders": folder_violations(root),
+              "sizes": size_violations(root),
               "functions": function_violations(root)}
     failed = 0
     for name, problems in checks.items():

@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "vantage/experiment/detail/run_json.hpp"
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/io/atomic_file.hpp"
 #include "vantage/io/cloud_io.hpp"
 #include "vantage/io/map_files.hpp"

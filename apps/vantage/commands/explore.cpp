@@ -165,9 +165,7 @@ void run(const ExploreOptions& o) {
         "exploring {} with {} ({} evaluation, {} search{}), {} scans from start {}, "
         "seed {}\n",
         scene.name, config.greedy_oracle ? o.planning.method : to_string(config.planner.method),
-        o.planning.evaluation,
-        sequence_of(config.planner).active() ? "sequence"
-                                             : to_string(resolve_search(config.planner)),
+        o.planning.evaluation, resolve_decider(config.planner).name(),
         has_observability(config.planner.method)
             ? fmt::format(", a = {}, ranking by {}", alpha.label(),
                           to_string(config.planner.objective))

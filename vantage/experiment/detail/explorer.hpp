@@ -13,7 +13,7 @@
 
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/yardstick.hpp"
-#include "vantage/gain/surface_rates.hpp"
+#include "vantage/gain/models/surface_rates.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/perception/registration.hpp"
 #include "vantage/perception/voxel_filter.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 /// @file
 /// What the metrics' own files (this folder) share beneath the metrics' evaluation
-/// (gain/metrics.hpp): the distances and the area factor's shape.
+/// (gain/evaluators/metric_evaluator.hpp): the distances and the area factor's shape.
 
 #include <cmath>
 #include <cstddef>

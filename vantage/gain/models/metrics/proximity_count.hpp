@@ -1,10 +1,10 @@
 #pragma once
 /// @file
-/// One of the field's volumetric metrics (metrics.hpp, docs/model.md "The field's metrics"),
-/// as a metric type of detail/metric_rays.hpp; registered in gain/methods.cpp.
+/// One of the field's volumetric metrics (docs/model.md "The field's metrics"),
+/// as a metric type (models/metric_type.hpp); registered in gain/methods.cpp.
 
-#include "vantage/gain/detail/metric_rays.hpp"
-#include "vantage/gain/metrics/shared.hpp"
+#include "vantage/gain/models/metric_type.hpp"
+#include "vantage/gain/models/metrics/shared.hpp"
 
 namespace vantage {
 
@@ -14,7 +14,7 @@ struct ProximityCount {
   static constexpr bool kFreeInert = true;
   static constexpr detail::QuietCells kQuiet = detail::QuietCells::kFar;  // they credit nothing
   static constexpr bool kNearRays = true;
-  static constexpr bool kCellSum = true;  // detail/metric_cells.hpp
+  static constexpr bool kCellSum = true;  // models/metric_cells.hpp
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {

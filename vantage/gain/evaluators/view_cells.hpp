@@ -33,10 +33,11 @@ std::vector<ViewCells> exact_view_cells(const ClassMap& map, std::span<const Fru
                                         const GainConfig& config,
                                         std::span<const std::uint32_t> cells);
 
-/// The same lists under the paper's model (`config.method`'s ray must be TargetRay::kPaper), for
-/// the targets among `cells` (unobserved, ascending): each target's v_M on its own ray, as the
-/// exact evaluation predicts it (PaperPredictor, bit for bit), from a snapshot, since the model
-/// reads every cell's occupancy. Throws std::invalid_argument for another method.
+/// The same lists under the paper's model (`config.method`'s cells must be
+/// GainQuantity::kPaperCells), for the targets among `cells` (unobserved, ascending): each target's
+/// v_M on its own ray, as the exact evaluation predicts it (PaperPredictor, bit for bit), from a
+/// snapshot, since the model reads every cell's occupancy. Throws std::invalid_argument for another
+/// method.
 std::vector<ViewCells> paper_view_cells(const GainMap& map, std::span<const Frustum> views,
                                         const GainConfig& config,
                                         std::span<const std::uint32_t> cells);

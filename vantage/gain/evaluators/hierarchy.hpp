@@ -75,18 +75,17 @@ struct ClassBlocks {
 ClassBlocks summarize_classes(const GainMap& map, std::span<const Frustum> views,
                               int num_threads = 0);
 
-/// What a view's rays are evaluated for, cell counts only: the survival reading's expected cells
-/// seen (ViewGain::cells; ViewGain::gain is left 0) or greedy's count (both fields).
-enum class CountRule { kSurvivalCells, kGreedy };
-
-/// Every view's count under `rule`, each unobserved cell in a view's frustum on its own ray,
+/// Every view's `quantity`, a count of cells (counts_classes, types.hpp): the survival reading's
+/// expected cells seen (ViewGain::cells; ViewGain::gain is left 0) or greedy's count (both
+/// fields); throws std::invalid_argument for another. Each unobserved cell in a view's frustum on
+/// its own ray,
 /// exactly as exact_view_gains computes ViewGain::cells for the survival reading and greedy (the
 /// same cells, the same sums in the same order, so bit for bit). With `blocks` (made for these
 /// views), a target no walk of its ray's octant reaches counts 0 uncast, and a ray crosses a
 /// block of one class in one step: free costs nothing, occupied ends it, unobserved multiplies by
 /// alpha^k (the hierarchical walk); without, it goes cell by cell (the reference).
 std::vector<ViewGain> count_view_gains(const GainMap& map, const ClassBlocks* blocks,
-                                       std::span<const Frustum> views, CountRule rule,
+                                       std::span<const Frustum> views, GainQuantity quantity,
                                        const GainConfig& config);
 
 }  // namespace vantage

@@ -1,8 +1,8 @@
-#include "vantage/gain/surface_rates.hpp"
+#include "vantage/gain/models/surface_rates.hpp"
 
 #include <stdexcept>
 
-#include "vantage/gain/metrics/shared.hpp"
+#include "vantage/gain/models/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/util/text.hpp"
 

@@ -20,7 +20,7 @@
 #include <span>
 #include <vector>
 
-#include "vantage/gain/detail/metric_rays.hpp"
+#include "vantage/gain/models/metric_rays.hpp"
 
 namespace vantage::detail {
 

@@ -1,4 +1,4 @@
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -8,8 +8,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "vantage/gain/detail/target_sums.hpp"
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/evaluators/target_sums.hpp"
 #include "vantage/map/line_of_sight.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/parallel.hpp"
@@ -96,18 +95,18 @@ struct RayCount {
   bool first = false;  ///< the target is the first grid cell the ray enters
 };
 
-/// Whether a ray may cross a block whose cells hold the classes `cls` in one step under `rule`:
+/// Whether a ray may cross a block whose cells hold the classes `cls` in one step for `quantity`:
 /// for greedy any block without an occupied cell, for the survival reading a block of one class.
-bool crossable(std::uint8_t cls, CountRule rule) {
-  return rule == CountRule::kGreedy ? (cls & ClassBlocks::kHasOccupied) == 0
-                                    : (cls & (cls - 1)) == 0;
+bool crossable(std::uint8_t cls, GainQuantity quantity) {
+  return quantity == GainQuantity::kCount ? (cls & ClassBlocks::kHasOccupied) == 0
+                                          : (cls & (cls - 1)) == 0;
 }
 
 /// Walks from `origin` to `target`, across whole coarse blocks, then whole blocks, where `blocks`
 /// says they are crossable (above) and the target is not in them.
 template <typename Classes>
 RayCount count_ray(const GridSpec& spec, const Classes& class_of, const ClassBlocks* blocks,
-                   const Eigen::Vector3d& origin, const Index3& target, CountRule rule) {
+                   const Eigen::Vector3d& origin, const Index3& target, GainQuantity quantity) {
   constexpr int kCoarseShift = ClassBlocks::kCoarseShift;
   RayCount r;
   if (blocks != nullptr) {
@@ -127,7 +126,7 @@ RayCount count_ray(const GridSpec& spec, const Classes& class_of, const ClassBlo
   // Crosses box `box` (of `size` cells a side, its cells' classes `cls`) in one step when it may
   // be crossed and does not hold the target, counting its cells; an occupied one ends the ray.
   const auto cross = [&](std::uint8_t cls, const Index3& box, const Index3& target_box, int size) {
-    if (box == target_box || !crossable(cls, rule)) return false;
+    if (box == target_box || !crossable(cls, quantity)) return false;
     if (cls == ClassBlocks::kHasOccupied) return r.occluded = true;
     const Index3 lo = box * size;
     const int cells = walk.leave_box(lo, (lo.array() + size - 1).min(spec.dims.array() - 1));
@@ -343,9 +342,13 @@ ClassBlocks summarize_classes(const GainMap& map, std::span<const Frustum> views
 }
 
 std::vector<ViewGain> count_view_gains(const GainMap& map, const ClassBlocks* blocks,
-                                       std::span<const Frustum> views, CountRule rule,
+                                       std::span<const Frustum> views, GainQuantity quantity,
                                        const GainConfig& config) {
   config.validate();
+  if (!counts_classes(quantity)) {
+    throw std::invalid_argument(
+        "count_view_gains: counts the survival reading's cells or greedy's");
+  }
   const GridSpec& spec = map.spec();
   std::vector<double> powers(static_cast<std::size_t>(detail::longest_ray(spec, views)) + 1);
   powers[0] = 1.0;
@@ -354,8 +357,8 @@ std::vector<ViewGain> count_view_gains(const GainMap& map, const ClassBlocks* bl
     return detail::sum_by_origin(
         map, views, config.num_threads,
         [&](const Eigen::Vector3d& origin, const Index3& target) -> TargetPrediction {
-          const RayCount r = count_ray(spec, class_of, blocks, origin, target, rule);
-          if (rule == CountRule::kGreedy) {
+          const RayCount r = count_ray(spec, class_of, blocks, origin, target, quantity);
+          if (quantity == GainQuantity::kCount) {
             const double seen = r.occluded ? 0.0 : 1.0;
             return {seen, seen};
           }

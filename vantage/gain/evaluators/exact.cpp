@@ -1,4 +1,4 @@
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/combinable.h>
@@ -10,9 +10,9 @@
 #include <cstdint>
 #include <stdexcept>
 
-#include "vantage/gain/detail/target_predictors.hpp"
-#include "vantage/gain/detail/target_sums.hpp"
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/evaluators/target_sums.hpp"
+#include "vantage/gain/evaluators/with_predictor.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/map/traversal.hpp"
 #include "vantage/util/hash.hpp"

@@ -1,4 +1,4 @@
-#include "vantage/gain/bounds.hpp"
+#include "vantage/gain/evaluators/bounds.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -81,7 +81,10 @@ int unobserved_floor(const ClassBlocks& blocks, const GridSpec& spec, const Inde
 
 std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec& spec,
                                       const GainMap& map, std::span<const Frustum> views,
-                                      BoundKind kind, double alpha) {
+                                      GainQuantity quantity, double alpha) {
+  if (quantity == GainQuantity::kMetric) {
+    throw std::invalid_argument("view_upper_bounds: no block bounds a metric's value");
+  }
   std::vector<double> bounds(views.size(), 0.0);
   const std::size_t max_depth = 3 * static_cast<std::size_t>(blocks.dims.maxCoeff() + 1) * kBlock;
   std::vector<double> powers(max_depth + 1);
@@ -120,7 +123,8 @@ std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec&
             if (possible) open += blocks.open[oct][i];
           }
           open = std::min(open, blocks.open_any[i]);  // a cell counts once
-          const bool all = kind == BoundKind::kEntropy || kind == BoundKind::kAllCells;
+          const bool all =
+              quantity == GainQuantity::kPaperBits || quantity == GainQuantity::kPaperCells;
           if ((all ? blocks.unobserved[i] : open) == 0) continue;
           const Index3 lo = b * kBlock;
           const Index3 hi = (lo.array() + kBlock).min(spec.dims.array());
@@ -128,23 +132,25 @@ std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec&
                         spec.origin + hi.cast<double>() * spec.resolution, tan_h, tan_v)) {
             continue;
           }
-          switch (kind) {
-            case BoundKind::kSurvivalCells: {
+          switch (quantity) {
+            case GainQuantity::kSurvivalCells: {
               const int n = deep_origin ? 0 : unobserved_floor(blocks, spec, b, o);
               sum += open * powers[std::min<std::size_t>(n, max_depth)];
               break;
             }
-            case BoundKind::kCount:
+            case GainQuantity::kCount:
               sum += open;
               break;
-            case BoundKind::kAllCells:
+            case GainQuantity::kPaperCells:
               sum += blocks.unobserved[i];
               break;
-            case BoundKind::kSurvivalBits:
+            case GainQuantity::kSurvivalBits:
               sum += blocks.open_entropy[i];
               break;
-            case BoundKind::kEntropy:
+            case GainQuantity::kPaperBits:
               sum += blocks.entropy[i];
+              break;
+            case GainQuantity::kMetric:  // refused above
               break;
           }
         }

@@ -1,9 +1,9 @@
 #pragma once
 /// @file
-/// One of the field's volumetric metrics (metrics.hpp, docs/model.md "The field's metrics"),
-/// as a metric type of detail/metric_rays.hpp; registered in gain/methods.cpp.
+/// One of the field's volumetric metrics (docs/model.md "The field's metrics"),
+/// as a metric type (models/metric_type.hpp); registered in gain/methods.cpp.
 
-#include "vantage/gain/detail/metric_rays.hpp"
+#include "vantage/gain/models/metric_type.hpp"
 
 namespace vantage {
 

@@ -1,4 +1,4 @@
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -8,101 +8,14 @@
 #include <limits>
 #include <stdexcept>
 
-#include "vantage/gain/detail/metric_rays.hpp"
 #include "vantage/gain/free_space.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/models/metric_rays.hpp"
 #include "vantage/map/block_census.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {
-
-bool is_volumetric_metric(GainMethod method) {
-  return method_traits(method).kind == MethodKind::kMetric;
-}
-
-void require_model_method(const GainConfig& config, std::string_view who) {
-  if (is_volumetric_metric(config.method)) {
-    throw std::invalid_argument(cat(who, ": ", to_string(config.method),
-                                    " is a volumetric metric; evaluate it with evaluate_views"));
-  }
-}
-
-double area_factor(double x, double alpha) {
-  if (x <= alpha) {
-    const double a2 = alpha * alpha;
-    return (-2.0 / (a2 * alpha)) * x * x * x + (3.0 / a2) * x * x;
-  }
-  const double m = alpha - 1.0, m3 = m * m * m;
-  return (-2.0 * x * x * x + 3.0 * (alpha + 1.0) * x * x - 6.0 * alpha * x + 3.0 * alpha - 1.0) /
-         m3;
-}
-
-std::vector<float> occupied_distance(const GainMap& map, double radius, int num_threads) {
-  const GridSpec& spec = map.spec();
-  std::vector<float> near(map.size(), std::numeric_limits<float>::infinity());
-  const int r = static_cast<int>(std::floor(radius));
-  struct Offset {
-    Index3 d;
-    std::ptrdiff_t linear;
-    float distance;
-  };
-  const std::ptrdiff_t sy = spec.dims.x(), sz = sy * spec.dims.y();
-  // The ball's offsets by ascending z; those of z = dz from first[dz + r] to first[dz + r + 1].
-  std::vector<Offset> ball;
-  std::vector<std::size_t> first;
-  for (int z = -r; z <= r; ++z) {
-    first.push_back(ball.size());
-    for (int y = -r; y <= r; ++y) {
-      for (int x = -r; x <= r; ++x) {
-        const double d = std::sqrt(static_cast<double>(x * x + y * y + z * z));
-        if (d <= radius)
-          ball.push_back({Index3(x, y, z), x + sy * y + sz * z, static_cast<float>(d)});
-      }
-    }
-  }
-  first.push_back(ball.size());
-  // NOTE: each occupied cell stamps the ball of `radius` around it; the minimum does not depend
-  // on the order. Slabs of slices in parallel: each first lists its occupied cells, then writes
-  // its own slices from the occupied cells within r slices of it, each stamping only the part of
-  // its ball in the slab: the same for any thread count.
-  constexpr int kSlab = 8;
-  const int slabs = (spec.dims.z() + kSlab - 1) / kSlab;
-  std::vector<std::vector<std::uint32_t>> occupied(static_cast<std::size_t>(slabs));
-  run_with_threads(num_threads, [&] {
-    tbb::parallel_for(0, slabs, [&](int slab) {
-      const std::size_t from =
-          static_cast<std::size_t>(slab * kSlab) * static_cast<std::size_t>(sz);
-      const std::size_t to = std::min(map.size(), from + kSlab * static_cast<std::size_t>(sz));
-      std::vector<std::uint32_t>& mine = occupied[static_cast<std::size_t>(slab)];
-      for (std::size_t i = from; i < to; ++i) {
-        if (map.value(i).state == CellState::kOccupied)
-          mine.push_back(static_cast<std::uint32_t>(i));
-      }
-    });
-    tbb::parallel_for(0, slabs, [&](int slab) {
-      const int z0 = slab * kSlab, z1 = std::min(spec.dims.z(), z0 + kSlab);
-      const int reach = (r + kSlab - 1) / kSlab;
-      for (int other = std::max(0, slab - reach); other <= std::min(slabs - 1, slab + reach);
-           ++other) {
-        for (const std::uint32_t i : occupied[static_cast<std::size_t>(other)]) {
-          const Index3 c = spec.unravel(i);
-          const int dz_lo = std::max(-r, z0 - c.z()), dz_hi = std::min(r, z1 - 1 - c.z());
-          if (dz_lo > dz_hi) continue;
-          const bool inside = (c.array() >= r).all() && (c.array() < spec.dims.array() - r).all();
-          const std::size_t k_end = first[static_cast<std::size_t>(dz_hi + r + 1)];
-          for (std::size_t k = first[static_cast<std::size_t>(dz_lo + r)]; k < k_end; ++k) {
-            const Offset& o = ball[k];
-            if (!inside && !spec.contains(Index3(c + o.d))) continue;
-            float& slot = near[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + o.linear)];
-            slot = std::min(slot, o.distance);
-          }
-        }
-      }
-    });
-  });
-  return near;
-}
 
 namespace {
 
@@ -184,12 +97,10 @@ FreeSpace cubes_of(const Index3& d, const std::vector<std::int64_t>& label) {
 /// cell is its code.
 FreeSpace uniform_free_space(const GainMap& map) {
   return with_codes(map, [&](const auto* codes) {
-    return cubes_of(block_dims(map.spec()),
-                    block_labels(map.spec(), [&](std::size_t i) -> std::int64_t {
-                      return map.value(i).state == CellState::kFree
-                                 ? static_cast<std::int64_t>(codes[i])
-                                 : -1;
-                    }));
+    return cubes_of(
+        block_dims(map.spec()), block_labels(map.spec(), [&](std::size_t i) -> std::int64_t {
+          return map.value(i).state == CellState::kFree ? static_cast<std::int64_t>(codes[i]) : -1;
+        }));
   });
 }
 
@@ -208,10 +119,10 @@ FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
 
 /// The occupied cells' box and cubes that `method` needs (detail::OccupiedCells).
 detail::OccupiedCells occupied_cells(const GainMap& map, GainMethod method) {
-  const bool rear_side =
-      method == GainMethod::kRearSideVoxel || method == GainMethod::kRearSideEntropy;
+  const MethodTraits& traits = method_traits(method);
+  const bool rear_side = traits.rear_side_rays;
   detail::OccupiedCells out;
-  if (!rear_side && !method_traits(method).needs_distances) return out;
+  if (!rear_side && !traits.needs_distances) return out;
   const GridSpec& spec = map.spec();
   const Index3 d = block_dims(spec);
   std::vector<std::int64_t> label(rear_side ? static_cast<std::size_t>(d.prod()) : 0, 0);
@@ -368,34 +279,6 @@ std::vector<ViewCells> MetricEvaluator::cells(std::span<const Frustum> views,
   }
   return traits.cells(context(map_, near_, spaces(), config_, 1, /*count_cells=*/false), views,
                       cells, config_.num_threads);
-}
-
-std::span<const MetricRound> metric_race_rounds(GainMethod method) {
-  // NOTE: the worst rank of the exact best view among the estimates of all views, over the 48
-  // oracle states: occlusion aware 5 by every 27th ray; unobserved voxel 40 by every 9th and 17
-  // by every 3rd; average entropy 28 and 12; area factor 34 and 5. Each round keeps about twice
-  // that (BENCHMARK.md, "The metrics raced").
-  // The surface model, like the proximity count, sits on the few rays that pass near a surface:
-  // raced with rounds of (9, 96) and (3, 32) it chose views of 0.86-0.998 of the best's value in
-  // 5 of the 48 states (tabletop-1 after 7 and 8 scans, tabletop-2 and pile-b after 8, pile-a
-  // after 6). Both are raced cell by cell instead (MetricEvaluator::cells).
-  static constexpr MetricRound kOcclusionAware[] = {{27, 12}};
-  static constexpr MetricRound kUnobservedVoxel[] = {{9, 64}, {3, 24}};
-  static constexpr MetricRound kAverageEntropy[] = {{9, 48}, {3, 20}};
-  static constexpr MetricRound kAreaFactor[] = {{9, 56}, {3, 10}};
-
-  switch (method) {
-    case GainMethod::kOcclusionAware:
-      return kOcclusionAware;
-    case GainMethod::kUnobservedVoxel:
-      return kUnobservedVoxel;
-    case GainMethod::kAverageEntropy:
-      return kAverageEntropy;
-    case GainMethod::kAreaFactor:
-      return kAreaFactor;
-    default:
-      return {};
-  }
 }
 
 std::vector<ViewGain> metric_view_gains_reference(const GainMap& map,

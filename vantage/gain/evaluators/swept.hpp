@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "vantage/gain/class_map.hpp"
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/types.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
@@ -20,7 +20,7 @@ namespace vantage {
 struct SweptConfig {
   /// Rays across the image's wider side; the other side gets the same pitch.
   int rays_across = 32;
-  /// Survival's a in (0, 1]: the visibility a ray keeps past an unobserved cell (kGreedy: 1).
+  /// Survival's a in (0, 1]: the visibility a ray keeps past an unobserved cell (greedy's: 1).
   double alpha = 0.995;
   /// A ray stops once its visibility falls below this, as the exact evaluation's rays do.
   double epsilon = 1e-6;
@@ -30,8 +30,9 @@ struct SweptConfig {
   bool skip_free = true;
 };
 
-/// Every view's estimated count under `rule` [cells]: the expected unobserved cells seen of the
-/// survival reading, or greedy's unblocked unobserved cells, over the frustum's volume.
+/// Every view's estimated `quantity`, a count of cells (counts_classes, types.hpp) [cells]: the
+/// expected unobserved cells seen of the survival reading, or greedy's unblocked unobserved cells,
+/// over the frustum's volume; throws std::invalid_argument for another quantity.
 ///
 /// Each pixel of a pinhole image over the view's field of view casts one ray from the origin, at
 /// a point jittered within the pixel by a hash of the pixel (the same for every view, so the
@@ -44,6 +45,6 @@ struct SweptConfig {
 /// volume integral of the per-point visibility, which the exact count samples at the cells'
 /// centres. Views run in parallel, each summed in a fixed order: the same for any thread count.
 std::vector<double> swept_view_counts(const ClassMap& map, std::span<const Frustum> views,
-                                      CountRule rule, const SweptConfig& config);
+                                      GainQuantity quantity, const SweptConfig& config);
 
 }  // namespace vantage

@@ -1,4 +1,4 @@
-#include "vantage/gain/view_cells.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -6,9 +6,9 @@
 #include <optional>
 #include <stdexcept>
 
-#include "vantage/gain/detail/target_predictors.hpp"
-#include "vantage/gain/detail/target_sums.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/target_sums.hpp"
+#include "vantage/gain/evaluators/with_predictor.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"
@@ -98,16 +98,17 @@ std::vector<ViewCells> cells_of(const ClassMap& map, std::span<const Frustum> vi
                                 const GainConfig& config,
                                 std::optional<std::span<const std::uint32_t>> sample) {
   config.validate();
-  const TargetRay ray = method_traits(config.method).ray;
-  if (ray != TargetRay::kSurvival && ray != TargetRay::kUnblocked) {
-    // NOTE: the lists hold the cells a view may see; under the paper's model that is every one.
+  // NOTE: the lists sum to the method's quantity in cells, one that reads the cells' classes
+  // alone; they hold the cells a view may see, under the paper's model every one.
+  const GainQuantity quantity = method_traits(config.method).quantity(GainObjective::kCells);
+  if (!counts_classes(quantity)) {
     throw std::invalid_argument(
         cat("exact_view_cells: gain.method must be survival or greedy, got ",
             to_string(config.method)));
   }
   // NOTE: the lists keep v_M only, so the survival reading's rays skip its occupancy filter,
   // and the rays cross free cubes in one step (the same v_M, bit for bit).
-  if (ray == TargetRay::kSurvival) {
+  if (quantity == GainQuantity::kSurvivalCells) {
     return view_cells(
         map, views,
         detail::SurvivalVisibilityPredictor{config.alpha, config.epsilon, &map.free_space()},
@@ -137,7 +138,7 @@ std::vector<ViewCells> paper_view_cells(const GainMap& map, std::span<const Frus
                                         const GainConfig& config,
                                         std::span<const std::uint32_t> cells) {
   config.validate();
-  if (method_traits(config.method).ray != TargetRay::kPaper) {
+  if (method_traits(config.method).quantity(GainObjective::kCells) != GainQuantity::kPaperCells) {
     throw std::invalid_argument(cat("paper_view_cells: gain.method must be the paper's model, got ",
                                     to_string(config.method)));
   }

@@ -1,10 +1,10 @@
 #pragma once
 /// @file
 /// The surface model (issue 37, docs/model.md "The surface model"), as a metric type of
-/// detail/metric_rays.hpp; registered in gain/methods.cpp.
+/// models/metric_type.hpp; registered in gain/methods.cpp.
 
-#include "vantage/gain/detail/metric_rays.hpp"
-#include "vantage/gain/metrics/shared.hpp"
+#include "vantage/gain/models/metric_type.hpp"
+#include "vantage/gain/models/metrics/shared.hpp"
 
 namespace vantage {
 
@@ -25,7 +25,7 @@ namespace vantage {
 struct Surface {
   static constexpr bool kFreeInert = true;
   static constexpr bool kNearRays = true;  // the far class dims, but a ray of it alone credits 0
-  static constexpr bool kCellSum = true;   // detail/metric_cells.hpp
+  static constexpr bool kCellSum = true;   // models/metric_cells.hpp
   explicit Surface(const detail::MetricContext& ctx) : rates(ctx.surface_rates) {}
   SurfaceRates rates;
   double sum = 0.0;

@@ -1,6 +1,6 @@
 #pragma once
 /// @file
-/// The pinhole image of rays a metric casts from one view (detail/metric_rays.hpp): its rays'
+/// The pinhole image of rays a metric casts from one view (models/metric_rays.hpp): its rays'
 /// directions, the pitch they keep at the farthest cell in view, and what a coarser image's cells
 /// stand for.
 

@@ -1,4 +1,4 @@
-#include "vantage/gain/swept.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
 
 #include <tbb/parallel_for.h>
 
@@ -93,12 +93,16 @@ double view_credit(const ClassMap& map, const FreeSpace& free, const Frustum& vi
 }  // namespace
 
 std::vector<double> swept_view_counts(const ClassMap& map, std::span<const Frustum> views,
-                                      CountRule rule, const SweptConfig& config) {
+                                      GainQuantity quantity, const SweptConfig& config) {
+  if (!counts_classes(quantity)) {
+    throw std::invalid_argument(
+        "swept_view_counts: counts the survival reading's cells or greedy's");
+  }
   if (config.rays_across < 1 || config.rays_across > 4096) {
     throw std::invalid_argument(
         cat("swept.rays_across must lie in [1, 4096], got ", config.rays_across));
   }
-  const double alpha = rule == CountRule::kGreedy ? 1.0 : config.alpha;
+  const double alpha = quantity == GainQuantity::kCount ? 1.0 : config.alpha;
   if (!(alpha > 0.0 && alpha <= 1.0)) {
     throw std::invalid_argument(cat("swept.alpha must lie in (0, 1], got ", alpha));
   }

@@ -14,7 +14,7 @@
 #include <span>
 #include <vector>
 
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/types.hpp"
 #include "vantage/map/traversal.hpp"

@@ -20,20 +20,12 @@
 #include <vector>
 
 #include "vantage/gain/free_space.hpp"
-#include "vantage/gain/metrics/shared.hpp"
+#include "vantage/gain/models/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/types.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage {
-
-/// Whether `method` is one of the seven metrics of this file.
-bool is_volumetric_metric(GainMethod method);
-
-/// Throws std::invalid_argument, naming `who`, when `config.method` is one of the metrics: the
-/// paper's evaluations (exact, fast) compute the paper's model or greedy's count only, and would
-/// otherwise silently give the paper's model for a metric.
-void require_model_method(const GainConfig& config, std::string_view who);
 
 /// The fast evaluation casts every kFastSubsample-th ray of the exact one along each image axis,
 /// as rpg subsamples the camera image.
@@ -44,7 +36,7 @@ inline constexpr int kFastSubsample = 3;
 /// in view is crossed by a ray), kFast and kAuto every kFastSubsample-th of those rays along each
 /// axis. `ViewGain::gain` is the metric's value; `ViewGain::cells` and `targets` the unobserved
 /// cells the rays reach before their first occupied cell, counted once (the unobserved-voxel
-/// count). The rays cross free space by the jumping walk of detail/metric_rays.hpp (docs/model.md,
+/// count). The rays cross free space by the jumping walk of models/metric_rays.hpp (docs/model.md,
 /// "The metrics at speed"). Deterministic for any thread count. Throws std::invalid_argument for
 /// another method.
 std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frustum> views,
@@ -54,28 +46,12 @@ std::vector<ViewGain> metric_view_gains(const GainMap& map, std::span<const Frus
 std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<const Frustum> views,
                                         const GainConfig& config);
 
-/// A round of a metric's race (the swept search, docs/decision.md "The swept search"): the views
-/// still in the race estimated by every `coarseness`-th of the metric's rays along each image axis
-/// (MetricEvaluator::gains), the best `keep` of them passed on to the next round.
-struct MetricRound {
-  int coarseness;
-  std::size_t keep;
-};
-
-/// The rounds of `method`'s race before the last, which evaluates the views left exactly; empty
-/// when the metric's coarser rays rank too poorly to race (the rear side metrics, the proximity
-/// count and the surface model, whose value sits on few rays: the race would need most views to
-/// keep its choice), so that every view is evaluated exactly, or raced cell by cell
-/// (MetricEvaluator::cells). Sized on the oracle states of
-/// tests/gain/metrics_race_scenes_test.cpp (docs/model.md, "The metrics at speed").
-std::span<const MetricRound> metric_race_rounds(GainMethod method);
-
 namespace detail {
 
 struct Spaces;
 
 /// What a metric whose rays must pass near an occupied cell to change it needs of the occupied
-/// cells (detail::reach_cells in detail/metric_rays.hpp), found in one pass over the grid.
+/// cells (detail::reach_cells, models/metric_type.hpp), found in one pass over the grid.
 struct OccupiedCells {
   /// The box of their centres [m], empty when none is (MetricContext::occupied): for the rear
   /// side metrics and those that read distances; unset for the others.
@@ -106,7 +82,7 @@ class MetricEvaluator {
                               bool count_cells = true) const;
 
   /// Whether the metric's value is a sum of what each cell is credited (the surface model and
-  /// the proximity count; detail/metric_cells.hpp): cells() then lists it cell by cell.
+  /// the proximity count; models/metric_cells.hpp): cells() then lists it cell by cell.
   bool lists_cells() const;
   /// The cells such a metric may credit, ascending: the unobserved cells within D of an occupied
   /// cell; empty for another metric.

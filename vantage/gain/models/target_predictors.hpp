@@ -1,9 +1,9 @@
 #pragma once
 /// @file
 /// The target models' rays (methods.hpp, MethodKind::kTargetModel): what one target cell's ray
-/// predicts under each model, and `with_predictor`, which hands the one `GainConfig::method` names
-/// to a traversal strategy (exact.cpp sums them per view; the swept search's race lists them per
-/// cell). A predictor is a small value with
+/// predicts under each model. evaluators/with_predictor.hpp hands the one `GainConfig::method`
+/// names to a traversal strategy (exact.cpp sums them per view; the swept search's race lists
+/// them per cell). A predictor is a small value with
 ///   template <typename Cells>
 ///   TargetPrediction operator()(const Cells&, const Eigen::Vector3d& origin, const Index3& target)
 ///   const;
@@ -13,7 +13,6 @@
 #include <cstddef>
 
 #include "vantage/gain/free_space.hpp"
-#include "vantage/gain/methods.hpp"
 #include "vantage/gain/model.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/gain/snapshot.hpp"
@@ -141,18 +140,5 @@ struct UnblockedPredictor {
     return {1.0, 1.0};
   }
 };
-
-/// Calls `f` with the predictor of `config.method`'s ray, for rays of at most `longest` cells from
-/// a map with minimum probability `p_min`; returns what `f` returns. The one switch over the
-/// target models.
-template <typename Model = PaperModel, typename F>
-decltype(auto) with_predictor(const GainConfig& config, double p_min, int longest, F&& f) {
-  const TargetRay ray = method_traits(config.method).ray;
-  if (ray == TargetRay::kUnblocked) return f(UnblockedPredictor{});
-  if (ray == TargetRay::kSurvival) {
-    return f(SurvivalPredictor{SurvivalModel(config.alpha, p_min, longest), config.epsilon});
-  }
-  return f(PaperPredictor<Model>{RayTables<Model>(config.alpha, p_min, longest), config.epsilon});
-}
 
 }  // namespace vantage::detail
