@@ -77,6 +77,25 @@ int unobserved_floor(const ClassBlocks& blocks, const GridSpec& spec, const Inde
   return std::max(d - 1, crossings);
 }
 
+/// The unobserved cells of block `b` that some walk from `o` may reach: those open in the
+/// octants the rays to the block's cells may run in (per axis one, or both), each counted once.
+std::uint32_t open_toward(const ClassBlocks& blocks, const GridSpec& spec, const Index3& b,
+                          const Eigen::Vector3d& o) {
+  const std::size_t i = blocks.at(b);
+  std::uint32_t open = 0;
+  const Eigen::Vector3d c_lo = spec.center(b * kBlock);
+  const Eigen::Vector3d c_hi =
+      spec.center(((b.array() + 1) * kBlock - 1).min(spec.dims.array() - 1).matrix());
+  for (int oct = 0; oct < 8; ++oct) {
+    bool possible = true;
+    for (int a = 0; a < 3 && possible; ++a) {
+      possible = ((oct >> a) & 1) ? c_hi[a] > o[a] : c_lo[a] <= o[a];
+    }
+    if (possible) open += blocks.open[oct][i];
+  }
+  return std::min(open, blocks.open_any[i]);
+}
+
 }  // namespace
 
 std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec& spec,
@@ -110,19 +129,7 @@ std::vector<double> view_upper_bounds(const ClassBlocks& blocks, const GridSpec&
       for (b.y() = blo.y(); b.y() <= bhi.y(); ++b.y()) {
         for (b.x() = blo.x(); b.x() <= bhi.x(); ++b.x()) {
           const std::size_t i = blocks.at(b);
-          // The octants the rays to the block's cells may run in: per axis one, or both.
-          std::uint32_t open = 0;
-          const Eigen::Vector3d c_lo = spec.center(b * kBlock);
-          const Eigen::Vector3d c_hi =
-              spec.center(((b.array() + 1) * kBlock - 1).min(spec.dims.array() - 1).matrix());
-          for (int oct = 0; oct < 8; ++oct) {
-            bool possible = true;
-            for (int a = 0; a < 3 && possible; ++a) {
-              possible = ((oct >> a) & 1) ? c_hi[a] > o[a] : c_lo[a] <= o[a];
-            }
-            if (possible) open += blocks.open[oct][i];
-          }
-          open = std::min(open, blocks.open_any[i]);  // a cell counts once
+          const std::uint32_t open = open_toward(blocks, spec, b, o);
           const bool all =
               quantity == GainQuantity::kPaperBits || quantity == GainQuantity::kPaperCells;
           if ((all ? blocks.unobserved[i] : open) == 0) continue;

@@ -257,6 +257,21 @@ void fill_octant_reach(const GridSpec& spec, const Classes& class_of,
   }
 }
 
+/// The classes of each coarse block (ClassBlocks::kCoarse), from its blocks'.
+void fill_coarse_classes(ClassBlocks& blocks) {
+  constexpr int kRatio = ClassBlocks::kCoarse / kBlock;
+  blocks.coarse_dims = (blocks.dims.array() + (kRatio - 1)) / kRatio;
+  blocks.coarse_classes.assign(static_cast<std::size_t>(blocks.coarse_dims.prod()), 0);
+  Index3 b;
+  for (b.z() = 0; b.z() < blocks.dims.z(); ++b.z()) {
+    for (b.y() = 0; b.y() < blocks.dims.y(); ++b.y()) {
+      for (b.x() = 0; b.x() < blocks.dims.x(); ++b.x()) {
+        blocks.coarse_classes[blocks.coarse_at(b / kRatio)] |= blocks.classes[blocks.at(b)];
+      }
+    }
+  }
+}
+
 }  // namespace
 
 ClassBlocks summarize_classes(const GainMap& map, std::span<const Frustum> views, int num_threads) {
@@ -327,17 +342,7 @@ ClassBlocks summarize_classes(const GainMap& map, std::span<const Frustum> views
     return 0;
   });
   octant_depths(blocks, spec);
-  constexpr int kRatio = ClassBlocks::kCoarse / kBlock;
-  blocks.coarse_dims = (blocks.dims.array() + (kRatio - 1)) / kRatio;
-  blocks.coarse_classes.assign(static_cast<std::size_t>(blocks.coarse_dims.prod()), 0);
-  Index3 b;
-  for (b.z() = 0; b.z() < blocks.dims.z(); ++b.z()) {
-    for (b.y() = 0; b.y() < blocks.dims.y(); ++b.y()) {
-      for (b.x() = 0; b.x() < blocks.dims.x(); ++b.x()) {
-        blocks.coarse_classes[blocks.coarse_at(b / kRatio)] |= blocks.classes[blocks.at(b)];
-      }
-    }
-  }
+  fill_coarse_classes(blocks);
   return blocks;
 }
 

@@ -38,6 +38,22 @@ std::vector<ViewGain> exact_values(const GainMap& map, const ClassBlocks& blocks
                                   : exact_view_gains(map, views, config);
 }
 
+/// The candidates grouped by the origin of their first view (views_by_origin).
+struct OriginGroups {
+  std::vector<std::vector<std::size_t>> candidates;  ///< per origin, its candidates
+  std::vector<std::size_t> group_of;                 ///< per candidate, its origin's group
+  OriginGroups(std::span<const Frustum> frusta, std::span<const std::size_t> first) {
+    const std::size_t n = first.size() - 1;
+    std::vector<Frustum> first_views;
+    for (std::size_t c = 0; c < n; ++c) first_views.push_back(frusta[first[c]]);
+    candidates = views_by_origin(first_views);
+    group_of.resize(n);
+    for (std::size_t g = 0; g < candidates.size(); ++g) {
+      for (const std::size_t c : candidates[g]) group_of[c] = g;
+    }
+  }
+};
+
 /// Chooses among the candidates whose views are `frusta[first[c] .. first[c + 1])`; candidate c's
 /// score is the sum over its views of the view's `quantity` times `factor[c]`, in view order,
 /// exactly as the exhaustive search sums it.
@@ -75,13 +91,9 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
   // Single-view candidates by origin: views from one origin share each target's ray
   // (exact_view_gains), so the candidates of an origin still in the race are evaluated together.
   const auto single = [&](std::size_t c) { return first[c + 1] - first[c] == 1; };
-  std::vector<Frustum> first_views;
-  for (std::size_t c = 0; c < n; ++c) first_views.push_back(frusta[first[c]]);
-  const std::vector<std::vector<std::size_t>> by_origin = views_by_origin(first_views);
-  std::vector<std::size_t> group_of(n);
-  for (std::size_t g = 0; g < by_origin.size(); ++g) {
-    for (const std::size_t c : by_origin[g]) group_of[c] = g;
-  }
+  const OriginGroups origins(frusta, first);
+  const std::vector<std::vector<std::size_t>>& by_origin = origins.candidates;
+  const std::vector<std::size_t>& group_of = origins.group_of;
   for (const std::size_t c : order) {
     if (!out.estimated[c]) continue;  // evaluated with another of its origin
     // NOTE: bounds are in descending order, so once one cannot beat the best, none after can.
