@@ -24,11 +24,11 @@
 #include "bench/octomap_gain.hpp"
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/recorded.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
 #include "vantage/gain/free_space.hpp"
-#include "vantage/gain/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
-#include "vantage/gain/swept.hpp"
 #include "vantage/io/octomap_io.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/choose.hpp"
@@ -341,15 +341,14 @@ void BM_DecisionAtScale(benchmark::State& bench) {
       static_cast<double>(blocks.bytes()) / (4.0 * static_cast<double>(s.grid.size()));
   GainConfig gain = config.gain;
   gain.method = config.method.gain;
-  const bool greedy = method_traits(gain.method).counts;
-  const std::vector<ViewGain> exact = count_view_gains(
-      map, &blocks, views, greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain);
+  const GainQuantity quantity = decision_quantity(config);
+  const std::vector<ViewGain> exact = count_view_gains(map, &blocks, views, quantity, gain);
   std::vector<double> scores;
   for (std::size_t c = 0; c < exact.size(); ++c) {
     const double factor = config.method == PlannerMethod::kLatombe
                               ? std::exp(-config.lambda * s.candidates[c].travel)
                               : 1.0;
-    scores.push_back((greedy ? exact[c].gain : exact[c].cells) * factor);
+    scores.push_back(exact[c].value(quantity) * factor);
   }
   bench.counters["candidates"] = static_cast<double>(s.candidates.size());
   bench.counters["evaluated"] = static_cast<double>(plan.evaluated);
@@ -387,7 +386,7 @@ void BM_SweptEstimate(benchmark::State& bench) {
   config.num_threads = 2;
   std::vector<double> estimate;
   for (auto _ : bench)
-    estimate = swept_view_counts(classes, views, CountRule::kSurvivalCells, config);
+    estimate = swept_view_counts(classes, views, GainQuantity::kSurvivalCells, config);
   bench.counters["views"] = static_cast<double>(views.size());
   bench.counters["s_per_view"] = benchmark::Counter(
       static_cast<double>(views.size()),
@@ -399,7 +398,8 @@ void BM_SweptEstimate(benchmark::State& bench) {
   gain.alpha = kSurvivalAlpha;
   const ClassBlocks blocks = summarize_classes(map, views);
   std::vector<double> exact;
-  for (const ViewGain& g : count_view_gains(map, &blocks, views, CountRule::kSurvivalCells, gain)) {
+  for (const ViewGain& g :
+       count_view_gains(map, &blocks, views, GainQuantity::kSurvivalCells, gain)) {
     exact.push_back(g.cells);
   }
   const std::size_t best = choose_best(exact);
@@ -444,7 +444,8 @@ void BM_SweptFreeCubes(benchmark::State& bench) {
   config.num_threads = 2;
   config.skip_free = bench.range(1) != 0;
   for (auto _ : bench) {
-    benchmark::DoNotOptimize(swept_view_counts(classes, views, CountRule::kSurvivalCells, config));
+    benchmark::DoNotOptimize(
+        swept_view_counts(classes, views, GainQuantity::kSurvivalCells, config));
   }
 }
 BENCHMARK(BM_SweptFreeCubes)

@@ -4,7 +4,7 @@
 
 #include "bench/fixtures.hpp"
 #include "bench/octomap_gain.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/planner.hpp"
 

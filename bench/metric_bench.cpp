@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/methods.hpp"
-#include "vantage/gain/metrics.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/world.hpp"

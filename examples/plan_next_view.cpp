@@ -1,7 +1,7 @@
 // Plans the next view of a box on a table from two scans, with an installed Vantage, and writes
 // the map as an OctoMap file.
 #include <cstdio>
-#include <vantage/gain/exact.hpp>
+#include <vantage/gain/evaluators/exact.hpp>
 #include <vantage/io/octomap_io.hpp>
 #include <vantage/map/integrate.hpp>
 #include <vantage/planner/choose.hpp>

@@ -9,7 +9,7 @@
 // and tests/architecture/worked_examples_test.cpp compiles this file and runs it behind the
 // interface.
 
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/search.hpp"
 
@@ -17,9 +17,10 @@ namespace vantage {
 namespace {
 
 /// Every candidate evaluated by the exact evaluation, whatever GainConfig::evaluation says: the
-/// paper's definition of every view's gain, for the target models that rank by a gain.
+/// paper's definition of every view's gain, for greedy's count ranked by a gain. What a decision
+/// computes is the registry's answer (decision_quantity), not the method's name.
 bool serves(const PlannerConfig& config) {
-  return ranks_by_gain(config.method) && config.method.gain == GainMethod::kGreedy;
+  return ranks_by_gain(config.method) && decision_quantity(config) == GainQuantity::kCount;
 }
 
 Plan run(const SearchInput& in) {
@@ -27,7 +28,7 @@ Plan run(const SearchInput& in) {
   plan.search = DecisionSearch{"exact"};
   plan.gains = in.views.sums(exact_view_gains(in.grid, in.views.frusta, in.gain));
   for (std::size_t c = 0; c < plan.gains.size(); ++c) {
-    plan.scores.push_back(plan.gains[c].gain * in.travel_factor(c));
+    plan.scores.push_back(plan.gains[c].value(in.quantity()) * in.travel_factor(c));
   }
   plan.best = choose_best(plan.scores);
   plan.evaluated = plan.gains.size();

@@ -1,16 +1,17 @@
 #pragma once
 /// @file
-/// docs/architecture.md, "Add a model": a metric in its own file, as vantage/gain/metrics/ holds
-/// them. To make it a method, this file goes to vantage/gain/metrics/frontier_voxel.hpp and one
-/// row goes to the registry, vantage/gain/methods.cpp:
+/// docs/architecture.md, "Add a model": a metric in its own file, as vantage/gain/models/metrics/
+/// holds them. To make it a method, this file goes to
+/// vantage/gain/models/metrics/frontier_voxel.hpp and one row goes to the registry,
+/// vantage/gain/methods.cpp:
 ///
-///   metric(GainMethod::kFrontierVoxel, "frontier-voxel", &all_views<FrontierVoxel>),
+///   metric<FrontierVoxel>(GainMethod::kFrontierVoxel, "frontier-voxel"),
 ///
 /// naming the enum value it adds to GainMethod (vantage/gain/types.hpp) and, to be chosen by
 /// name, to PlannerMethod (vantage/planner/types.hpp). tests/architecture/worked_examples_test.cpp
 /// compiles this file and holds it to its definition.
 
-#include "vantage/gain/detail/metric_rays.hpp"
+#include "vantage/gain/models/metric_type.hpp"
 
 namespace vantage {
 

@@ -4,7 +4,10 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
+
 namespace vantage {
+struct MapperConfig;
 struct PlannerConfig;
 }  // namespace vantage
 
@@ -20,8 +23,15 @@ void bind_planner_config(pybind11::module_& m);
 /// its method the default one for views around objects with the robot's pose known or not
 /// (default_planner_method).
 PlannerConfig default_planner_config(bool knows_pose);
-/// Candidate poses, the planner, the mapper and recorded data.
+/// Candidate poses: look_at, the ring, the sphere, the candidate sets, and the grid of a region.
+void bind_candidates(pybind11::module_& m);
+/// The decision: Plan, plan_next_view, and plan (clouds mapped, then the decision).
 void bind_plan(pybind11::module_& m);
+/// The Mapper, manifests and the clouds they list, point cloud files.
+void bind_mapping(pybind11::module_& m);
+/// The mapping settings `vantage plan` derives from a manifest with these options.
+MapperConfig recorded_mapper_config(const std::string& integration, bool table_segmentation,
+                                    bool icp, int num_threads);
 /// Simulated scenes, sensors and scans.
 void bind_sim(pybind11::module_& m);
 /// The exploration loop a scan at a time (ExploreEnv's engine) and a Python policy's sweep.

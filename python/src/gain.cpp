@@ -39,13 +39,8 @@ GainConfig make_gain_config(const std::string& method, const std::string& evalua
   return config;
 }
 
-}  // namespace
-
-void bind_gain(py::module_& m) {
-  m.attr("TABLE_TOP_ALPHA") = kTableTopAlpha;
-  m.attr("OFFICE_ALPHA") = kOfficeAlpha;
-  m.def("entropy_bits", &entropy_bits, py::arg("p"), "Binary entropy of p [bits].");
-
+/// RayTrace and RayModel: the paper's model of one ray, cell by cell.
+void def_ray_model(py::module_& m) {
   py::class_<RayTrace>(m, "RayTrace",
                        "The model's state at every cell of one ray, cell 0 being the sensor's.")
       .def_property_readonly(
@@ -85,6 +80,16 @@ void bind_gain(py::module_& m) {
           py::arg("occupancy"),
           "Runs the model along a ray of occupancy probabilities, cell 0 at the sensor. "
           "ValueError for an empty ray or a probability outside [0, 1].");
+}
+
+}  // namespace
+
+void bind_gain(py::module_& m) {
+  m.attr("TABLE_TOP_ALPHA") = kTableTopAlpha;
+  m.attr("OFFICE_ALPHA") = kOfficeAlpha;
+  m.def("entropy_bits", &entropy_bits, py::arg("p"), "Binary entropy of p [bits].");
+
+  def_ray_model(m);
 
   py::class_<GainConfig>(m, "GainConfig", "Settings of a gain evaluation.")
       .def(py::init(&make_gain_config), py::arg("method") = "probabilistic",

@@ -124,13 +124,35 @@ py::dict save(const OccupancyGrid& grid, const std::filesystem::path& path) {
   return out;
 }
 
-}  // namespace
+OccupancyGrid make_grid(const GridSpec& spec, double p_hit, double p_miss, double p_min,
+                        double p_max) {
+  check_grid_memory(spec, kOccupancyGridBytesPerCell, "an OccupancyGrid");
+  return OccupancyGrid(spec, OccupancyParams{p_hit, p_miss, p_min, p_max});
+}
 
-void bind_map(py::module_& m) {
-  m.attr("UNOBSERVED") = static_cast<int>(CellState::kUnobserved);
-  m.attr("FREE") = static_cast<int>(CellState::kFree);
-  m.attr("OCCUPIED") = static_cast<int>(CellState::kOccupied);
+py::array_t<double> probabilities(const OccupancyGrid& g) {
+  return per_cell<double>(g, [&](std::size_t i) { return g.probability(i); });
+}
 
+py::array_t<float> log_odds(const OccupancyGrid& g) {
+  return per_cell<float>(g, [&](std::size_t i) { return g.log_odds(i); });
+}
+
+py::array_t<std::uint8_t> states(const OccupancyGrid& g) {
+  return per_cell<std::uint8_t>(
+      g, [&](std::size_t i) { return static_cast<std::uint8_t>(g.state(i)); });
+}
+
+py::dict counts_of(const OccupancyGrid& g) {
+  const CellCounts c = g.counts();
+  py::dict out;
+  out["unobserved"] = c.unobserved;
+  out["free"] = c.free;
+  out["occupied"] = c.occupied;
+  return out;
+}
+
+void def_grid_spec(py::module_& m) {
   py::class_<GridSpec>(m, "GridSpec",
                        "Where a dense grid of cubic cells lies: cell (i, j, k) spans origin + "
                        "(i, j, k) * resolution to the next corner [m].")
@@ -173,7 +195,9 @@ void bind_map(py::module_& m) {
           py::arg("point"), "Cell (i, j, k) holding a point; IndexError outside the grid.")
       .def(py::self == py::self)
       .def("__repr__", &repr);
+}
 
+void def_sensor_fov(py::module_& m) {
   py::class_<SensorFov>(m, "SensorFov",
                         "A depth sensor's field of view: full horizontal and vertical angles "
                         "[rad] and range limits [m]. The sensor looks along +x, +y left, +z up.")
@@ -204,32 +228,13 @@ void bind_map(py::module_& m) {
         return cat("SensorFov(h_fov=", f.h_fov, ", v_fov=", f.v_fov, ", min_range=", f.min_range,
                    ", max_range=", f.max_range, ")");
       });
+}
 
-  py::class_<IntegrationResult>(m, "IntegrationResult", "What integrating one scan changed.")
-      .def_property_readonly(
-          "left_unobserved", [](const IntegrationResult& r) { return r.left_unobserved.size(); },
-          "Cells that left the unobserved class: the scan's actual gain [cells].")
-      .def_property_readonly(
-          "entered_unobserved",
-          [](const IntegrationResult& r) { return r.entered_unobserved.size(); },
-          "Cells a hit or miss moved back into the unobserved class.")
-      .def_readonly("points_inside", &IntegrationResult::points_inside, "Points in the grid.")
-      .def_readonly("points_outside", &IntegrationResult::points_outside,
-                    "Points outside the grid (their rays still count).")
-      .def_readonly("hit_cells", &IntegrationResult::hit_cells, "Distinct cells hit.")
-      .def_readonly("filled_cells", &IntegrationResult::filled_cells,
-                    "Cells hole filling turned occupied.")
-      .def_readonly("missed_cells", &IntegrationResult::missed_cells, "Distinct cells missed.");
-
+void def_occupancy_grid(py::module_& m) {
   py::class_<OccupancyGrid>(m, "OccupancyGrid",
                             "A dense occupancy grid in log-odds, updated as OctoMap does. Arrays "
                             "it returns have the grid's shape and are indexed [i, j, k].")
-      .def(py::init(
-               [](const GridSpec& spec, double p_hit, double p_miss, double p_min, double p_max) {
-                 check_grid_memory(spec, kOccupancyGridBytesPerCell, "an OccupancyGrid");
-                 return OccupancyGrid(spec, OccupancyParams{p_hit, p_miss, p_min, p_max});
-               }),
-           py::arg("spec"), py::arg("p_hit") = OccupancyParams{}.p_hit,
+      .def(py::init(&make_grid), py::arg("spec"), py::arg("p_hit") = OccupancyParams{}.p_hit,
            py::arg("p_miss") = OccupancyParams{}.p_miss, py::arg("p_min") = OccupancyParams{}.p_min,
            py::arg("p_max") = OccupancyParams{}.p_max,
            "An all-unknown grid (p = 0.5) with OctoMap's hit/miss/clamp probabilities. "
@@ -237,37 +242,13 @@ void bind_map(py::module_& m) {
       .def_property_readonly("spec", &OccupancyGrid::spec, "The grid's GridSpec.")
       .def_property_readonly(
           "shape", [](const OccupancyGrid& g) { return shape_of(g.spec()); }, "(nx, ny, nz).")
-      .def(
-          "probabilities",
-          [](const OccupancyGrid& g) {
-            return per_cell<double>(g, [&](std::size_t i) { return g.probability(i); });
-          },
-          "Occupancy probability of every cell, float64 [i, j, k].")
-      .def(
-          "log_odds",
-          [](const OccupancyGrid& g) {
-            return per_cell<float>(g, [&](std::size_t i) { return g.log_odds(i); });
-          },
-          "Stored log-odds of every cell, float32 [i, j, k].")
-      .def(
-          "states",
-          [](const OccupancyGrid& g) {
-            return per_cell<std::uint8_t>(
-                g, [&](std::size_t i) { return static_cast<std::uint8_t>(g.state(i)); });
-          },
-          "Class of every cell, uint8 [i, j, k]: UNOBSERVED (0.4 < p < 0.6), FREE (p <= 0.4) or "
-          "OCCUPIED (p >= 0.6).")
-      .def(
-          "counts",
-          [](const OccupancyGrid& g) {
-            const CellCounts c = g.counts();
-            py::dict out;
-            out["unobserved"] = c.unobserved;
-            out["free"] = c.free;
-            out["occupied"] = c.occupied;
-            return out;
-          },
-          "Cells in each class: {'unobserved', 'free', 'occupied'}.")
+      .def("probabilities", &probabilities,
+           "Occupancy probability of every cell, float64 [i, j, k].")
+      .def("log_odds", &log_odds, "Stored log-odds of every cell, float32 [i, j, k].")
+      .def("states", &states,
+           "Class of every cell, uint8 [i, j, k]: UNOBSERVED (0.4 < p < 0.6), FREE (p <= 0.4) or "
+           "OCCUPIED (p >= 0.6).")
+      .def("counts", &counts_of, "Cells in each class: {'unobserved', 'free', 'occupied'}.")
       .def("set_probabilities", &set_probabilities, py::arg("probabilities"),
            "Sets every cell from an array of the grid's shape (clamped as the grid clamps). "
            "ValueError naming the first value outside [0, 1]; the grid is unchanged then.")
@@ -299,6 +280,33 @@ void bind_map(py::module_& m) {
         return cat("OccupancyGrid(", repr(g.spec()), ", unobserved=", c.unobserved,
                    ", free=", c.free, ", occupied=", c.occupied, ")");
       });
+}
+
+}  // namespace
+
+void bind_map(py::module_& m) {
+  m.attr("UNOBSERVED") = static_cast<int>(CellState::kUnobserved);
+  m.attr("FREE") = static_cast<int>(CellState::kFree);
+  m.attr("OCCUPIED") = static_cast<int>(CellState::kOccupied);
+  def_grid_spec(m);
+  def_sensor_fov(m);
+  py::class_<IntegrationResult>(m, "IntegrationResult", "What integrating one scan changed.")
+      .def_property_readonly(
+          "left_unobserved", [](const IntegrationResult& r) { return r.left_unobserved.size(); },
+          "Cells that left the unobserved class: the scan's actual gain [cells].")
+      .def_property_readonly(
+          "entered_unobserved",
+          [](const IntegrationResult& r) { return r.entered_unobserved.size(); },
+          "Cells a hit or miss moved back into the unobserved class.")
+      .def_readonly("points_inside", &IntegrationResult::points_inside, "Points in the grid.")
+      .def_readonly("points_outside", &IntegrationResult::points_outside,
+                    "Points outside the grid (their rays still count).")
+      .def_readonly("hit_cells", &IntegrationResult::hit_cells, "Distinct cells hit.")
+      .def_readonly("filled_cells", &IntegrationResult::filled_cells,
+                    "Cells hole filling turned occupied.")
+      .def_readonly("missed_cells", &IntegrationResult::missed_cells, "Distinct cells missed.");
+
+  def_occupancy_grid(m);
 }
 
 }  // namespace vantage::python

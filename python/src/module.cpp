@@ -65,7 +65,9 @@ PYBIND11_MODULE(_vantage, m) {
   vantage::python::bind_map(m);
   vantage::python::bind_gain(m);
   vantage::python::bind_planner_config(m);
+  vantage::python::bind_candidates(m);
   vantage::python::bind_plan(m);
+  vantage::python::bind_mapping(m);
   vantage::python::bind_sim(m);
   vantage::python::bind_env(m);
 }

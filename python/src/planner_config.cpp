@@ -103,11 +103,7 @@ void bind_planner_config(py::module_& m) {
       .def_readonly("greedy_reference", &PlannerConfig::greedy_reference,
                     "Whether every candidate's greedy gain is predicted too.")
       .def_property_readonly(
-          "search",
-          [](const PlannerConfig& c) {
-            return sequence_of(c).active() ? std::string("sequence")
-                                           : std::string(to_string(resolve_search(c)));
-          },
+          "search", [](const PlannerConfig& c) { return std::string(resolve_decider(c).name()); },
           "The search that decides: the one given, or the fastest that serves the method.")
       .def_property_readonly(
           "objective", [](const PlannerConfig& c) { return std::string(to_string(c.objective)); },

@@ -37,6 +37,38 @@ py::array_t<double> scan(const sim::World& world, const Eigen::Matrix4d& T_world
   return from_cloud(points);
 }
 
+/// World: a scene ready to scan.
+void def_world(py::module_& m) {
+  py::class_<sim::World>(m, "World",
+                         "A scene loaded into Embree, ready to scan with the scene's sensor.")
+      .def(py::init([](const py::object& scene, const std::string& sensor, int num_threads) {
+             sim::Scene s = py::isinstance<py::str>(scene) ? load(scene.cast<std::string>())
+                                                           : scene.cast<sim::Scene>();
+             if (!sensor.empty()) s.sensor = sim::builtin_sensor(sensor);
+             sim::WorldConfig config{num_threads};
+             config.validate();
+             return std::make_unique<sim::World>(std::move(s), config);
+           }),
+           py::arg("scene"), py::arg("sensor") = "", py::arg("num_threads") = 0,
+           "A Scene, or a scene's name or file; `sensor` replaces the scene's ('hokuyo' or "
+           "'kinect'); num_threads 0 = all cores (scans do not depend on it).")
+      .def_property_readonly("scene", &sim::World::scene, "The Scene.")
+      .def("scan", &scan, py::arg("T_world_sensor"), py::arg("seed") = 1,
+           py::arg("frame") = "sensor",
+           "One scan from the 4 x 4 sensor pose: an N x 3 array of the points hit, in the sensor "
+           "frame (x forward, y left, z up) or with frame='world' in the world [m]. Range noise "
+           "(and the scene's pose noise, see noisy_pose) are drawn from `seed`.")
+      .def(
+          "noisy_pose",
+          [](const sim::World& w, const Eigen::Matrix4d& T_world_sensor, std::uint64_t seed) {
+            return Eigen::Matrix4d(
+                w.noisy_pose(to_pose(T_world_sensor, "T_world_sensor"), seed).matrix());
+          },
+          py::arg("T_world_sensor"), py::arg("seed") = 1,
+          "The pose a robot believes after the scene's pose noise for `seed` (the true pose "
+          "when the scene has none).");
+}
+
 }  // namespace
 
 void bind_sim(py::module_& m) {
@@ -100,34 +132,7 @@ void bind_sim(py::module_& m) {
                    ", sensor=", s.sensor.name, ")");
       });
 
-  py::class_<sim::World>(m, "World",
-                         "A scene loaded into Embree, ready to scan with the scene's sensor.")
-      .def(py::init([](const py::object& scene, const std::string& sensor, int num_threads) {
-             sim::Scene s = py::isinstance<py::str>(scene) ? load(scene.cast<std::string>())
-                                                           : scene.cast<sim::Scene>();
-             if (!sensor.empty()) s.sensor = sim::builtin_sensor(sensor);
-             sim::WorldConfig config{num_threads};
-             config.validate();
-             return std::make_unique<sim::World>(std::move(s), config);
-           }),
-           py::arg("scene"), py::arg("sensor") = "", py::arg("num_threads") = 0,
-           "A Scene, or a scene's name or file; `sensor` replaces the scene's ('hokuyo' or "
-           "'kinect'); num_threads 0 = all cores (scans do not depend on it).")
-      .def_property_readonly("scene", &sim::World::scene, "The Scene.")
-      .def("scan", &scan, py::arg("T_world_sensor"), py::arg("seed") = 1,
-           py::arg("frame") = "sensor",
-           "One scan from the 4 x 4 sensor pose: an N x 3 array of the points hit, in the sensor "
-           "frame (x forward, y left, z up) or with frame='world' in the world [m]. Range noise "
-           "(and the scene's pose noise, see noisy_pose) are drawn from `seed`.")
-      .def(
-          "noisy_pose",
-          [](const sim::World& w, const Eigen::Matrix4d& T_world_sensor, std::uint64_t seed) {
-            return Eigen::Matrix4d(
-                w.noisy_pose(to_pose(T_world_sensor, "T_world_sensor"), seed).matrix());
-          },
-          py::arg("T_world_sensor"), py::arg("seed") = 1,
-          "The pose a robot believes after the scene's pose noise for `seed` (the true pose "
-          "when the scene has none).");
+  def_world(m);
 }
 
 }  // namespace vantage::python

@@ -86,7 +86,7 @@ def test_an_object_sits_on_its_view_sphere():
 def test_candidate_sets_come_from_one_registry():
     names = [name for name, _ in vt.candidate_sets()]
     assert names[:4] == ["ring", "hemisphere", "sphere", "view-sphere"]
-    assert "frontier" in names and "file" in names
+    assert "frontier" in names and "stops" in names and "file" in names
     views = vt.candidate_views("view-sphere", [-0.1, -0.1, -0.1], [0.1, 0.1, 0.1], radius=0.7)
     assert views.shape == (32, 4, 4)
     assert np.allclose(np.linalg.norm(views[:, :3, 3], axis=1), 0.7)
@@ -96,3 +96,5 @@ def test_candidate_sets_come_from_one_registry():
         vt.candidate_views("cube", [0, 0, 0], [1, 1, 1])
     with pytest.raises(ValueError, match="found in a map"):
         vt.candidate_views("frontier", [0, 0, 0], [1, 1, 1])
+    with pytest.raises(ValueError, match="an office robot's"):
+        vt.candidate_views("stops", [0, 0, 0], [1, 1, 1])

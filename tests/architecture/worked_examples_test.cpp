@@ -14,7 +14,8 @@
 #include "examples/architecture/frontier_voxel.hpp"
 #include "tests/planner/views_around.hpp"
 #include "vantage/gain/methods.hpp"
-#include "vantage/gain/metrics/unobserved_voxel.hpp"
+#include "vantage/gain/models/metric_rays.hpp"
+#include "vantage/gain/models/metrics/unobserved_voxel.hpp"
 #include "vantage/planner/planner.hpp"
 
 namespace vantage {

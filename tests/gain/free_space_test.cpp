@@ -13,11 +13,11 @@
 #include <vector>
 
 #include "vantage/gain/class_map.hpp"
-#include "vantage/gain/detail/target_predictors.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
+#include "vantage/gain/models/target_predictors.hpp"
 #include "vantage/gain/snapshot.hpp"
-#include "vantage/gain/swept.hpp"
-#include "vantage/gain/view_cells.hpp"
 
 namespace vantage {
 namespace {
@@ -130,7 +130,7 @@ TEST(FreeSpace, TheSweptEstimateCrossesCubesToRounding) {
     pose.linear() = Eigen::AngleAxisd(yaw + 3.14159, Eigen::Vector3d::UnitZ()).toRotationMatrix();
     views.emplace_back(pose, SensorFov{deg2rad(57), deg2rad(43), 0.1, 1.5});
   }
-  for (const CountRule rule : {CountRule::kSurvivalCells, CountRule::kGreedy}) {
+  for (const GainQuantity rule : {GainQuantity::kSurvivalCells, GainQuantity::kCount}) {
     SweptConfig config;
     config.alpha = 0.9;
     const std::vector<double> cubes = swept_view_counts(map, views, rule, config);

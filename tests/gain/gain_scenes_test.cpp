@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/sim/world.hpp"

@@ -1,17 +1,17 @@
-// The hierarchical walk and the bounds (vantage/gain/hierarchy.hpp, bounds.hpp) against their
-// references: block-crossing counts against cell-by-cell ones and the exact evaluation, bit for
-// bit, and the upper bounds against every view's exact value. The walker's jump itself:
+// The hierarchical walk and the bounds (vantage/gain/evaluators/hierarchy.hpp, bounds.hpp) against
+// their references: block-crossing counts against cell-by-cell ones and the exact evaluation, bit
+// for bit, and the upper bounds against every view's exact value. The walker's jump itself:
 // tests/map/traversal_test.cpp.
 
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 
 #include <gtest/gtest.h>
 
 #include <random>
 #include <vector>
 
-#include "vantage/gain/bounds.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/bounds.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 
 namespace vantage {
 namespace {
@@ -85,8 +85,10 @@ TEST(Hierarchy, BlockCrossingCountsAreTheCellByCellOnesAndTheExactOnes) {
       config.epsilon = epsilon;
       config.num_threads = 2;
       config.method = GainMethod::kSurvival;
-      const auto walked = count_view_gains(map, &blocks, views, CountRule::kSurvivalCells, config);
-      const auto stepped = count_view_gains(map, nullptr, views, CountRule::kSurvivalCells, config);
+      const auto walked =
+          count_view_gains(map, &blocks, views, GainQuantity::kSurvivalCells, config);
+      const auto stepped =
+          count_view_gains(map, nullptr, views, GainQuantity::kSurvivalCells, config);
       const auto exact = exact_view_gains(map, views, config);
       for (std::size_t v = 0; v < views.size(); ++v) {
         EXPECT_EQ(walked[v].cells, stepped[v].cells) << "view " << v << " a " << alpha;
@@ -97,8 +99,8 @@ TEST(Hierarchy, BlockCrossingCountsAreTheCellByCellOnesAndTheExactOnes) {
   }
   GainConfig greedy;
   greedy.method = GainMethod::kGreedy;
-  const auto walked = count_view_gains(map, &blocks, views, CountRule::kGreedy, greedy);
-  const auto stepped = count_view_gains(map, nullptr, views, CountRule::kGreedy, greedy);
+  const auto walked = count_view_gains(map, &blocks, views, GainQuantity::kCount, greedy);
+  const auto stepped = count_view_gains(map, nullptr, views, GainQuantity::kCount, greedy);
   const auto exact = exact_view_gains(map, views, greedy);
   double total = 0.0;
   for (std::size_t v = 0; v < views.size(); ++v) {
@@ -121,13 +123,13 @@ TEST(Hierarchy, BoundsHoldForEveryView) {
     config.method = GainMethod::kSurvival;
     const auto exact = exact_view_gains(map, views, config);
     const auto cells =
-        view_upper_bounds(blocks, grid.spec(), map, views, BoundKind::kSurvivalCells, alpha);
+        view_upper_bounds(blocks, grid.spec(), map, views, GainQuantity::kSurvivalCells, alpha);
     const auto bits =
-        view_upper_bounds(blocks, grid.spec(), map, views, BoundKind::kEntropy, alpha);
+        view_upper_bounds(blocks, grid.spec(), map, views, GainQuantity::kPaperBits, alpha);
     const auto open_bits =
-        view_upper_bounds(blocks, grid.spec(), map, views, BoundKind::kSurvivalBits, alpha);
+        view_upper_bounds(blocks, grid.spec(), map, views, GainQuantity::kSurvivalBits, alpha);
     const auto all_cells =
-        view_upper_bounds(blocks, grid.spec(), map, views, BoundKind::kAllCells, alpha);
+        view_upper_bounds(blocks, grid.spec(), map, views, GainQuantity::kPaperCells, alpha);
     config.method = GainMethod::kProbabilistic;
     const auto paper = exact_view_gains(map, views, config);
     for (std::size_t v = 0; v < views.size(); ++v) {
@@ -140,7 +142,7 @@ TEST(Hierarchy, BoundsHoldForEveryView) {
   GainConfig greedy;
   greedy.method = GainMethod::kGreedy;
   const auto exact = exact_view_gains(map, views, greedy);
-  const auto counts = view_upper_bounds(blocks, grid.spec(), map, views, BoundKind::kCount, 1.0);
+  const auto counts = view_upper_bounds(blocks, grid.spec(), map, views, GainQuantity::kCount, 1.0);
   for (std::size_t v = 0; v < views.size(); ++v) EXPECT_GE(counts[v], exact[v].gain);
 }
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
 
 namespace vantage::test {
 

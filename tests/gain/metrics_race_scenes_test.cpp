@@ -3,7 +3,7 @@
 // at the metric's own pitch, chooses the view the exhaustive search chooses, which evaluates every
 // view at the metric's pitch; a metric raced cell by cell (the surface model, the proximity count)
 // a view within kSweptTolerance of its value, statistically. Every raced metric
-// (metric_race_rounds, MethodTraits::cells; the rear side metrics are evaluated in full by the
+// (MethodTraits::race_rounds and ::cells; the rear side metrics are evaluated in full by the
 // swept search too), the 187 hemisphere views of the issue-26 sweeps
 // (radii 0.9, 1.1 and 1.3 m, 0.3 m apart) on the four built-in table tops and two generated piles
 // of primitives, after 1, 3, 5 and 7 scans from the scene's ring (every seventh ring view in turn;
@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/methods.hpp"
-#include "vantage/gain/metrics.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/generate.hpp"
@@ -40,8 +40,7 @@ void check_state(const std::string& state, const OccupancyGrid& grid,
                  const std::vector<Candidate>& cands) {
   for (const MethodTraits& method : gain_methods()) {
     const bool cell_sum = method.cells != nullptr;
-    if (method.kind != MethodKind::kMetric ||
-        (metric_race_rounds(method.method).empty() && !cell_sum)) {
+    if (method.kind != MethodKind::kMetric || (method.race_rounds.empty() && !cell_sum)) {
       continue;
     }
     std::vector<Candidate> travelled = cands;

@@ -1,7 +1,5 @@
-// The field's volumetric metrics (vantage/gain/metrics.hpp, docs/model.md "The field's
-// metrics") on grids where each value is worked out by hand.
-
-#include "vantage/gain/metrics.hpp"
+// The field's volumetric metrics (vantage/gain/evaluators/metric_evaluator.hpp, docs/model.md "The
+// field's metrics") on grids where each value is worked out by hand.
 
 #include <gtest/gtest.h>
 
@@ -15,9 +13,11 @@
 
 #include "metric_oracle.hpp"
 #include "row_grid.hpp"
-#include "vantage/gain/detail/metric_cells.hpp"
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/metrics/surface.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
+#include "vantage/gain/methods.hpp"
+#include "vantage/gain/models/metric_cells.hpp"
+#include "vantage/gain/models/metrics/surface.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/util/text.hpp"
@@ -394,8 +394,8 @@ TEST(Metrics, TheJumpingWalkDecidesAsTheReferenceDoes) {
 // ranks: the race evaluates its leaders exactly.
 TEST(Metrics, CoarserRaysEstimateTheValue) {
   const SceneLike s;
-  for (const GainMethod m : {GainMethod::kOcclusionAware, GainMethod::kUnobservedVoxel,
-                             GainMethod::kAverageEntropy}) {
+  for (const GainMethod m :
+       {GainMethod::kOcclusionAware, GainMethod::kUnobservedVoxel, GainMethod::kAverageEntropy}) {
     GainConfig config;
     config.method = m;
     const MetricEvaluator evaluator(s.grid, config);

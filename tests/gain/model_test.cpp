@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "bench/synthetic_tabletop.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/ray_model.hpp"
 
 namespace vantage {

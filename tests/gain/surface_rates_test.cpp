@@ -1,7 +1,7 @@
-// The surface model's online fit (vantage/gain/surface_rates.hpp): rates counted by hand on the
-// row of row_grid.hpp.
+// The surface model's online fit (vantage/gain/models/surface_rates.hpp): rates counted by hand on
+// the row of row_grid.hpp.
 
-#include "vantage/gain/surface_rates.hpp"
+#include "vantage/gain/models/surface_rates.hpp"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "row_grid.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/gain/view_gain.hpp"
 

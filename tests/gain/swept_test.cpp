@@ -1,9 +1,9 @@
-// The swept estimate (vantage/gain/swept.hpp) against what it estimates: the volume of an
-// unobstructed frustum inside an unobserved grid (greedy's count of cells), nothing in free space
-// or behind a wall, the survival reading below greedy on the same rays, and the same numbers for
-// any thread count.
+// The swept estimate (vantage/gain/evaluators/swept.hpp) against what it estimates: the volume of
+// an unobstructed frustum inside an unobserved grid (greedy's count of cells), nothing in free
+// space or behind a wall, the survival reading below greedy on the same rays, and the same numbers
+// for any thread count.
 
-#include "vantage/gain/swept.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 
 namespace vantage {
 namespace {
@@ -48,12 +48,12 @@ TEST(Swept, AnUnobstructedFrustumCountsItsVolumeInCells) {
   const std::vector<Frustum> views{view};
   const double cells = frustum_volume(view.fov(), 0.3, 1.6) / std::pow(0.02, 3);
   const double swept =
-      swept_view_counts(ClassMap(grid), views, CountRule::kGreedy, SweptConfig{})[0];
+      swept_view_counts(ClassMap(grid), views, GainQuantity::kCount, SweptConfig{})[0];
   EXPECT_NEAR(swept, cells, 0.01 * cells);
   // ... and the exact count of the cells whose centres lie inside, to the boundary's share.
   GainConfig gain;
   gain.method = GainMethod::kGreedy;
-  const double exact = count_view_gains(map, nullptr, views, CountRule::kGreedy, gain)[0].cells;
+  const double exact = count_view_gains(map, nullptr, views, GainQuantity::kCount, gain)[0].cells;
   EXPECT_NEAR(swept, exact, 0.02 * exact);
 }
 
@@ -62,7 +62,7 @@ TEST(Swept, FreeSpaceAndTheSpaceBehindAWallCountNothing) {
   const Frustum view = along_x({-0.9, 0.0, 0.0}, 1.6);
   const std::vector<Frustum> views{view};
   for (std::size_t i = 0; i < grid.size(); ++i) grid.set_probability(i, 0.12);
-  EXPECT_EQ(swept_view_counts(ClassMap(grid), views, CountRule::kGreedy, SweptConfig{})[0], 0.0);
+  EXPECT_EQ(swept_view_counts(ClassMap(grid), views, GainQuantity::kCount, SweptConfig{})[0], 0.0);
   // Unobserved everywhere, an occupied wall at x = 0 across the whole view: only the space
   // between the sensor's near range and the wall counts.
   grid = cube();
@@ -71,7 +71,7 @@ TEST(Swept, FreeSpaceAndTheSpaceBehindAWallCountNothing) {
     if (c.x() == 50) grid.set_probability(i, 0.97);
   }
   const double swept =
-      swept_view_counts(ClassMap(grid), views, CountRule::kGreedy, SweptConfig{})[0];
+      swept_view_counts(ClassMap(grid), views, GainQuantity::kCount, SweptConfig{})[0];
   EXPECT_GT(swept, 0.0);
   // Every ray stops on the wall, 0.9 m away along the axis and farther off it: at most the
   // frustum up to 0.9 m / cos of the corner's angle.
@@ -95,18 +95,18 @@ TEST(Swept, SurvivalSeesLessThanGreedyAndOneThreadDecidesAsTwo) {
   const ClassMap map(grid);
   SweptConfig config;
   config.num_threads = 1;
-  const std::vector<double> greedy = swept_view_counts(map, views, CountRule::kGreedy, config);
+  const std::vector<double> greedy = swept_view_counts(map, views, GainQuantity::kCount, config);
   config.alpha = 0.99;
   const std::vector<double> survival =
-      swept_view_counts(map, views, CountRule::kSurvivalCells, config);
+      swept_view_counts(map, views, GainQuantity::kSurvivalCells, config);
   config.num_threads = 2;
-  EXPECT_EQ(swept_view_counts(map, views, CountRule::kSurvivalCells, config), survival);
+  EXPECT_EQ(swept_view_counts(map, views, GainQuantity::kSurvivalCells, config), survival);
   for (std::size_t v = 0; v < views.size(); ++v) {
     EXPECT_GT(survival[v], 0.0) << v;
     EXPECT_LT(survival[v], greedy[v]) << v;
   }
   config.alpha = 1.0;  // a = 1 is greedy
-  EXPECT_EQ(swept_view_counts(map, views, CountRule::kSurvivalCells, config), greedy);
+  EXPECT_EQ(swept_view_counts(map, views, GainQuantity::kSurvivalCells, config), greedy);
 }
 
 TEST(Swept, RefusesRaysAcrossOutsideItsRange) {
@@ -115,10 +115,10 @@ TEST(Swept, RefusesRaysAcrossOutsideItsRange) {
   const std::vector<Frustum> views{along_x({-0.9, 0.0, 0.0}, 1.6)};
   SweptConfig config;
   config.rays_across = 0;
-  EXPECT_THROW(swept_view_counts(map, views, CountRule::kGreedy, config), std::invalid_argument);
+  EXPECT_THROW(swept_view_counts(map, views, GainQuantity::kCount, config), std::invalid_argument);
   config.rays_across = 32;
   config.alpha = 0.0;
-  EXPECT_THROW(swept_view_counts(map, views, CountRule::kSurvivalCells, config),
+  EXPECT_THROW(swept_view_counts(map, views, GainQuantity::kSurvivalCells, config),
                std::invalid_argument);
 }
 

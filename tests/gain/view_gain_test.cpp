@@ -7,7 +7,7 @@
 #include <random>
 
 #include "row_grid.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/ray_model.hpp"
 
 namespace vantage {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/map/integrate.hpp"
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
@@ -35,9 +35,9 @@ inline Reference reference_of(const OccupancyGrid& grid, const std::vector<Candi
   gain.alpha = kSurvivalAlpha;
   gain.method = GainMethod::kSurvival;
   Reference r;
-  r.survival = count_view_gains(map, &blocks, views, CountRule::kSurvivalCells, gain);
+  r.survival = count_view_gains(map, &blocks, views, GainQuantity::kSurvivalCells, gain);
   gain.method = GainMethod::kGreedy;
-  r.greedy = count_view_gains(map, &blocks, views, CountRule::kGreedy, gain);
+  r.greedy = count_view_gains(map, &blocks, views, GainQuantity::kCount, gain);
   return r;
 }
 

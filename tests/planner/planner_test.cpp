@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "tests/planner/views_around.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/util/text.hpp"
 #include "vantage/views/ring.hpp"
@@ -71,7 +72,8 @@ TEST(Planner, TheDefaultSearchIsTheFastestThatServesTheMethod) {
     config.objective = c.objective;
     config.gain.alpha = 0.99;
     const std::string what = cat(to_string(c.method), " by ", to_string(c.objective));
-    EXPECT_EQ(resolve_search(config), c.expected) << what;
+    EXPECT_EQ(resolve_decider(config).search, c.expected) << what;
+    EXPECT_EQ(decision_quantity(config), method_traits(c.method.gain).quantity(c.objective));
     const Plan plan = plan_next_view(s.grid, s.candidates, config);
     EXPECT_EQ(plan.search, c.expected) << what;
     config.search = DecisionSearch::kExhaustive;
@@ -130,12 +132,15 @@ TEST(Planner, ASearchThatDoesNotServeTheMethodIsRefused) {
   }
   config.method = PlannerMethod::kProbabilistic;
   config.objective = GainObjective::kBits;
-  EXPECT_THROW((void)resolve_search(config), std::invalid_argument);
+  EXPECT_THROW((void)resolve_decider(config), std::invalid_argument);
   config.search = DecisionSearch::kPruned;
-  EXPECT_EQ(resolve_search(config), DecisionSearch::kPruned);
+  EXPECT_EQ(resolve_decider(config).search, DecisionSearch::kPruned);
   config.method = PlannerMethod::kSequence;
   config.objective = GainObjective::kCells;
   EXPECT_THROW(config.validate(), std::invalid_argument);  // a sequence takes no search
+  config.search.reset();
+  EXPECT_FALSE(resolve_decider(config).search.has_value());  // the sequence decides
+  EXPECT_EQ(resolve_decider(config).name(), "sequence");
   EXPECT_EQ(parse_decision_search("pruned"), DecisionSearch::kPruned);
   EXPECT_THROW((void)parse_decision_search("screened"), std::invalid_argument);
 }

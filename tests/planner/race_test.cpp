@@ -14,9 +14,9 @@
 #include <limits>
 #include <vector>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/hierarchy.hpp"
-#include "vantage/gain/view_cells.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/planner/choose.hpp"
 
 namespace vantage {
@@ -57,7 +57,7 @@ TEST(Race, OnTheFullListsItIsTheExactArgmax) {
   gain.alpha = 0.99;
   gain.num_threads = 1;
   const std::vector<ViewGain> exact =
-      count_view_gains(map, nullptr, views, CountRule::kSurvivalCells, gain);
+      count_view_gains(map, nullptr, views, GainQuantity::kSurvivalCells, gain);
   const std::vector<double> scores{exact[0].cells * factor[0], exact[1].cells * factor[1],
                                    (exact[2].cells + exact[3].cells) * factor[2]};
   const detail::Race race = detail::race_candidates(classes, views, first, factor, gain, kAll);
@@ -91,7 +91,7 @@ TEST(Race, AToleranceEndsANearTieOnASample) {
   gain.alpha = 0.99;
   gain.num_threads = 1;
   const std::vector<ViewGain> exact =
-      count_view_gains(map, nullptr, views, CountRule::kSurvivalCells, gain);
+      count_view_gains(map, nullptr, views, GainQuantity::kSurvivalCells, gain);
   const double best = std::max(exact[0].cells, exact[1].cells);
   ASSERT_LT(std::abs(exact[0].cells - exact[1].cells), 0.005 * best);  // a near tie
   const detail::Race strict = detail::race_candidates(classes, views, first, factor, gain, 512);
@@ -149,7 +149,7 @@ TEST(Race, RulesBoostStopAndUnseen) {
   gain.alpha = 0.99;
   gain.num_threads = 1;
   const std::vector<ViewGain> exact =
-      count_view_gains(map, nullptr, views, CountRule::kSurvivalCells, gain);
+      count_view_gains(map, nullptr, views, GainQuantity::kSurvivalCells, gain);
   const std::vector<double> scores{exact[0].cells, exact[1].cells, exact[2].cells};
   std::vector<std::uint32_t> unobserved;
   std::vector<std::uint8_t> boost(grid.size(), 0);

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "vantage/experiment/recorded.hpp"
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
@@ -66,8 +66,9 @@ TEST(DecisionAtScale, TheSweptChoiceIsTheExhaustiveExactOneOnTheKinectTableTop) 
     gain.method = method.gain;
     const bool greedy = method == PlannerMethod::kGreedy;
     std::vector<double> exact;
-    for (const ViewGain& g : count_view_gains(
-             map, &blocks, views, greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain)) {
+    for (const ViewGain& g :
+         count_view_gains(map, &blocks, views,
+                          greedy ? GainQuantity::kCount : GainQuantity::kSurvivalCells, gain)) {
       exact.push_back(greedy ? g.gain : g.cells);
     }
     const std::size_t best = choose_best(exact);

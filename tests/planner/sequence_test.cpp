@@ -1,7 +1,8 @@
 // The sequence decision (vantage/planner/sequence.hpp) and the per-cell visibilities it plans
-// with (vantage/gain/view_cells.hpp), on a small seeded cluttered grid: each view's cells against
-// the exact evaluation, the joint value against a brute-force union, its monotone and submodular
-// shape, the tour against Held-Karp, horizon 1 against today's decision, and thread counts.
+// with (vantage/gain/evaluators/view_cells.hpp), on a small seeded cluttered grid: each view's
+// cells against the exact evaluation, the joint value against a brute-force union, its monotone and
+// submodular shape, the tour against Held-Karp, horizon 1 against today's decision, and thread
+// counts.
 
 #include "vantage/planner/sequence.hpp"
 
@@ -16,9 +17,9 @@
 #include <vector>
 
 #include "vantage/gain/class_map.hpp"
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/gain/snapshot.hpp"
-#include "vantage/gain/view_cells.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/views/ring.hpp"
 

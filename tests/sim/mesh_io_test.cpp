@@ -7,6 +7,8 @@
 #include <fstream>
 #include <string>
 
+#include "vantage/sim/builtin_models.hpp"
+
 namespace vantage::sim {
 namespace {
 

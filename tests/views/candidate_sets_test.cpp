@@ -30,7 +30,8 @@ TEST(CandidateSets, EveryRowIsNamedOnceAndFoundByItsName) {
     EXPECT_EQ(&find_candidate_set(row.name), &row);
     EXPECT_TRUE(is_candidate_set(row.name));
   }
-  for (const char* name : {"ring", "hemisphere", "sphere", "view-sphere", "frontier", "file"}) {
+  for (const char* name :
+       {"ring", "hemisphere", "sphere", "view-sphere", "frontier", "stops", "file"}) {
     EXPECT_TRUE(names.count(name)) << name;
   }
   try {
@@ -97,6 +98,82 @@ TEST(CandidateSets, TheViewSphereCoversTheWholeSphereEvenly) {
   params.views = 100;
   params.radius = 1.0;
   EXPECT_EQ(build_candidates("view-sphere", site, params).poses.size(), 100u);
+}
+
+// A 10 x 10 x 3 grid of 1 m cells: a free room x <= 4 with an occupied column at (4, 5), a free
+// pocket x >= 7, y <= 2, the rest unknown; its frontier regions on the middle layer are the room's
+// face x = 4 south and north of the column and the pocket's rim.
+CandidateSite office_site() {
+  static const OccupancyGrid grid = [] {
+    OccupancyGrid g(GridSpec{Eigen::Vector3d::Zero(), 1.0, {10, 10, 3}});
+    for (int z = 0; z < 3; ++z) {
+      for (int y = 0; y < 10; ++y) {
+        for (int x = 0; x < 10; ++x) {
+          const std::size_t i = g.spec().linear({x, y, z});
+          if (x == 4 && y == 5) {
+            g.set_probability(i, 0.9);
+          } else if (x <= 4 || (x >= 7 && y <= 2)) {
+            g.set_probability(i, 0.2);
+          }
+        }
+      }
+    }
+    return g;
+  }();
+  CandidateSite site;
+  site.grid = &grid;
+  GroundRobot& robot = site.robot.emplace();
+  robot.position = Eigen::Vector2d(1.5, 1.5);
+  robot.navigation.footprint = 0.5;
+  robot.navigation.min_height = 0.0;
+  robot.navigation.max_height = 3.0;
+  robot.frontier.min_z = robot.frontier.max_z = 1.5;
+  robot.frontier.min_cells = 1;
+  robot.frontier.max_radius = 0.0;
+  robot.sensor_pose = [](double x, double y, double yaw) {
+    Eigen::Isometry3d pose(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+    pose.translation() = Eigen::Vector3d(x, y, 1.2);
+    return pose;
+  };
+  return site;
+}
+
+TEST(CandidateSets, AnOfficesStopsAreItsUnvisitedFrontiersWithTheirDrivesOnTheMap) {
+  CandidateSite site = office_site();
+  const GroundRobot& robot = *site.robot;
+  const PlacedViews stops = build_candidates("stops", site, CandidateParams{});
+  const std::vector<FrontierRegion> regions = frontier_regions(*site.grid, robot.frontier);
+  ASSERT_EQ(regions.size(), 3u);
+  ASSERT_EQ(stops.poses.size(), 3u);
+  ASSERT_EQ(stops.drives.size(), 3u);
+  const NavigationGrid nav = NavigationGrid::from_map(*site.grid, robot.navigation);
+  const TravelMap travel(nav, robot.position);
+  for (std::size_t k = 0; k < stops.poses.size(); ++k) {
+    const Drive& drive = stops.drives[k];
+    EXPECT_TRUE(drive.reachable) << k;
+    EXPECT_TRUE(drive.arrival.isApprox(drive.goal)) << k;
+    // The drive is the map's shortest path, and the robot faces the way it drove.
+    EXPECT_DOUBLE_EQ(drive.length, travel.distance(*nav.cell_of(drive.arrival))) << k;
+    const Eigen::Vector2d way = drive.goal - robot.position;
+    EXPECT_TRUE(stops.poses[k].isApprox(
+        robot.sensor_pose(drive.goal.x(), drive.goal.y(), std::atan2(way.y(), way.x()))))
+        << k;
+  }
+  // A stop taken is not offered again.
+  site.robot->visited = {stops.drives[1].arrival + Eigen::Vector2d(0.2, 0.0)};
+  const PlacedViews left = build_candidates("stops", site, CandidateParams{});
+  ASSERT_EQ(left.poses.size(), 2u);
+  EXPECT_TRUE(left.drives[0].goal.isApprox(stops.drives[0].goal));
+  EXPECT_TRUE(left.drives[1].goal.isApprox(stops.drives[2].goal));
+}
+
+TEST(CandidateSets, StopsNeedAGroundRobotAndItsMap) {
+  CandidateSite site = office_site();
+  EXPECT_TRUE(find_candidate_set("stops").needs_robot);
+  site.robot.reset();
+  EXPECT_THROW(build_candidates("stops", site, CandidateParams{}), std::invalid_argument);
+  EXPECT_THROW(build_candidates("stops", CandidateSite{}, CandidateParams{}),
+               std::invalid_argument);
 }
 
 TEST(Travel, TheSphereArcIsAMetricAboveTheChordAndAtMostHalfAGreatCircle) {

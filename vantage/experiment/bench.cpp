@@ -69,6 +69,125 @@ std::string run_trial(const TrialSpec& spec, const BenchConfig& config,
                         result.scans);
 }
 
+// NOTE: trial files are resumed by key alone, so a folder must never mix trials run with
+// different settings (12 stops and 20, say) into one scans.csv.
+// The binary and the scenes' content too: a folder's rows are one binary's in one set of
+// scenes, so others can check them. A resumed sweep may add scenes.
+void check_settings(const fs::path& dir, const BenchConfig& config) {
+  nlohmann::json settings = sweep_settings(config);
+  settings[kScenesKey] = scene_hashes(config);
+  if (const nlohmann::json found = read_settings(dir); !found.is_null()) {
+    const std::string remedy = "resume with the same settings and binary or choose another --out";
+    require_same_settings(found, settings, dir / kSettingsFile, remedy);
+    require_same_scenes(found, settings[kScenesKey], dir / kSettingsFile, remedy);
+    if (const nlohmann::json more = with_scenes(found, settings); more != found) {
+      write_atomically(dir / kSettingsFile, more.dump(2) + "\n");
+    }
+  } else {
+    write_atomically(dir / kSettingsFile, settings.dump(2) + "\n");
+  }
+}
+
+// NOTE: written before any trial, so that every trial's scene can be rerun from its file
+// (vantage explore --scene DIR/scenes/NAME.yaml), and checked on resume: a pile this version
+// draws differently must not share a folder with the trials of the old one.
+void write_piles(const fs::path& dir, const BenchConfig& config) {
+  for (const sim::PileConfig& pile : bench_piles(config)) {
+    const std::string text = sim::pile_scene_yaml(sim::generate_pile(pile));
+    const fs::path path = dir / kScenesFolder / (sim::pile_name(pile) + ".yaml");
+    if (fs::exists(path)) {
+      if (read_file(path) != text) {
+        throw std::invalid_argument(fmt::format(
+            "{}: differs from the pile this version generates for seed {}; its trials were run "
+            "in another pile: choose another --out",
+            path.string(), pile.seed));
+      }
+    } else {
+      fs::create_directories(path.parent_path());
+      write_atomically(path, text);
+    }
+  }
+}
+
+// NOTE: the yardstick's truth (noise-free scans from every candidate and start) is the scene's
+// and the candidate set's, not a trial's: computed once per table-top scene with a trial to
+// run, and written for scripts/set_cover.py.
+SurfaceTruths surface_truths(const fs::path& dir, const std::vector<TrialSpec>& all,
+                             const BenchConfig& config) {
+  SurfaceTruths truths;
+  for (const TrialSpec& spec : all) {
+    if (truths.count(spec.scene) > 0) continue;
+    const sim::Scene scene = trial_scene(spec, config);
+    if (scene.kind == sim::SceneKind::kOffice) {
+      if (spec.greedy_oracle || !spec.policy.empty()) {
+        throw std::invalid_argument(
+            fmt::format("bench: scene '{}' is an office: {} for table tops", spec.scene,
+                        spec.greedy_oracle ? "the greedy oracle is" : "an external policy is"));
+      }
+      continue;
+    }
+    const std::vector<Eigen::Isometry3d> candidates = run_candidates(scene, config.exploration);
+    check_surface_truth(scene, candidates.size(), config.exploration.budget);
+    const sim::World world(scene, sim::WorldConfig{config.exploration.planner.gain.num_threads});
+    const SurfaceTruth& truth =
+        truths
+            .emplace(spec.scene,
+                     compute_surface_truth(world, candidates, config.exploration.coverage_tolerance,
+                                           config.exploration.planner.gain.num_threads))
+            .first->second;
+    const fs::path file = dir / kYardstickFolder / (spec.scene + ".json");
+    if (!fs::exists(file)) {
+      fs::create_directories(file.parent_path());
+      write_yardstick_file(file, scene, config.exploration, truth);
+    }
+  }
+  return truths;
+}
+
+/// Runs the trials `mine` not `done` on config.jobs threads, each into its trial file, and
+/// reports every trial to `on_trial`; the first failure stops the handing out and is rethrown.
+/// Returns how many ran.
+std::size_t run_trials(const fs::path& dir, const std::vector<TrialSpec>& mine,
+                       const std::map<std::string, fs::path>& done, const BenchConfig& config,
+                       const SurfaceTruths& truths,
+                       const std::function<void(const TrialEvent&)>& on_trial) {
+  std::mutex report;
+  std::atomic<std::size_t> next{0};
+  std::atomic<std::size_t> finished{0};
+  std::atomic<std::size_t> ran{0};
+  std::exception_ptr failure;
+  auto worker = [&] {
+    for (std::size_t k = next++; k < mine.size(); k = next++) {
+      const TrialSpec& spec = mine[k];
+      TrialEvent event{spec, done.count(spec.key()) > 0, 0.0, 0, mine.size()};
+      try {
+        if (!event.skipped) {
+          const auto start = std::chrono::steady_clock::now();
+          const std::string rows = run_trial(spec, config, truths);
+          write_atomically(dir / "trials" / (spec.key() + ".csv"), rows);
+          event.seconds = seconds_since(start);
+          ++ran;
+        }
+        event.done = ++finished;
+        if (on_trial) {
+          const std::lock_guard lock(report);
+          on_trial(event);
+        }
+      } catch (...) {
+        const std::lock_guard lock(report);
+        if (!failure) failure = std::current_exception();
+        next = mine.size();  // stop handing out trials; finished ones are kept
+      }
+    }
+  };
+  std::vector<std::thread> threads;
+  for (int j = 1; j < config.jobs; ++j) threads.emplace_back(worker);
+  worker();
+  for (std::thread& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+  return ran;
+}
+
 }  // namespace
 
 ExplorationConfig trial_config(const TrialSpec& spec, const BenchConfig& config,
@@ -104,114 +223,17 @@ std::size_t run_bench(const fs::path& dir, const BenchConfig& config,
   config.validate();
   const std::vector<TrialSpec> all = bench_trials(config);  // fails on a bad scene before any work
   fs::create_directories(dir / "trials");
-  // NOTE: trial files are resumed by key alone, so a folder must never mix trials run with
-  // different settings (12 stops and 20, say) into one scans.csv.
-  // The binary and the scenes' content too: a folder's rows are one binary's in one set of
-  // scenes, so others can check them. A resumed sweep may add scenes.
-  nlohmann::json settings = sweep_settings(config);
-  settings[kScenesKey] = scene_hashes(config);
-  if (const nlohmann::json found = read_settings(dir); !found.is_null()) {
-    const std::string remedy = "resume with the same settings and binary or choose another --out";
-    require_same_settings(found, settings, dir / kSettingsFile, remedy);
-    require_same_scenes(found, settings[kScenesKey], dir / kSettingsFile, remedy);
-    if (const nlohmann::json more = with_scenes(found, settings); more != found) {
-      write_atomically(dir / kSettingsFile, more.dump(2) + "\n");
-    }
-  } else {
-    write_atomically(dir / kSettingsFile, settings.dump(2) + "\n");
-  }
-  // NOTE: written before any trial, so that every trial's scene can be rerun from its file
-  // (vantage explore --scene DIR/scenes/NAME.yaml), and checked on resume: a pile this version
-  // draws differently must not share a folder with the trials of the old one.
-  for (const sim::PileConfig& pile : bench_piles(config)) {
-    const std::string text = sim::pile_scene_yaml(sim::generate_pile(pile));
-    const fs::path path = dir / kScenesFolder / (sim::pile_name(pile) + ".yaml");
-    if (fs::exists(path)) {
-      if (read_file(path) != text) {
-        throw std::invalid_argument(fmt::format(
-            "{}: differs from the pile this version generates for seed {}; its trials were run "
-            "in another pile: choose another --out",
-            path.string(), pile.seed));
-      }
-    } else {
-      fs::create_directories(path.parent_path());
-      write_atomically(path, text);
-    }
-  }
+  check_settings(dir, config);
+  write_piles(dir, config);
   const std::map<std::string, fs::path> done = trial_files(dir);
-
-  // NOTE: the yardstick's truth (noise-free scans from every candidate and start) is the scene's
-  // and the candidate set's, not a trial's: computed once per table-top scene with a trial to
-  // run, and written for scripts/set_cover.py.
-  SurfaceTruths truths;
-  for (const TrialSpec& spec : all) {
-    if (truths.count(spec.scene) > 0) continue;
-    const sim::Scene scene = trial_scene(spec, config);
-    if (scene.kind == sim::SceneKind::kOffice) {
-      if (spec.greedy_oracle || !spec.policy.empty()) {
-        throw std::invalid_argument(
-            fmt::format("bench: scene '{}' is an office: {} for table tops", spec.scene,
-                        spec.greedy_oracle ? "the greedy oracle is" : "an external policy is"));
-      }
-      continue;
-    }
-    const std::vector<Eigen::Isometry3d> candidates = run_candidates(scene, config.exploration);
-    check_surface_truth(scene, candidates.size(), config.exploration.budget);
-    const sim::World world(scene, sim::WorldConfig{config.exploration.planner.gain.num_threads});
-    const SurfaceTruth& truth =
-        truths
-            .emplace(spec.scene,
-                     compute_surface_truth(world, candidates, config.exploration.coverage_tolerance,
-                                           config.exploration.planner.gain.num_threads))
-            .first->second;
-    const fs::path file = dir / kYardstickFolder / (spec.scene + ".json");
-    if (!fs::exists(file)) {
-      fs::create_directories(file.parent_path());
-      write_yardstick_file(file, scene, config.exploration, truth);
-    }
-  }
-
+  const SurfaceTruths truths = surface_truths(dir, all, config);
   std::vector<TrialSpec> mine;
   for (std::size_t k = 0; k < all.size(); ++k) {
     if (static_cast<int>(k % static_cast<std::size_t>(config.shard_count)) == config.shard_index) {
       mine.push_back(all[k]);
     }
   }
-
-  std::mutex report;
-  std::atomic<std::size_t> next{0};
-  std::atomic<std::size_t> finished{0};
-  std::atomic<std::size_t> ran{0};
-  std::exception_ptr failure;
-  auto worker = [&] {
-    for (std::size_t k = next++; k < mine.size(); k = next++) {
-      const TrialSpec& spec = mine[k];
-      TrialEvent event{spec, done.count(spec.key()) > 0, 0.0, 0, mine.size()};
-      try {
-        if (!event.skipped) {
-          const auto start = std::chrono::steady_clock::now();
-          const std::string rows = run_trial(spec, config, truths);
-          write_atomically(dir / "trials" / (spec.key() + ".csv"), rows);
-          event.seconds = seconds_since(start);
-          ++ran;
-        }
-        event.done = ++finished;
-        if (on_trial) {
-          const std::lock_guard lock(report);
-          on_trial(event);
-        }
-      } catch (...) {
-        const std::lock_guard lock(report);
-        if (!failure) failure = std::current_exception();
-        next = mine.size();  // stop handing out trials; finished ones are kept
-      }
-    }
-  };
-  std::vector<std::thread> threads;
-  for (int j = 1; j < config.jobs; ++j) threads.emplace_back(worker);
-  worker();
-  for (std::thread& t : threads) t.join();
-  if (failure) std::rethrow_exception(failure);
+  const std::size_t ran = run_trials(dir, mine, done, config, truths, on_trial);
   write_bench_csv(dir);
   return ran;
 }
@@ -279,101 +301,6 @@ void write_bench_csv(const fs::path& dir) {
   std::string csv = std::string(kScansCsvHeader) + "\n";
   for (const auto& [key, path] : trial_files(dir)) csv += padded_rows(read_file(path));
   write_atomically(dir / "scans.csv", csv);
-}
-
-/// Throws std::runtime_error naming `path` unless `rows` are rows of scans.csv: at least one,
-/// each with the header's number of fields.
-void require_trial_rows(const std::string& rows, const fs::path& path) {
-  const auto fields = std::count(kScansCsvHeader.begin(), kScansCsvHeader.end(), ',') + 1;
-  std::istringstream lines(rows);
-  std::string line;
-  std::size_t n = 0;
-  while (std::getline(lines, line)) {
-    ++n;
-    const auto found = std::count(line.begin(), line.end(), ',') + 1;
-    // NOTE: a trial file from before the surface columns were appended holds fewer fields.
-    if (found != fields && found != static_cast<long>(kScansCsvFieldsBeforeSurface)) {
-      throw std::runtime_error(fmt::format(
-          "{}: line {} holds {} fields, not the {} of a scans.csv row: not a trial file",
-          path.string(), n, found, fields));
-    }
-  }
-  if (n == 0) throw std::runtime_error(fmt::format("{}: empty, not a trial file", path.string()));
-}
-
-void merge_bench(const std::vector<fs::path>& dirs, const fs::path& out) {
-  if (dirs.empty()) throw std::invalid_argument("bench merge needs at least one folder");
-  // NOTE: the target takes part like a source: its settings and its trials must agree with what
-  // is merged into it, so nothing of it is replaced unseen.
-  std::vector<fs::path> all = dirs;
-  std::error_code error;
-  const bool target_is_source = std::any_of(dirs.begin(), dirs.end(), [&](const fs::path& dir) {
-    return fs::equivalent(dir, out, error);
-  });
-  if (!target_is_source && fs::exists(out)) all.push_back(out);
-  std::map<std::string, std::string> trials;
-  std::map<std::string, std::string> scenes;  // generated scene files, by file name
-  std::map<std::string, std::string> truths;  // yardstick files, by file name
-  nlohmann::json settings = nullptr;          // of the first folder; all must agree
-  fs::path settings_dir;                      // that folder
-  for (std::size_t k = 0; k < all.size(); ++k) {
-    const fs::path& dir = all[k];
-    const bool target = k == dirs.size();
-    const nlohmann::json found = read_settings(dir);
-    if (found.is_null() && !(target && trial_files(dir).empty())) {
-      throw std::runtime_error(fmt::format(
-          "{}: no {}, so the settings its trials were run with are unknown; only sweeps run with "
-          "the same settings can be merged",
-          dir.string(), kSettingsFile));
-    }
-    if (settings.is_null()) {
-      settings = found;
-      settings_dir = dir;
-    } else if (!found.is_null()) {
-      require_same_sweep(settings, settings_dir, found, dir);
-      settings = with_scenes(settings, found);
-    }
-    for (const auto& [name, path] : scene_files(dir)) {
-      const auto [it, inserted] = scenes.emplace(name, read_file(path));
-      if (!inserted && it->second != read_file(path)) {
-        throw std::runtime_error(fmt::format(
-            "{}: differs from the scene file of the same name in another folder", path.string()));
-      }
-    }
-    for (const auto& [name, path] : scene_files(dir, kYardstickFolder, ".json")) {
-      const auto [it, inserted] = truths.emplace(name, read_file(path));
-      if (!inserted && it->second != read_file(path)) {
-        throw std::runtime_error(
-            fmt::format("{}: differs from the yardstick file of the same name in another folder",
-                        path.string()));
-      }
-    }
-    const auto files = trial_files(dir);
-    if (files.empty() && !target) {
-      throw std::runtime_error(fmt::format("{}: no trials/ with trial files", dir.string()));
-    }
-    for (const auto& [key, path] : files) {
-      const std::string rows = read_file(path);
-      require_trial_rows(rows, path);
-      const auto [it, inserted] = trials.emplace(key, rows);
-      if (!inserted && it->second != rows) {
-        throw std::runtime_error(fmt::format(
-            "{}: trial {} differs from the same trial in another folder{}", path.string(), key,
-            target ? " (the --out folder's would be replaced)" : ""));
-      }
-    }
-  }
-  fs::create_directories(out / "trials");
-  // NOTE: the target's settings took part above, so this only adds the scenes it lacked.
-  if (!settings.is_null() && read_settings(out) != settings) {
-    write_atomically(out / kSettingsFile, settings.dump(2) + "\n");
-  }
-  for (const auto& [key, rows] : trials) write_atomically(out / "trials" / (key + ".csv"), rows);
-  if (!scenes.empty()) fs::create_directories(out / kScenesFolder);
-  for (const auto& [name, text] : scenes) write_atomically(out / kScenesFolder / name, text);
-  if (!truths.empty()) fs::create_directories(out / kYardstickFolder);
-  for (const auto& [name, text] : truths) write_atomically(out / kYardstickFolder / name, text);
-  write_bench_csv(out);
 }
 
 }  // namespace vantage

@@ -117,8 +117,9 @@ DecisionCost cost_of(const ViewCost& v, std::size_t views, std::size_t candidate
   // unobserved cells one by one.
   const double swept = v.swept_rays * (kSweptRaySteps + kSweptStepWeight * u * v.ray_cells);
   cost.bytes = kBytesPerCandidate * static_cast<double>(candidates);
-  const SequenceConfig sequence = sequence_of(config);
-  if (sequence.active()) {
+  const Decider decider = resolve_decider(config);
+  if (!decider.search) {
+    const SequenceConfig sequence = sequence_of(config);
     // plan_sequence: every view's single-view value (exact, or on one cell in 2^k), then the
     // shortlist's per-cell lists, its travel table and the greedy steps over them.
     const double rate = std::ldexp(1.0, sequence.sample_bits);
@@ -142,7 +143,7 @@ DecisionCost cost_of(const ViewCost& v, std::size_t views, std::size_t candidate
       traits.metric != nullptr
           ? v.outward_steps / (config.gain.evaluation == GainEvaluation::kExact ? 1.0 : 3.0)
           : exact;
-  const DecisionSearch search = resolve_search(config);
+  const DecisionSearch search = *decider.search;
   if (search == DecisionSearch::kSwept) {
     cost.path = cat("the swept search over ", views, " views");
     cost.steps = n * swept + std::min(n, kSweptSecondViews) * kSweptSecondFactor * swept +
@@ -153,7 +154,9 @@ DecisionCost cost_of(const ViewCost& v, std::size_t views, std::size_t candidate
     cost.steps = n * full;
   }
   // NOTE: a counting method's gains are greedy's, and its reference costs nothing (search.cpp).
-  if (config.greedy_reference && !traits.counts) cost.steps += n * exact;
+  if (config.greedy_reference && decision_quantity(config) != GainQuantity::kCount) {
+    cost.steps += n * exact;
+  }
   return cost;
 }
 

@@ -316,8 +316,8 @@ ExplorationResult explore_choosing(const sim::Scene& scene, const ExplorationCon
                                    Mapper& mapper, const ViewChooser& choose,
                                    const SurfaceTruth* surface_truth = nullptr);
 
-/// The candidate set a table-top or object run takes its views from: config.candidates, else the
-/// scene's own (ring; an object's view-sphere).
+/// The candidate set a run takes its views from: config.candidates, else the scene's own (a table
+/// top's ring, an office's stops, an object's view-sphere).
 std::string run_candidate_set(const sim::Scene& scene, const ExplorationConfig& config);
 
 /// The candidate views of a table-top or object run and the rule of travel between them, from

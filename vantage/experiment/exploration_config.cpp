@@ -140,7 +140,15 @@ std::vector<Frustum> sweep_frusta(const sim::Scene& scene,
 
 std::string run_candidate_set(const sim::Scene& scene, const ExplorationConfig& config) {
   if (!config.candidates.empty()) return config.candidates;
-  return scene.kind == sim::SceneKind::kObject ? "view-sphere" : "ring";
+  switch (scene.kind) {
+    case sim::SceneKind::kTableTop:
+      return "ring";
+    case sim::SceneKind::kOffice:
+      return "stops";
+    case sim::SceneKind::kObject:
+      return "view-sphere";
+  }
+  return "ring";
 }
 
 PlacedViews run_candidate_views(const sim::Scene& scene, const ExplorationConfig& config) {

@@ -7,6 +7,7 @@
 #include "vantage/experiment/decision_cost.hpp"
 #include "vantage/experiment/detail/explorer.hpp"
 #include "vantage/util/text.hpp"
+#include "vantage/views/candidate_sets.hpp"
 
 namespace vantage::detail {
 
@@ -39,42 +40,11 @@ Decision Explorer::plan_stop(int k, std::uint64_t seed) {
   Decision d;
   const auto start = Clock::now();
   const OccupancyGrid& grid = mapper_.grid();
-  const NavigationGrid nav = NavigationGrid::from_map(grid, navigation_);
-  const TravelMap travel(nav, position_);
-  struct Stop {
-    Eigen::Vector2d goal;     ///< the frontier centroid
-    Eigen::Vector2d arrival;  ///< the goal, or the map's nearest reachable place to it
-    double travel;
-    bool reachable;
-  };
-  std::vector<Stop> stops;
-  for (const FrontierRegion& region : frontier_regions(grid, frontier_)) {
-    Stop s{region.centroid.head<2>(), region.centroid.head<2>(), 0.0, false};
-    std::optional<Index2> cell = nav.cell_of(s.goal);
-    s.reachable = cell && travel.reachable(*cell);
-    if (!s.reachable && config_.office.project_stops) {
-      std::vector<Eigen::Vector2d> places;
-      for (const std::uint32_t i : region.cells) {
-        places.push_back(grid.spec().center(grid.spec().unravel(i)).head<2>());
-      }
-      if (const auto projected = travel.nearest_reachable_among(places, s.goal)) {
-        cell = projected;
-        s.goal = nav.center(*projected);
-        s.arrival = s.goal;
-        s.reachable = true;
-      }
-    }
-    const Index2 end = s.reachable ? *cell : travel.nearest_reachable(s.goal);
-    if (!s.reachable) s.arrival = nav.center(end);
-    s.travel = travel.distance(end);
-    const bool visited = std::any_of(stops_.begin(), stops_.end(), [&](const auto& p) {
-      return (p - s.arrival).norm() < config_.office.min_move;
-    });
-    if (!visited) stops.push_back(s);
-  }
+  const PlacedViews stops =
+      build_candidates(run_candidate_set(scene_, config_), stop_site(), config_.views);
   d.candidate_seconds = seconds_since(start);
-  d.candidates = static_cast<int>(stops.size());
-  if (stops.empty()) {
+  d.candidates = static_cast<int>(stops.poses.size());
+  if (stops.poses.empty()) {
     d.stop = true;
     d.stop_reason = cat("no frontier left to drive to after stop ", k);
     d.seconds = seconds_since(start);
@@ -84,16 +54,14 @@ Decision Explorer::plan_stop(int k, std::uint64_t seed) {
 
   // Each stop plans as the frusta of its sweep: its gains and score are their sums.
   std::vector<Candidate> candidates;
-  std::vector<Eigen::Isometry3d> poses;
-  for (const Stop& s : stops) {
-    const Eigen::Vector2d way = s.goal - position_;
-    const double yaw = way.norm() > 1e-9 ? std::atan2(way.y(), way.x()) : yaw_;
-    poses.push_back(scene_.mount.sensor_pose(s.goal.x(), s.goal.y(), yaw));
-    std::vector<Frustum> views = sweep_frusta(scene_, poses.back());
+  for (std::size_t i = 0; i < stops.poses.size(); ++i) {
+    std::vector<Frustum> views = sweep_frusta(scene_, stops.poses[i]);
     const Frustum first = views.front();
     views.erase(views.begin());
-    candidates.push_back({first, s.travel, s.reachable, std::move(views)});
+    candidates.push_back(
+        {first, stops.drives[i].length, stops.drives[i].reachable, std::move(views)});
   }
+  const std::vector<Eigen::Isometry3d>& poses = stops.poses;
   check_decision_on(grid, candidates, planner_, config_.budget);
   const Plan plan = plan_next_view(grid, candidates, planner_, seed);
   const std::size_t best = plan.best;
@@ -107,7 +75,7 @@ Decision Explorer::plan_stop(int k, std::uint64_t seed) {
   }
   d.view = static_cast<int>(best);
   record_prediction(plan, candidates[best], best, d);
-  for (std::size_t i = 0; i < stops.size(); ++i) {
+  for (std::size_t i = 0; i < poses.size(); ++i) {
     d.considered.push_back(considered(plan, i, static_cast<int>(i), poses[i], d));
   }
   d.seconds = seconds_since(start);
@@ -117,7 +85,8 @@ Decision Explorer::plan_stop(int k, std::uint64_t seed) {
   // in the way, as close as the robot gets (§5.3.1). The robot keeps clear of what its map
   // holds too, so it never squeezes through a gap its map has closed (and then finds itself
   // walled in by its own map).
-  const Stop& chosen = stops[best];
+  const Drive& chosen = stops.drives[best];
+  const NavigationGrid nav = NavigationGrid::from_map(grid, navigation_);
   const NavigationPath path =
       find_path(NavigationGrid::combine(true_navigation_, nav), true_position_, chosen.arrival);
   d.fallback = !chosen.reachable || !path.reached;
@@ -129,6 +98,24 @@ Decision Explorer::plan_stop(int k, std::uint64_t seed) {
   d.pose = scene_.mount.sensor_pose(path.end.x(), path.end.y(), yaw);
   true_position_ = path.end;
   return d;
+}
+
+CandidateSite Explorer::stop_site() const {
+  CandidateSite site;
+  site.region = Eigen::AlignedBox3d(scene_.grid.origin, scene_.grid.max_corner());
+  site.grid = &mapper_.grid();
+  GroundRobot& robot = site.robot.emplace();
+  robot.position = position_;
+  robot.yaw = yaw_;
+  robot.navigation = navigation_;
+  robot.frontier = frontier_;
+  robot.visited = stops_;
+  robot.min_move = config_.office.min_move;
+  robot.project_stops = config_.office.project_stops;
+  robot.sensor_pose = [this](double x, double y, double yaw) {
+    return scene_.mount.sensor_pose(x, y, yaw);
+  };
+  return site;
 }
 
 }  // namespace vantage::detail

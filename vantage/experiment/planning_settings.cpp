@@ -59,13 +59,13 @@ PlannerConfig PlanningSettings::planner_config(double literal_alpha) const {
     config.validate();
     return 0;
   });
-  if (!sequence_of(config).active()) as_setting("search", [&] { return resolve_search(config); });
+  as_setting("search", [&] { return resolve_decider(config); });
   return config;
 }
 
 void request_plan_reference(PlannerConfig& config) {
-  config.greedy_reference =
-      !sequence_of(config).active() && resolve_search(config) != DecisionSearch::kSwept;
+  const Decider decider = resolve_decider(config);
+  config.greedy_reference = decider.search && *decider.search != DecisionSearch::kSwept;
 }
 
 }  // namespace vantage

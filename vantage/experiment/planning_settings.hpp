@@ -35,7 +35,7 @@ struct PlanningSettings {
   std::string alpha;      ///< a number, "auto", or empty: the caller's literal default
   std::string objective;  ///< bits, cells, or empty: the method's own (natural_objective)
   std::string evaluation = "auto";
-  /// swept, pruned, exhaustive, or empty: the fastest that serves the method (resolve_search)
+  /// swept, pruned, exhaustive, or empty: the fastest that serves the method (resolve_decider)
   std::string search;
   double epsilon = GainConfig{}.epsilon;
   double lambda = PlannerConfig{}.lambda;                 ///< [1/m]

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
 /// The gain layer's shared types, at its bottom (docs/architecture.md): which model predicts a
-/// cell's gain (GainMethod, whose traits live in the registry, methods.hpp), how a view's gain is
+/// cell's gain (GainMethod, whose traits live in the registry, methods.hpp), what a decision
+/// ranks by (GainObjective) and so which quantity it computes (GainQuantity), how a view's gain is
 /// evaluated (GainEvaluation), the settings (GainConfig) and the result (ViewGain).
 
 #include <array>
@@ -22,8 +23,8 @@ enum class GainMethod {
   /// unobserved cell with probability alpha, free cells always, occupied cells never; the
   /// paper's occupancy filter on top.
   kSurvival,
-  // The field's volumetric metrics (vantage/gain/metrics.hpp, docs/model.md "The field's
-  // metrics"): sums over the cells the view's rays cross, not per-target predictions.
+  // The field's volumetric metrics (vantage/gain/evaluators/metric_evaluator.hpp, docs/model.md
+  // "The field's metrics"): sums over the cells the view's rays cross, not per-target predictions.
   kOcclusionAware,   ///< entropy weighted by visibility, eq. M1
   kUnobservedVoxel,  ///< unobserved cells reached, eq. M2
   kRearSideVoxel,    ///< occupied cells reached from unobserved ones, eq. M3
@@ -31,9 +32,9 @@ enum class GainMethod {
   kProximityCount,   ///< unobserved cells near occupied ones, eq. M5
   kAverageEntropy,   ///< Kriegel's mean entropy of the cells reached, eq. M6
   kAreaFactor,       ///< Vasquez-Gomez's area factor, eq. M7
-  /// The surface the view's rays reach first (issue 37, gain/metrics/surface.hpp): the survival
-  /// reading on the metrics' rays, with the chance that an unobserved cell holds a surface taken
-  /// by its distance to the nearest occupied cell (GainConfig::surface_rates, fitted online).
+  /// The surface the view's rays reach first (issue 37, gain/models/metrics/surface.hpp): the
+  /// survival reading on the metrics' rays, with the chance that an unobserved cell holds a surface
+  /// taken by its distance to the nearest occupied cell (GainConfig::surface_rates, fitted online).
   kSurface,
 };
 
@@ -43,20 +44,57 @@ std::string_view to_string(GainMethod method);
 /// area-factor) or "surface"; throws std::invalid_argument naming the value.
 GainMethod parse_gain_method(std::string_view name);
 
+/// What a model with the observability parameter a (the paper's, the survival reading) ranks by;
+/// the others have one value, whatever it says.
+enum class GainObjective {
+  kBits,   ///< the expected information gain of eq. (1), ViewGain::gain [bits]
+  kCells,  ///< the expected number of unobserved cells seen, ViewGain::cells [cells]
+};
+
+std::string_view to_string(GainObjective objective);
+/// Parses "bits" or "cells"; throws std::invalid_argument naming the value.
+GainObjective parse_gain_objective(std::string_view name);
+
+/// Which quantity a decision computes for every view: the one type that says it. The registry
+/// answers it from a method and its objective (MethodTraits::quantity, methods.hpp); the searches
+/// rank by it, the bounds bound it (evaluators/bounds.hpp), and the hierarchical count
+/// (evaluators/hierarchy.hpp) and the swept rays (evaluators/swept.hpp) compute those that read
+/// the cells' classes alone (counts_classes).
+enum class GainQuantity {
+  kPaperBits,      ///< the paper's eq. (4) gain, at most H(p) a target: ViewGain::gain [bits]
+  kPaperCells,     ///< the paper's expected cells seen, the sum of v_M: ViewGain::cells [cells]
+  kSurvivalBits,   ///< the survival reading's eq. (4) gain: ViewGain::gain [bits]
+  kSurvivalCells,  ///< the survival reading's expected cells seen: ViewGain::cells [cells]
+  kCount,          ///< greedy's count of the targets nothing occupied hides: both fields [cells]
+  kMetric,         ///< a metric's value: ViewGain::gain
+};
+
+/// Whether `quantity` is a sum over cells [cells] (ViewGain::cells), not ViewGain::gain.
+constexpr bool in_cells(GainQuantity quantity) {
+  return quantity == GainQuantity::kPaperCells || quantity == GainQuantity::kSurvivalCells ||
+         quantity == GainQuantity::kCount;
+}
+
+/// Whether `quantity` reads the cells' classes alone, not their occupancy (the survival reading's
+/// cells, greedy's count): what the hierarchical count and the swept rays compute.
+constexpr bool counts_classes(GainQuantity quantity) {
+  return quantity == GainQuantity::kSurvivalCells || quantity == GainQuantity::kCount;
+}
+
 /// How finely a view's gain is computed. The target models always take one ray from the sensor
 /// to the centre of every unobserved cell in the frustum (the paper's definition, exact.hpp):
 /// the fast evaluation that cast rays outward instead cost as much or more in every state
 /// measured and was removed (BENCHMARK.md, "One planner").
 enum class GainEvaluation {
-  kExact,  ///< a metric's every pixel ray (metrics.hpp)
-  kAuto,   ///< a metric's every third ray along each image axis (metrics.hpp)
+  kExact,  ///< a metric's every pixel ray (evaluators/metric_evaluator.hpp)
+  kAuto,   ///< a metric's every third ray along each image axis (evaluators/metric_evaluator.hpp)
 };
 
 std::string_view to_string(GainEvaluation evaluation);
 /// Parses "exact" or "auto"; throws std::invalid_argument naming the value.
 GainEvaluation parse_gain_evaluation(std::string_view name);
 
-/// The surface model's distance classes (gain/metrics/surface.hpp): an unobserved cell whose
+/// The surface model's distance classes (gain/models/metrics/surface.hpp): an unobserved cell whose
 /// centre lies within 1, 2, 3 or 4 cells of the nearest occupied cell's, or farther.
 inline constexpr std::size_t kSurfaceClasses = 5;
 
@@ -98,6 +136,18 @@ struct ViewGain {
   /// The unobserved cells inside the frustum.
   std::size_t targets = 0;
 
+  /// Its value of `quantity`: ViewGain::cells for a quantity in cells (greedy's count too, whose
+  /// gain equals it), else ViewGain::gain.
+  double value(GainQuantity quantity) const { return in_cells(quantity) ? cells : gain; }
+  /// A gain that holds `value` as `quantity`, the other field 0 (both for greedy's count, whose
+  /// gain is its count) and no targets: a search's estimate or bound.
+  static ViewGain of(GainQuantity quantity, double value) {
+    ViewGain out;
+    (in_cells(quantity) ? out.cells : out.gain) = value;
+    if (quantity == GainQuantity::kCount) out.gain = value;
+    return out;
+  }
+
   /// Adds `other`'s three sums: the gain of several views (a candidate's, a view's rows).
   ViewGain& operator+=(const ViewGain& other) {
     gain += other.gain;
@@ -108,7 +158,7 @@ struct ViewGain {
 };
 
 /// One view's unobserved targets with a value above 0, in ascending linear index: their v_M
-/// (view_cells.hpp), or a metric's credits (detail/metric_cells.hpp).
+/// (view_cells.hpp), or a metric's credits (models/metric_cells.hpp).
 struct ViewCells {
   std::vector<std::uint32_t> cells;  ///< linear indices of the targets, ascending
   std::vector<double> seen;          ///< v_M of each, in (0, 1] [cells]; or its credit

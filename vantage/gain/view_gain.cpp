@@ -3,8 +3,9 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/metrics.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage {

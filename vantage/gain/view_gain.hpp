@@ -2,7 +2,7 @@
 /// @file
 /// Expected information gain of candidate views (eqs. 1, 3, 4; docs/model.md "One view"): the
 /// gain layer's façade `evaluate_views` (its types: types.hpp), which runs the target models'
-/// exact evaluation (exact.hpp) or a metric's rays (metrics.hpp).
+/// exact evaluation (exact.hpp) or a metric's rays (evaluators/metric_evaluator.hpp).
 
 #include <span>
 #include <vector>

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <stdexcept>
+#include <string>
 #include <string_view>
+#include <system_error>
 
 #include "vantage/io/input_file.hpp"
 #include "vantage/io/recording.hpp"
@@ -11,7 +13,15 @@
 #include "vantage/util/text.hpp"
 
 namespace vantage::detail {
+namespace fs = std::filesystem;
 namespace {
+
+bool is_cloud_file(const fs::path& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".pcd" || ext == ".ply";
+}
+
+bool is_depth_image(const fs::path& path) { return lower_extension(path) == ".png"; }
 
 /// The sequence's key's `every` (1 when absent), or the command line's, which wins.
 int every_of(const YamlField& key, const ManifestReadOptions& options) {
@@ -48,7 +58,94 @@ auto read_sequence(const YamlField& key, std::string_view path_key,
   }
 }
 
+/// The clouds `clouds` lists, each a .pcd, .ply or .png file that can be read.
+ManifestEntries read_listed_clouds(const YamlField& clouds, const fs::path& folder,
+                                   Manifest& manifest) {
+  ManifestEntries out;
+  const std::vector<YamlField> items = clouds.items();
+  if (items.empty()) clouds.fail("is empty");
+  for (const YamlField& entry : items) {
+    entry.allow_keys({"file", "pose", "stamp"});
+    const YamlField file = entry.at("file");
+    ManifestCloud cloud;
+    cloud.file = (folder / file.text()).lexically_normal();
+    if (!is_cloud_file(cloud.file) && !is_depth_image(cloud.file)) {
+      file.fail(cat("'", cloud.file.string(), "' is not a .pcd, .ply or .png file"));
+    }
+    if (const std::string why =
+            input_file_problem(cloud.file, is_depth_image(cloud.file) ? InputKind::kDepthImage
+                                                                      : InputKind::kPointCloud);
+        !why.empty()) {
+      file.fail(cat(cloud.file.string(), ": ", why));
+    }
+    if (const auto stamp = entry.get("stamp")) cloud.stamp = stamp->number();
+    manifest.clouds.push_back(cloud);
+    out.entries.push_back(entry);
+  }
+  return out;
+}
+
+/// Every .pcd and .ply file in `folder`, sorted by name, when the manifest lists none.
+void find_folder_clouds(const YamlField& root, const fs::path& folder, Manifest& manifest) {
+  std::error_code error;
+  for (const auto& item : fs::directory_iterator(folder.empty() ? fs::path(".") : folder, error)) {
+    if (!is_cloud_file(item.path())) continue;
+    // NOTE: an entry named as a cloud that is no file (a folder, a FIFO) is said by name, not
+    // skipped to be found missing later as "N poses but M clouds" (issue 53).
+    if (const std::string why = input_file_problem(item.path(), InputKind::kPointCloud);
+        !why.empty()) {
+      root.fail_as("clouds", cat("missing, so the folder's .pcd and .ply files are taken, and ",
+                                 item.path().string(), " ", why));
+    }
+    {
+      ManifestCloud cloud;
+      cloud.file = item.path().lexically_normal();
+      manifest.clouds.push_back(cloud);
+    }
+  }
+  std::sort(manifest.clouds.begin(), manifest.clouds.end(),
+            [](const ManifestCloud& a, const ManifestCloud& b) {
+              return a.file.filename().string() < b.file.filename().string();
+            });
+  if (manifest.clouds.empty()) {
+    root.fail_as("clouds",
+                 cat("missing, and the folder ", folder.string(), " holds no .pcd or .ply file"));
+  }
+}
+
 }  // namespace
+
+ManifestEntries read_clouds(const YamlField& root, const fs::path& manifest_folder,
+                            const ManifestReadOptions& options, Manifest& manifest) {
+  ManifestEntries out;
+  const auto tum = root.get("tum");
+  const auto recording = root.get("recording");
+  if (tum || recording) {
+    const YamlField& key = tum ? *tum : *recording;
+    if (tum && recording) key.fail("give a TUM folder or a recording, not both");
+    if (root.has("clouds")) key.fail("give clouds, a TUM folder or a recording, not two");
+    if (root.has("trajectory")) key.fail("its poses come with it: give no trajectory");
+    if (tum) {
+      read_tum_key(*tum, manifest_folder, options, manifest);
+    } else {
+      read_recording_key(*recording, manifest_folder, options, manifest);
+    }
+    for (const ManifestCloud& cloud : manifest.clouds) {
+      out.posed.push_back(!cloud.pose_from_registration);
+    }
+  } else if (options.every || options.topic) {
+    root.fail_as("",
+                 "--every and --topic choose frames of a TUM folder or a recording, and the "
+                 "manifest names neither (tum, recording)");
+  } else if (const auto clouds = root.get("clouds")) {
+    out = read_listed_clouds(*clouds, manifest_folder, manifest);
+  } else {
+    find_folder_clouds(root, manifest_folder, manifest);
+  }
+  out.entries.resize(manifest.clouds.size());
+  out.posed.resize(manifest.clouds.size());
+  return out;
+}
 
 void read_tum_key(const YamlField& tum, const std::filesystem::path& manifest_folder,
                   const ManifestReadOptions& options, Manifest& manifest) {

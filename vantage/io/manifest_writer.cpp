@@ -17,18 +17,10 @@
 namespace vantage {
 namespace fs = std::filesystem;
 
-void write_manifest(const fs::path& path, const Manifest& manifest) {
-  for (const ManifestCloud& cloud : manifest.clouds) {
-    if (cloud.points) {
-      throw std::invalid_argument(cat(path.string(), ": ", cloud.file.string(),
-                                      " is a recording's frame, which has no file to list"));
-    }
-  }
-  const fs::path folder = fs::absolute(path).parent_path();
-  YAML::Emitter out;
-  out.SetDoublePrecision(std::numeric_limits<double>::max_digits10);
-  out << YAML::BeginMap;
-  out << YAML::Key << "version" << YAML::Value << 1;
+namespace {
+
+/// `clouds`: each file relative to `folder`, its pose unless it is to be estimated, its stamp.
+void emit_clouds(YAML::Emitter& out, const Manifest& manifest, const fs::path& folder) {
   out << YAML::Key << "clouds" << YAML::Value << YAML::BeginSeq;
   for (const ManifestCloud& cloud : manifest.clouds) {
     out << YAML::BeginMap;
@@ -50,7 +42,10 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
     out << YAML::EndMap;
   }
   out << YAML::EndSeq;
+}
 
+/// `sensor`: the frame, the intrinsics or the field of view, the ranges, the depth encoding.
+void emit_sensor(YAML::Emitter& out, const Manifest& manifest) {
   out << YAML::Key << "sensor" << YAML::Value << YAML::BeginMap;
   out << YAML::Key << "frame" << YAML::Value << std::string(to_string(manifest.frame));
   if (manifest.intrinsics) {
@@ -77,7 +72,10 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
     out << YAML::EndMap;
   }
   out << YAML::EndMap;
+}
 
+/// `roi`, `resolution` and `options`.
+void emit_region_and_options(YAML::Emitter& out, const Manifest& manifest) {
   const auto vec = [&](const Eigen::Vector3d& v) {
     out << YAML::Flow << YAML::BeginSeq << v.x() << v.y() << v.z() << YAML::EndSeq;
   };
@@ -97,6 +95,24 @@ void write_manifest(const fs::path& path, const Manifest& manifest) {
   out << YAML::Key << "skip_non_finite" << YAML::Value << manifest.options.skip_non_finite;
   out << YAML::Key << "table_height" << YAML::Value << manifest.options.table_height;
   out << YAML::EndMap;
+}
+
+}  // namespace
+
+void write_manifest(const fs::path& path, const Manifest& manifest) {
+  for (const ManifestCloud& cloud : manifest.clouds) {
+    if (cloud.points) {
+      throw std::invalid_argument(cat(path.string(), ": ", cloud.file.string(),
+                                      " is a recording's frame, which has no file to list"));
+    }
+  }
+  YAML::Emitter out;
+  out.SetDoublePrecision(std::numeric_limits<double>::max_digits10);
+  out << YAML::BeginMap;
+  out << YAML::Key << "version" << YAML::Value << 1;
+  emit_clouds(out, manifest, fs::absolute(path).parent_path());
+  emit_sensor(out, manifest);
+  emit_region_and_options(out, manifest);
   out << YAML::EndMap;
   if (!out.good()) throw std::runtime_error(cat(path.string(), ": ", out.GetLastError()));
   write_atomically(path, cat(out.c_str(), "\n"));

@@ -183,24 +183,24 @@ PcdHeader parse_header(Lines& lines) {
   return h;
 }
 
-}  // namespace
+/// Where a point's values lie, read off a checked header.
+struct PcdLayout {
+  std::vector<PcdField> fields;
+  std::size_t step = 0;  ///< bytes a point
+  int values_per_point = 0;
+  std::size_t xyz[3] = {0, 0, 0};  ///< the fields x, y and z
+  std::uint64_t num_points = 0;
+};
 
-std::optional<Eigen::Isometry3d> parse_pcd_viewpoint(std::string_view bytes) {
-  Lines lines(bytes);
-  return parse_header(lines).viewpoint;
-}
-
-PointCloud parse_pcd(std::string_view bytes) {
-  Lines lines(bytes);
-  PcdHeader header = parse_header(lines);
+/// The layout `header` describes, checked: as many SIZE, TYPE and COUNT values as FIELDS, each a
+/// supported scalar, WIDTH x HEIGHT points, fields x, y and z of one value each, some points.
+PcdLayout layout_of(PcdHeader& header) {
   std::vector<std::string>& names = header.names;
   std::vector<int>& sizes = header.sizes;
   std::vector<int>& counts = header.counts;
   std::vector<char>& kinds = header.kinds;
   const std::optional<std::uint64_t> width = header.width, height = header.height,
                                      declared_points = header.declared_points;
-  const std::string& data = header.data;
-
   if (names.empty()) throw FormatError("the PCD header has no FIELDS");
   if (counts.empty()) counts.assign(names.size(), 1);
   if (sizes.size() != names.size() || kinds.size() != names.size() ||
@@ -213,105 +213,118 @@ PointCloud parse_pcd(std::string_view bytes) {
   if (*width != 0 && h > std::numeric_limits<std::uint64_t>::max() / *width) {
     throw FormatError("WIDTH x HEIGHT overflows");
   }
-  const std::uint64_t num_points = declared_points.value_or(*width * h);
-  if (num_points != *width * h) {
-    throw FormatError(cat("POINTS ", num_points, " is not WIDTH x HEIGHT = ", *width * h));
+  PcdLayout layout;
+  layout.num_points = declared_points.value_or(*width * h);
+  if (layout.num_points != *width * h) {
+    throw FormatError(cat("POINTS ", layout.num_points, " is not WIDTH x HEIGHT = ", *width * h));
   }
-
-  std::vector<PcdField> fields;
-  std::size_t step = 0;
-  int values_per_point = 0;
   for (std::size_t f = 0; f < names.size(); ++f) {
-    const PcdField field{names[f], {kinds[f], sizes[f]}, counts[f], step};
+    const PcdField field{names[f], {kinds[f], sizes[f]}, counts[f], layout.step};
     if (!field.type.valid()) {
       throw FormatError(cat("field '", field.name, "' has TYPE ", field.type.kind, " with SIZE ",
                             field.type.size, ", which is not a supported scalar"));
     }
-    step += static_cast<std::size_t>(field.type.size) * static_cast<std::size_t>(field.count);
-    values_per_point += field.count;
-    fields.push_back(field);
+    layout.step +=
+        static_cast<std::size_t>(field.type.size) * static_cast<std::size_t>(field.count);
+    layout.values_per_point += field.count;
+    layout.fields.push_back(field);
   }
-  std::size_t xyz[3];
+  const std::vector<PcdField>& fields = layout.fields;
   for (int a = 0; a < 3; ++a) {
     const std::string_view name = std::string_view("xyz").substr(static_cast<std::size_t>(a), 1);
     const auto it = std::find_if(fields.begin(), fields.end(),
                                  [&](const PcdField& f) { return f.name == name; });
     if (it == fields.end()) throw FormatError(cat("the PCD file has no field '", name, "'"));
     if (it->count != 1) throw FormatError(cat("field '", name, "' has COUNT ", it->count));
-    xyz[a] = static_cast<std::size_t>(it - fields.begin());
+    layout.xyz[a] = static_cast<std::size_t>(it - fields.begin());
   }
-  if (num_points == 0) throw FormatError("the cloud is empty");
+  if (layout.num_points == 0) throw FormatError("the cloud is empty");
+  return layout;
+}
 
+/// DATA ascii: a line of values a point.
+PointCloud read_ascii_points(Lines& lines, const PcdLayout& layout) {
+  const std::vector<PcdField>& fields = layout.fields;
+  const std::uint64_t num_points = layout.num_points;
   PointCloud cloud;
-  if (data == "ascii") {
-    cloud.reserve(std::min<std::uint64_t>(num_points, lines.rest().size() / 2 + 1));
-    // Column of each field's first value on a line.
-    std::vector<std::size_t> column(fields.size());
-    for (std::size_t f = 1; f < fields.size(); ++f) {
-      column[f] = column[f - 1] + static_cast<std::size_t>(fields[f - 1].count);
-    }
-    for (std::uint64_t i = 0; i < num_points; ++i) {
-      const auto line = lines.next_nonblank();
-      if (!line) {
-        throw FormatError(cat("ends after ", i, " of the ", num_points, " points it declares"));
-      }
-      const std::vector<std::string_view> tokens = split(*line);
-      if (tokens.size() != static_cast<std::size_t>(values_per_point)) {
-        throw FormatError(cat("line ", lines.number(), ": expected ", values_per_point,
-                              " values, found ", tokens.size()));
-      }
-      Eigen::Vector3d p;
-      for (std::size_t t = 0; t < tokens.size(); ++t) {
-        const double value = number_at(tokens[t], lines.number());
-        for (int a = 0; a < 3; ++a) {
-          if (t == column[xyz[a]]) p[a] = value;
-        }
-      }
-      cloud.push_back(p);
-    }
-    if (lines.next_nonblank()) {
-      throw FormatError(
-          cat("line ", lines.number(), ": more points than the ", num_points, " declared"));
-    }
-    return cloud;
+  cloud.reserve(std::min<std::uint64_t>(num_points, lines.rest().size() / 2 + 1));
+  // Column of each field's first value on a line.
+  std::vector<std::size_t> column(fields.size());
+  for (std::size_t f = 1; f < fields.size(); ++f) {
+    column[f] = column[f - 1] + static_cast<std::size_t>(fields[f - 1].count);
   }
+  for (std::uint64_t i = 0; i < num_points; ++i) {
+    const auto line = lines.next_nonblank();
+    if (!line) {
+      throw FormatError(cat("ends after ", i, " of the ", num_points, " points it declares"));
+    }
+    const std::vector<std::string_view> tokens = split(*line);
+    if (tokens.size() != static_cast<std::size_t>(layout.values_per_point)) {
+      throw FormatError(cat("line ", lines.number(), ": expected ", layout.values_per_point,
+                            " values, found ", tokens.size()));
+    }
+    Eigen::Vector3d p;
+    for (std::size_t t = 0; t < tokens.size(); ++t) {
+      const double value = number_at(tokens[t], lines.number());
+      for (int a = 0; a < 3; ++a) {
+        if (t == column[layout.xyz[a]]) p[a] = value;
+      }
+    }
+    cloud.push_back(p);
+  }
+  if (lines.next_nonblank()) {
+    throw FormatError(
+        cat("line ", lines.number(), ": more points than the ", num_points, " declared"));
+  }
+  return cloud;
+}
 
-  std::string_view body = lines.rest();
-  std::vector<char> decompressed;
-  bool field_major = false;  // binary_compressed stores all points' values of a field together
-  if (data == "binary_compressed") {
-    if (body.size() < 8) throw FormatError("binary_compressed data has no size words");
-    std::uint32_t sizes_words[2];
-    std::memcpy(sizes_words, body.data(), 8);
-    const std::uint32_t compressed = sizes_words[0], uncompressed = sizes_words[1];
-    if (body.size() - 8 < compressed) {
-      throw FormatError(cat("binary_compressed data holds ", body.size() - 8,
-                            " bytes, its size word says ", compressed));
-    }
-    check_fits(num_points, step, uncompressed, "points");
-    if (uncompressed != num_points * step) {
-      throw FormatError(cat("binary_compressed data uncompresses to ", uncompressed,
-                            " bytes, expected ", num_points, " points x ", step, " bytes"));
-    }
-    // NOTE: one LZF run of 3 bytes yields at most 264; a larger ratio is a lie, refused before
-    // the allocation it asks for.
-    if (uncompressed / 88 > compressed) throw FormatError("binary_compressed data is corrupt");
-    decompressed.resize(uncompressed);
-    if (!lzf_decompress(body.substr(8, compressed), decompressed)) {
-      throw FormatError("binary_compressed data is corrupt");
-    }
-    body = std::string_view(decompressed.data(), decompressed.size());
-    field_major = true;
-  } else {
-    if (num_points > body.size() / step || body.size() != num_points * step) {
-      throw FormatError(cat("binary data holds ", body.size(), " bytes, expected ", num_points,
-                            " points x ", step, " bytes"));
-    }
+/// DATA binary_compressed: the size words and the LZF data after them, decompressed into
+/// `decompressed`, which the returned view is of.
+std::string_view decompress_body(std::string_view body, const PcdLayout& layout,
+                                 std::vector<char>& decompressed) {
+  const std::uint64_t num_points = layout.num_points;
+  const std::size_t step = layout.step;
+  if (body.size() < 8) throw FormatError("binary_compressed data has no size words");
+  std::uint32_t sizes_words[2];
+  std::memcpy(sizes_words, body.data(), 8);
+  const std::uint32_t compressed = sizes_words[0], uncompressed = sizes_words[1];
+  if (body.size() - 8 < compressed) {
+    throw FormatError(cat("binary_compressed data holds ", body.size() - 8,
+                          " bytes, its size word says ", compressed));
   }
+  check_fits(num_points, step, uncompressed, "points");
+  if (uncompressed != num_points * step) {
+    throw FormatError(cat("binary_compressed data uncompresses to ", uncompressed,
+                          " bytes, expected ", num_points, " points x ", step, " bytes"));
+  }
+  // NOTE: one LZF run of 3 bytes yields at most 264; a larger ratio is a lie, refused before
+  // the allocation it asks for.
+  if (uncompressed / 88 > compressed) throw FormatError("binary_compressed data is corrupt");
+  decompressed.resize(uncompressed);
+  if (!lzf_decompress(body.substr(8, compressed), decompressed)) {
+    throw FormatError("binary_compressed data is corrupt");
+  }
+  return std::string_view(decompressed.data(), decompressed.size());
+}
+
+/// DATA binary (a point's values together) and binary_compressed (a field's values together).
+PointCloud read_binary_points(std::string_view body, const PcdLayout& layout, bool compressed) {
+  const std::uint64_t num_points = layout.num_points;
+  const std::size_t step = layout.step;
+  std::vector<char> decompressed;
+  const bool field_major = compressed;
+  if (compressed) {
+    body = decompress_body(body, layout, decompressed);
+  } else if (num_points > body.size() / step || body.size() != num_points * step) {
+    throw FormatError(cat("binary data holds ", body.size(), " bytes, expected ", num_points,
+                          " points x ", step, " bytes"));
+  }
+  PointCloud cloud;
   cloud.resize(num_points);
   for (std::size_t i = 0; i < num_points; ++i) {
     for (int a = 0; a < 3; ++a) {
-      const PcdField& f = fields[xyz[a]];
+      const PcdField& f = layout.fields[layout.xyz[a]];
       const std::size_t at = field_major
                                  ? f.offset * num_points + i * static_cast<std::size_t>(f.type.size)
                                  : i * step + f.offset;
@@ -319,6 +332,21 @@ PointCloud parse_pcd(std::string_view bytes) {
     }
   }
   return cloud;
+}
+
+}  // namespace
+
+std::optional<Eigen::Isometry3d> parse_pcd_viewpoint(std::string_view bytes) {
+  Lines lines(bytes);
+  return parse_header(lines).viewpoint;
+}
+
+PointCloud parse_pcd(std::string_view bytes) {
+  Lines lines(bytes);
+  PcdHeader header = parse_header(lines);
+  const PcdLayout layout = layout_of(header);
+  if (header.data == "ascii") return read_ascii_points(lines, layout);
+  return read_binary_points(lines.rest(), layout, header.data == "binary_compressed");
 }
 
 std::string pcd_header(std::size_t n, const std::optional<Eigen::Isometry3d>& viewpoint) {

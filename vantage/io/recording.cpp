@@ -109,9 +109,70 @@ std::string damage_line(const RecordingDamage& damage, const std::string& topic,
              listed > 0 ? "; --salvage maps the frames before it" : "");
 }
 
-}  // namespace
+/// The recording's messages as they are read: the frames of the topic (every `every`-th), its
+/// depth images and camera infos, tf, and every topic's type.
+struct Listing {
+  explicit Listing(const RecordingOptions& given)
+      : options(given),
+        info_topic(!given.camera_info.empty()
+                       ? given.camera_info
+                       : given.topic.substr(0, given.topic.rfind('/') + 1) + "camera_info") {}
 
-Recording read_recording(const std::filesystem::path& path, const RecordingOptions& options) {
+  /// Takes one message, in the recording's order; what is wrong with it names it.
+  void take(const RecordedMessage& m) {
+    const std::size_t frames_before = frames.size();
+    ++index;
+    topics.emplace(m.topic, m.type);
+    try {
+      decode(m);
+    } catch (const FormatError& e) {
+      throw FormatError(cat("message ", index, " (", printable(m.topic, 60), " at ", m.log_time,
+                            " s): ", e.what()));
+    }
+    if (frames.size() > frames_before) last_stamp = frames.back().stamp;
+  }
+
+  const RecordingOptions& options;
+  const std::string info_topic;
+  std::vector<RecordingFrame> frames;
+  std::map<std::string, std::string, std::less<>> topics;  // topic: type
+  TfTree tf;
+  std::size_t listed = 0;  ///< messages on the topic
+  std::size_t index = 0;   ///< messages
+  std::vector<RosDepthImage> images;
+  std::vector<RosCameraInfo> infos;
+  double last_stamp = 0.0;  ///< [s] of the last frame listed
+
+ private:
+  void decode(const RecordedMessage& m) {
+    if (m.topic == options.topic) {
+      const bool image = is_type(m.type, "sensor_msgs", "Image");
+      if (!image && !is_type(m.type, "sensor_msgs", "PointCloud2")) {
+        throw FormatError(cat("topic ", options.topic, " holds ", printable(m.type, 60),
+                              ", not sensor_msgs/PointCloud2 or sensor_msgs/Image"));
+      }
+      if (listed++ % static_cast<std::size_t>(options.every) != 0) return;
+      if (image) {
+        images.push_back(decode_depth_image(m.data, m.encoding));
+        frames.push_back(
+            {images.back().header.stamp, images.back().header.frame_id, {}, 0, std::nullopt});
+        return;
+      }
+      RosCloud cloud = decode_point_cloud2(m.data, m.encoding);
+      frames.push_back({cloud.header.stamp, std::move(cloud.header.frame_id),
+                        std::move(cloud.points), cloud.non_finite, std::nullopt});
+    } else if (m.topic == info_topic && is_type(m.type, "sensor_msgs", "CameraInfo")) {
+      infos.push_back(decode_camera_info(m.data, m.encoding));
+    } else if ((m.topic == "/tf" || m.topic == "/tf_static") &&
+               is_type(m.type, "tf2_msgs", "TFMessage")) {
+      for (const RosTransform& t : decode_tf_message(m.data, m.encoding)) {
+        tf.add(t, m.topic == "/tf_static");
+      }
+    }
+  }
+};
+
+void check_options(const RecordingOptions& options) {
   if (options.topic.empty()) throw std::invalid_argument("give the recording's topic");
   if (options.every < 1)
     throw std::invalid_argument(cat("every must be >= 1, got ", options.every));
@@ -119,151 +180,136 @@ Recording read_recording(const std::filesystem::path& path, const RecordingOptio
     throw std::invalid_argument(
         cat("max_time_difference must be positive, got ", options.max_time_difference));
   }
+}
+
+/// The recording's bytes, when it is named as one and it and its frames fit in memory.
+std::string read_whole(const std::filesystem::path& path, const std::string& ext) {
+  if (ext != ".bag" && ext != ".mcap") {
+    throw FormatError("not a recording: give a ROS 1 bag (.bag) or an MCAP file (.mcap)");
+  }
+  // NOTE: read whole: the file, then its frames' points (about twice its size), must fit.
+  const std::uintmax_t size = require_input_file(path, InputKind::kRecording);
+  if (const std::uint64_t available = available_memory();
+      available > 0 && 3.0 * static_cast<double>(size) > static_cast<double>(available)) {
+    throw FormatError(cat("is ", describe_bytes(static_cast<double>(size)),
+                          ", and reading it needs about three times that, more than the ",
+                          describe_bytes(static_cast<double>(available)),
+                          " this machine has available"));
+  }
+  return read_input_file(path, InputKind::kRecording);
+}
+
+/// Reads every message into `listing`; a damaged recording is refused, or with `salvage` its
+/// frames before the damage kept and what was dropped returned.
+std::optional<RecordingSalvage> list_messages(const std::string& bytes, const std::string& ext,
+                                              Listing& listing) {
+  const RecordingOptions& options = listing.options;
+  const auto take = [&](const RecordedMessage& m) { listing.take(m); };
+  try {
+    if (ext == ".bag") {
+      read_rosbag(bytes, take);
+    } else {
+      read_mcap(bytes, take);
+    }
+  } catch (const RecordingDamage& e) {
+    // NOTE: every message given lies before the damage, and was checked there (its chunk's
+    // CRC or index); the index says how many frames the damage took, when it is not lost.
+    const RecordingIndex counted = ext == ".bag" ? index_rosbag(bytes) : index_mcap(bytes);
+    const std::size_t listed = listing.listed;
+    if (!options.salvage || listed == 0) {
+      throw FormatError(damage_line(e, options.topic, listed, listing.last_stamp, counted));
+    }
+    RecordingSalvage salvage{e.what(), e.offset(), listed, std::nullopt};
+    if (const auto total = counted.find(options.topic);
+        total != counted.end() && total->second >= listed) {
+      salvage.dropped = total->second - listed;
+    }
+    return salvage;
+  }
+  return std::nullopt;
+}
+
+/// Refuses a recording without a frame on the topic, naming the topics it has.
+void require_frames(const Listing& listing) {
+  if (!listing.frames.empty()) return;
+  std::string names;
+  for (const auto& [topic, type] : listing.topics) {
+    names += cat(names.empty() ? "" : ", ", printable(topic, 60), " (", printable(type, 60), ")");
+  }
+  throw FormatError(cat("no message on topic ", printable(listing.options.topic, 60),
+                        " (its topics: ", names.empty() ? "none" : names, ")"));
+}
+
+/// The depth images' points, each by the last camera info at or before it (else the first).
+void points_of_images(Listing& listing) {
+  const RecordingOptions& options = listing.options;
+  std::vector<RosDepthImage>& images = listing.images;
+  const std::vector<RosCameraInfo>& infos = listing.infos;
+  if (images.empty()) return;
+  if (infos.empty()) {
+    throw FormatError(cat("no sensor_msgs/CameraInfo on ", printable(listing.info_topic, 60),
+                          " for the depth images of ", printable(options.topic, 60)));
+  }
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const RosCameraInfo* info = &infos.front();
+    for (const RosCameraInfo& c : infos) {
+      if (c.header.stamp <= images[i].header.stamp) info = &c;
+    }
+    try {
+      listing.frames[i].points = depth_to_points(images[i].image, info->intrinsics, options.depth);
+    } catch (const std::invalid_argument& e) {
+      throw FormatError(cat("image ", i + 1, " of ", printable(options.topic, 60), ": ", e.what()));
+    }
+    images[i].image.depth = {};
+  }
+}
+
+// NOTE: a fixed frame tf never names would leave every frame unposed, and the frames placed by
+// the table and registration instead, without a word (issue 53).
+void check_fixed_frame(const Listing& listing) {
+  const std::string& fixed_frame = listing.options.fixed_frame;
+  if (fixed_frame.empty()) return;
+  const std::set<std::string> known = listing.tf.frames();
+  const bool own = std::any_of(listing.frames.begin(), listing.frames.end(),
+                               [&](const RecordingFrame& f) { return f.frame_id == fixed_frame; });
+  if (own || known.contains(fixed_frame)) return;
+  std::string names;
+  for (const std::string& name : known) {
+    if (names.size() > 300) {
+      names += ", ...";
+      break;
+    }
+    names += cat(names.empty() ? "" : ", ", printable(name, 60));
+  }
+  throw FormatError(cat("fixed_frame ", printable(fixed_frame, 60), " is no frame of its tf (",
+                        known.empty() ? std::string("it holds no tf on /tf or /tf_static")
+                                      : cat("its frames: ", names),
+                        ")"));
+}
+
+}  // namespace
+
+Recording read_recording(const std::filesystem::path& path, const RecordingOptions& options) {
+  check_options(options);
   const std::string where = path.string();
   try {
     const std::string ext = lower_extension(path);
-    if (ext != ".bag" && ext != ".mcap") {
-      throw FormatError("not a recording: give a ROS 1 bag (.bag) or an MCAP file (.mcap)");
-    }
-    // NOTE: read whole: the file, then its frames' points (about twice its size), must fit.
-    const std::uintmax_t size = require_input_file(path, InputKind::kRecording);
-    if (const std::uint64_t available = available_memory();
-        available > 0 && 3.0 * static_cast<double>(size) > static_cast<double>(available)) {
-      throw FormatError(cat("is ", describe_bytes(static_cast<double>(size)),
-                            ", and reading it needs about three times that, more than the ",
-                            describe_bytes(static_cast<double>(available)),
-                            " this machine has available"));
-    }
-    const std::string bytes = read_input_file(path, InputKind::kRecording);
-    std::vector<RecordingFrame> frames;
-    std::map<std::string, std::string, std::less<>> topics;  // topic: type
-    TfTree tf;
-    std::size_t listed = 0, index = 0;
-    std::vector<RosDepthImage> images;
-    std::vector<RosCameraInfo> infos;
-    const std::string info_topic =
-        !options.camera_info.empty()
-            ? options.camera_info
-            : options.topic.substr(0, options.topic.rfind('/') + 1) + "camera_info";
-    const auto visit = [&](const RecordedMessage& m) {
-      ++index;
-      topics.emplace(m.topic, m.type);
-      try {
-        if (m.topic == options.topic) {
-          const bool image = is_type(m.type, "sensor_msgs", "Image");
-          if (!image && !is_type(m.type, "sensor_msgs", "PointCloud2")) {
-            throw FormatError(cat("topic ", options.topic, " holds ", printable(m.type, 60),
-                                  ", not sensor_msgs/PointCloud2 or sensor_msgs/Image"));
-          }
-          if (listed++ % static_cast<std::size_t>(options.every) != 0) return;
-          if (image) {
-            images.push_back(decode_depth_image(m.data, m.encoding));
-            frames.push_back(
-                {images.back().header.stamp, images.back().header.frame_id, {}, 0, std::nullopt});
-            return;
-          }
-          RosCloud cloud = decode_point_cloud2(m.data, m.encoding);
-          frames.push_back({cloud.header.stamp, std::move(cloud.header.frame_id),
-                            std::move(cloud.points), cloud.non_finite, std::nullopt});
-        } else if (m.topic == info_topic && is_type(m.type, "sensor_msgs", "CameraInfo")) {
-          infos.push_back(decode_camera_info(m.data, m.encoding));
-        } else if ((m.topic == "/tf" || m.topic == "/tf_static") &&
-                   is_type(m.type, "tf2_msgs", "TFMessage")) {
-          for (const RosTransform& t : decode_tf_message(m.data, m.encoding)) {
-            tf.add(t, m.topic == "/tf_static");
-          }
-        }
-      } catch (const FormatError& e) {
-        throw FormatError(cat("message ", index, " (", printable(m.topic, 60), " at ", m.log_time,
-                              " s): ", e.what()));
-      }
-    };
-    std::optional<RecordingSalvage> salvage;
-    double last_stamp = 0.0;  // [s] of the last frame listed
-    const auto listing = [&](const RecordedMessage& m) {
-      const std::size_t frames_before = frames.size();
-      visit(m);
-      if (frames.size() > frames_before) last_stamp = frames.back().stamp;
-    };
-    try {
-      if (ext == ".bag") {
-        read_rosbag(bytes, listing);
-      } else {
-        read_mcap(bytes, listing);
-      }
-    } catch (const RecordingDamage& e) {
-      // NOTE: every message given lies before the damage, and was checked there (its chunk's
-      // CRC or index); the index says how many frames the damage took, when it is not lost.
-      const RecordingIndex counted = ext == ".bag" ? index_rosbag(bytes) : index_mcap(bytes);
-      if (!options.salvage || listed == 0) {
-        throw FormatError(damage_line(e, options.topic, listed, last_stamp, counted));
-      }
-      salvage = RecordingSalvage{e.what(), e.offset(), listed, std::nullopt};
-      if (const auto total = counted.find(options.topic);
-          total != counted.end() && total->second >= listed) {
-        salvage->dropped = total->second - listed;
-      }
-    }
-    if (frames.empty()) {
-      std::string names;
-      for (const auto& [topic, type] : topics) {
-        names +=
-            cat(names.empty() ? "" : ", ", printable(topic, 60), " (", printable(type, 60), ")");
-      }
-      throw FormatError(cat("no message on topic ", printable(options.topic, 60),
-                            " (its topics: ", names.empty() ? "none" : names, ")"));
-    }
-    if (!images.empty()) {
-      if (infos.empty()) {
-        throw FormatError(cat("no sensor_msgs/CameraInfo on ", printable(info_topic, 60),
-                              " for the depth images of ", printable(options.topic, 60)));
-      }
-      for (std::size_t i = 0; i < images.size(); ++i) {
-        const RosCameraInfo* info = &infos.front();
-        for (const RosCameraInfo& c : infos) {
-          if (c.header.stamp <= images[i].header.stamp) info = &c;
-        }
-        try {
-          frames[i].points = depth_to_points(images[i].image, info->intrinsics, options.depth);
-        } catch (const std::invalid_argument& e) {
-          throw FormatError(
-              cat("image ", i + 1, " of ", printable(options.topic, 60), ": ", e.what()));
-        }
-        images[i].image.depth = {};
-      }
-    }
-    tf.finish();
-    if (!options.fixed_frame.empty()) {
-      // NOTE: a fixed frame tf never names would leave every frame unposed, and the frames
-      // placed by the table and registration instead, without a word (issue 53).
-      const std::set<std::string> known = tf.frames();
-      const bool own = std::any_of(frames.begin(), frames.end(), [&](const RecordingFrame& f) {
-        return f.frame_id == options.fixed_frame;
-      });
-      if (!own && !known.contains(options.fixed_frame)) {
-        std::string names;
-        for (const std::string& name : known) {
-          if (names.size() > 300) {
-            names += ", ...";
-            break;
-          }
-          names += cat(names.empty() ? "" : ", ", printable(name, 60));
-        }
-        throw FormatError(cat("fixed_frame ", printable(options.fixed_frame, 60),
-                              " is no frame of its tf (",
-                              known.empty() ? std::string("it holds no tf on /tf or /tf_static")
-                                            : cat("its frames: ", names),
-                              ")"));
-      }
-    }
-    const std::string fixed =
-        options.fixed_frame.empty() ? tf.root(frames.front().frame_id) : options.fixed_frame;
+    const std::string bytes = read_whole(path, ext);
+    Listing listing(options);
+    std::optional<RecordingSalvage> salvage = list_messages(bytes, ext, listing);
+    require_frames(listing);
+    points_of_images(listing);
+    listing.tf.finish();
+    check_fixed_frame(listing);
+    std::vector<RecordingFrame>& frames = listing.frames;
+    const std::string fixed = options.fixed_frame.empty() ? listing.tf.root(frames.front().frame_id)
+                                                          : options.fixed_frame;
     for (RecordingFrame& frame : frames) {
       frame.T_fixed_cloud =
-          tf.lookup(frame.frame_id, fixed, frame.stamp, options.max_time_difference);
+          listing.tf.lookup(frame.frame_id, fixed, frame.stamp, options.max_time_difference);
     }
     std::optional<PinholeIntrinsics> intrinsics;
-    if (!infos.empty()) intrinsics = infos.front().intrinsics;
+    if (!listing.infos.empty()) intrinsics = listing.infos.front().intrinsics;
     return {std::move(frames), std::move(salvage), intrinsics};
   } catch (const std::runtime_error& e) {
     throw std::runtime_error(cat(where, ": ", e.what()));

@@ -219,6 +219,115 @@ void check_bag_magic(std::string_view bytes) {
   }
 }
 
+/// What read_rosbag has found so far of a bag's chunks and its index.
+struct BagReading {
+  std::map<std::uint32_t, Connection> connections;
+  std::vector<std::uint64_t> chunks;                                 // their offsets
+  std::vector<std::map<std::uint32_t, std::uint32_t>> chunk_counts;  // messages per connection
+  std::optional<std::uint64_t> index_at;  // the first connection or chunk info record outside
+  std::uint32_t index_connections = 0, chunk_infos = 0;
+};
+
+/// A chunk (record `r`; `c` reads on after it): checked with the index data that follows it,
+/// its messages returned to be given.
+std::vector<BagMessage> read_chunk(const BagRecord& r, Cursor& c, BagReading& bag) {
+  if (bag.index_at) {
+    throw FormatError(
+        cat("a chunk at byte ", r.at, " after the index that began at byte ", *bag.index_at));
+  }
+  const std::string_view compression = bag_field(r.fields, "compression", 0, r.at);
+  if (compression != "none") {
+    throw Unsupported(cat("the chunk at byte ", r.at, " is compressed with '",
+                          printable(compression, 20),
+                          "'; Vantage reads uncompressed bags (rosbag decompress FILE.bag)"));
+  }
+  const auto size = bag_scalar<std::uint32_t>(r.fields, "size", r.at);
+  if (size != r.data.size()) {
+    throw FormatError(cat("the chunk at byte ", r.at, " claims ", size,
+                          " bytes uncompressed, but holds ", r.data.size(), " uncompressed"));
+  }
+  std::vector<BagMessage> messages = bag_chunk(r.data, r.at, bag.connections);
+  bag.chunk_counts.push_back(check_bag_index(c, r.at, messages));
+  bag.chunks.push_back(r.at);
+  return messages;
+}
+
+/// A chunk info record of the index: it names the next chunk and counts its messages as it holds
+/// them.
+void check_chunk_info(const BagRecord& r, BagReading& bag) {
+  if (!bag.index_at) bag.index_at = r.at;
+  if (bag_scalar<std::uint32_t>(r.fields, "ver", r.at) != 1) {
+    throw FormatError(cat("the chunk info at byte ", r.at, " is not of version 1"));
+  }
+  const auto pos = bag_scalar<std::uint64_t>(r.fields, "chunk_pos", r.at);
+  const auto count = bag_scalar<std::uint32_t>(r.fields, "count", r.at);
+  if (bag.chunk_infos >= bag.chunks.size() || bag.chunks[bag.chunk_infos] != pos) {
+    throw FormatError(cat("the chunk info at byte ", r.at, " names a chunk at byte ", pos,
+                          ", where the file holds none (or not in this order)"));
+  }
+  Cursor entries(r.data, 0, "");
+  std::map<std::uint32_t, std::uint32_t> counts;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const auto conn = entries.scalar<std::uint32_t>("a connection");
+    counts[conn] = entries.scalar<std::uint32_t>("a count");
+  }
+  if (!entries.done() || counts != bag.chunk_counts[bag.chunk_infos]) {
+    throw FormatError(cat("the chunk info at byte ", r.at, " counts other messages than ",
+                          "the chunk at byte ", pos, " holds"));
+  }
+  ++bag.chunk_infos;
+}
+
+/// A record at the top of the bag after its header; a chunk's messages are returned.
+std::vector<BagMessage> read_top_record(const BagRecord& r, Cursor& c, BagReading& bag) {
+  if (r.op == 0x05) return read_chunk(r, c, bag);
+  if (r.op == 0x07) {  // connection, in the index
+    if (!bag.index_at) bag.index_at = r.at;
+    define_connection(r, bag.connections);
+    ++bag.index_connections;
+  } else if (r.op == 0x06) {
+    check_chunk_info(r, bag);
+  } else if (r.op == 0x04) {
+    throw FormatError(cat("index data at byte ", r.at, " follows no chunk"));
+  } else if (r.op == 0x03) {
+    throw FormatError(cat("a second bag header at byte ", r.at));
+  } else if (r.op == 0x02) {
+    throw FormatError(cat("a message at byte ", r.at, " outside any chunk"));
+  } else {
+    throw FormatError(cat("a record of unknown op ", int{r.op}, " at byte ", r.at));
+  }
+  return {};
+}
+
+/// At the bag's end (byte `end`): the index where its header names it, with the chunks and
+/// connections it counts.
+void check_bag_end(const BagHeader& header, std::uint64_t end, const BagReading& bag) {
+  if (header.index_pos == 0) {
+    throw RecordingDamage(end, cat("the bag's header names no index (index_pos 0): its writer "
+                                   "stopped before it closed the bag, which ends at byte ",
+                                   end, " (rosbag reindex writes the index)"));
+  }
+  if (header.index_pos >= end) {
+    throw RecordingDamage(end, cat("the file ends at byte ", end, ", before the index at byte ",
+                                   header.index_pos, " its header names: cut short"));
+  }
+  if (!bag.index_at || *bag.index_at != header.index_pos) {
+    throw RecordingDamage(
+        header.index_pos,
+        cat("the index its header names at byte ", header.index_pos,
+            " is not where the index begins (",
+            bag.index_at ? cat("byte ", *bag.index_at) : std::string("nowhere"), "): damaged"));
+  }
+  if (bag.chunks.size() != header.chunk_count || bag.chunk_infos != header.chunk_count ||
+      bag.index_connections != header.conn_count) {
+    throw RecordingDamage(
+        *bag.index_at,
+        cat("the bag's header counts ", header.chunk_count, " chunks and ", header.conn_count,
+            " connections; the file holds ", bag.chunks.size(), " chunks, and its index ",
+            bag.chunk_infos, " chunk infos and ", bag.index_connections, " connections: damaged"));
+  }
+}
+
 }  // namespace
 
 void read_rosbag(std::string_view bytes, const MessageVisitor& visit) {
@@ -232,101 +341,18 @@ void read_rosbag(std::string_view bytes, const MessageVisitor& visit) {
   const BagRecord first = top_bag_record(c);
   BagHeader header;
   as_damage(first.at, [&] { header = bag_header(first); });
-  std::map<std::uint32_t, Connection> connections;
-  std::vector<std::uint64_t> chunks;                                 // their offsets
-  std::vector<std::map<std::uint32_t, std::uint32_t>> chunk_counts;  // messages per connection
-  std::optional<std::uint64_t> index_at;  // the first connection or chunk info record outside
-  std::uint32_t index_connections = 0, chunk_infos = 0;
+  BagReading bag;
   while (!c.done()) {
     const BagRecord r = top_bag_record(c);
     // NOTE: the messages are given outside as_damage: what the visitor throws is its own.
     std::vector<BagMessage> messages;
-    as_damage(r.at, [&] {
-      if (r.op == 0x05) {  // chunk
-        if (index_at) {
-          throw FormatError(
-              cat("a chunk at byte ", r.at, " after the index that began at byte ", *index_at));
-        }
-        const std::string_view compression = bag_field(r.fields, "compression", 0, r.at);
-        if (compression != "none") {
-          throw Unsupported(cat("the chunk at byte ", r.at, " is compressed with '",
-                                printable(compression, 20),
-                                "'; Vantage reads uncompressed bags (rosbag decompress FILE.bag)"));
-        }
-        const auto size = bag_scalar<std::uint32_t>(r.fields, "size", r.at);
-        if (size != r.data.size()) {
-          throw FormatError(cat("the chunk at byte ", r.at, " claims ", size,
-                                " bytes uncompressed, but holds ", r.data.size(), " uncompressed"));
-        }
-        messages = bag_chunk(r.data, r.at, connections);
-        chunk_counts.push_back(check_bag_index(c, r.at, messages));
-        chunks.push_back(r.at);
-      } else if (r.op == 0x07) {  // connection, in the index
-        if (!index_at) index_at = r.at;
-        define_connection(r, connections);
-        ++index_connections;
-      } else if (r.op == 0x06) {  // chunk info
-        if (!index_at) index_at = r.at;
-        if (bag_scalar<std::uint32_t>(r.fields, "ver", r.at) != 1) {
-          throw FormatError(cat("the chunk info at byte ", r.at, " is not of version 1"));
-        }
-        const auto pos = bag_scalar<std::uint64_t>(r.fields, "chunk_pos", r.at);
-        const auto count = bag_scalar<std::uint32_t>(r.fields, "count", r.at);
-        if (chunk_infos >= chunks.size() || chunks[chunk_infos] != pos) {
-          throw FormatError(cat("the chunk info at byte ", r.at, " names a chunk at byte ", pos,
-                                ", where the file holds none (or not in this order)"));
-        }
-        Cursor entries(r.data, 0, "");
-        std::map<std::uint32_t, std::uint32_t> counts;
-        for (std::uint32_t i = 0; i < count; ++i) {
-          const auto conn = entries.scalar<std::uint32_t>("a connection");
-          counts[conn] = entries.scalar<std::uint32_t>("a count");
-        }
-        if (!entries.done() || counts != chunk_counts[chunk_infos]) {
-          throw FormatError(cat("the chunk info at byte ", r.at, " counts other messages than ",
-                                "the chunk at byte ", pos, " holds"));
-        }
-        ++chunk_infos;
-      } else if (r.op == 0x04) {
-        throw FormatError(cat("index data at byte ", r.at, " follows no chunk"));
-      } else if (r.op == 0x03) {
-        throw FormatError(cat("a second bag header at byte ", r.at));
-      } else if (r.op == 0x02) {
-        throw FormatError(cat("a message at byte ", r.at, " outside any chunk"));
-      } else {
-        throw FormatError(cat("a record of unknown op ", int{r.op}, " at byte ", r.at));
-      }
-    });
+    as_damage(r.at, [&] { messages = read_top_record(r, c, bag); });
     for (const BagMessage& m : messages) {
-      const Connection& conn = connections.at(m.conn);
+      const Connection& conn = bag.connections.at(m.conn);
       visit({conn.topic, conn.type, RosEncoding::kRos1, m.time, m.data});
     }
   }
-  const std::uint64_t end = bytes.size();
-  if (header.index_pos == 0) {
-    throw RecordingDamage(end, cat("the bag's header names no index (index_pos 0): its writer "
-                                   "stopped before it closed the bag, which ends at byte ",
-                                   end, " (rosbag reindex writes the index)"));
-  }
-  if (header.index_pos >= end) {
-    throw RecordingDamage(end, cat("the file ends at byte ", end, ", before the index at byte ",
-                                   header.index_pos, " its header names: cut short"));
-  }
-  if (!index_at || *index_at != header.index_pos) {
-    throw RecordingDamage(
-        header.index_pos,
-        cat("the index its header names at byte ", header.index_pos,
-            " is not where the index begins (",
-            index_at ? cat("byte ", *index_at) : std::string("nowhere"), "): damaged"));
-  }
-  if (chunks.size() != header.chunk_count || chunk_infos != header.chunk_count ||
-      index_connections != header.conn_count) {
-    throw RecordingDamage(
-        *index_at,
-        cat("the bag's header counts ", header.chunk_count, " chunks and ", header.conn_count,
-            " connections; the file holds ", chunks.size(), " chunks, and its index ", chunk_infos,
-            " chunk infos and ", index_connections, " connections: damaged"));
-  }
+  check_bag_end(header, bytes.size(), bag);
 }
 
 RecordingIndex index_rosbag(std::string_view bytes) {

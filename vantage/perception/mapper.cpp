@@ -104,6 +104,48 @@ std::string describe_failure(const perception::RegistrationResult& r) {
   }
 }
 
+/// Refuses a view whose pose or any point is not finite, naming it.
+void check_parts(std::span<const ScanPart> parts) {
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const std::string part = parts.size() > 1 ? cat("scan part ", k, " ") : std::string("scan ");
+    if (!parts[k].T_scan_sensor.matrix().allFinite()) {
+      throw std::invalid_argument(cat(part, "pose is not finite"));
+    }
+    for (std::size_t i = 0; i < parts[k].points_sensor.size(); ++i) {
+      if (!parts[k].points_sensor[i].allFinite()) {
+        throw std::invalid_argument(cat(part, "point ", i, " is not finite (NaN or infinite)"));
+      }
+    }
+  }
+}
+
+/// What a view contributes, in its sensor frame: its points thinned to the grid's cells, then
+/// the objects segmentation finds on the table at the scan's guess; counted and timed in
+/// `update`.
+ScanPart objects_of(const ScanPart& part, const Eigen::Isometry3d& T_world_sensor_guess,
+                    const MapperConfig& config, const GridSpec& grid, MapperUpdate& update) {
+  auto start = std::chrono::steady_clock::now();
+  const Eigen::Isometry3d T_guess_part = compose(T_world_sensor_guess, part.T_scan_sensor);
+  PointCloud kept = config.thin_to_cells ? thin_to_cells(part.points_sensor, T_guess_part, grid)
+                                         : part.points_sensor;
+  update.points += part.points_sensor.size();
+  update.thinned_points += kept.size();
+  update.seconds_integrate += seconds_since(start);
+  start = std::chrono::steady_clock::now();
+  if (config.segment_table) {
+    const perception::TableSegmentation table =
+        perception::segment_table(transform(T_guess_part, kept), config.table);
+    update.table_views += table.found ? 1 : 0;
+    PointCloud objects;
+    objects.reserve(table.object_indices.size());
+    for (const std::size_t i : table.object_indices) objects.push_back(kept[i]);
+    kept = std::move(objects);
+  }
+  update.object_points += kept.size();
+  update.seconds_segment += seconds_since(start);
+  return {std::move(kept), part.T_scan_sensor, part.fov};
+}
+
 }  // namespace
 
 void MapperConfig::validate() const {
@@ -148,17 +190,7 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
   if (!T_world_sensor_guess.matrix().allFinite()) {
     throw std::invalid_argument("scan pose is not finite");
   }
-  for (std::size_t k = 0; k < parts.size(); ++k) {
-    const std::string part = parts.size() > 1 ? cat("scan part ", k, " ") : std::string("scan ");
-    if (!parts[k].T_scan_sensor.matrix().allFinite()) {
-      throw std::invalid_argument(cat(part, "pose is not finite"));
-    }
-    for (std::size_t i = 0; i < parts[k].points_sensor.size(); ++i) {
-      if (!parts[k].points_sensor[i].allFinite()) {
-        throw std::invalid_argument(cat(part, "point ", i, " is not finite (NaN or infinite)"));
-      }
-    }
-  }
+  check_parts(parts);
   MapperUpdate update;
   update.T_world_sensor_guess = T_world_sensor_guess;
   update.T_world_sensor = T_world_sensor_guess;
@@ -168,34 +200,19 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
   // so the guess serves as well as the corrected pose, and registration sees the objects only.
   HeldScan scan{.index = scans_, .parts = {}, .T_world_sensor_guess = T_world_sensor_guess};
   for (const ScanPart& part : parts) {
-    auto start = std::chrono::steady_clock::now();
-    const Eigen::Isometry3d T_guess_part = compose(T_world_sensor_guess, part.T_scan_sensor);
-    PointCloud kept = config_.thin_to_cells
-                          ? thin_to_cells(part.points_sensor, T_guess_part, grid_.spec())
-                          : part.points_sensor;
-    update.points += part.points_sensor.size();
-    update.thinned_points += kept.size();
-    update.seconds_integrate += seconds_since(start);
-    start = std::chrono::steady_clock::now();
-    if (config_.segment_table) {
-      const perception::TableSegmentation table =
-          perception::segment_table(transform(T_guess_part, kept), config_.table);
-      update.table_views += table.found ? 1 : 0;
-      PointCloud objects;
-      objects.reserve(table.object_indices.size());
-      for (const std::size_t i : table.object_indices) objects.push_back(kept[i]);
-      kept = std::move(objects);
-    }
-    update.object_points += kept.size();
-    update.seconds_segment += seconds_since(start);
-    scan.parts.push_back({std::move(kept), part.T_scan_sensor, part.fov});
+    scan.parts.push_back(objects_of(part, T_world_sensor_guess, config_, grid_.spec(), update));
   }
-
   update.object_spread = perception::point_spread(in_scan_frame(scan.parts));
+  place(scan, unposed, update);
+  keep(std::move(scan), update);
+  ++scans_;
+  return update;
+}
 
-  auto start = std::chrono::steady_clock::now();
+void Mapper::place(HeldScan& scan, bool unposed, MapperUpdate& update) {
+  const auto start = std::chrono::steady_clock::now();
   scan.trusted = scans_ == 0;  // the first scan defines the map frame
-  scan.T_world_sensor = T_world_sensor_guess;
+  scan.T_world_sensor = scan.T_world_sensor_guess;
   if (unposed && reference_.empty()) {
     throw RegistrationFailed(
         "no pose given, and no map to register it to (the scans before it mapped no objects)");
@@ -222,8 +239,10 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
   } else {
     update.seconds_register += seconds_since(start);
   }
+}
 
-  start = std::chrono::steady_clock::now();
+void Mapper::keep(HeldScan scan, MapperUpdate& update) {
+  const auto start = std::chrono::steady_clock::now();
   if (config_.register_scans && config_.reregister_window > 0 && !scan.trusted && !checkpoint_) {
     checkpoint_ = grid_;
     checkpoint_objects_ = objects_.size();
@@ -238,8 +257,6 @@ MapperUpdate Mapper::add_scan(std::span<const ScanPart> parts,
     held_.clear();
   }
   update.seconds_integrate += seconds_since(start);
-  ++scans_;
-  return update;
 }
 
 std::size_t Mapper::pending() const {

@@ -169,6 +169,13 @@ class Mapper {
     bool trusted = false;
   };
 
+  /// Places `scan`: the first scan as given, a later one by registration (refused when it has
+  /// no pose and does not register); a trusted scan grows the reference, and may pin the
+  /// pending ones.
+  void place(HeldScan& scan, bool unposed, MapperUpdate& update);
+  /// Integrates `scan`, holding it while a scan is pending (from a checkpoint before the first),
+  /// and lets the pending scans go once the window has passed them.
+  void keep(HeldScan scan, MapperUpdate& update);
   /// Registers `scan`'s objects to the reference, starting from its guess under `prior`; with
   /// register_overlap_only, only those in cells `known` has observed.
   perception::RegistrationResult register_held(const HeldScan& scan, const OccupancyGrid& known,

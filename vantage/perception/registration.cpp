@@ -1,7 +1,6 @@
 #include "vantage/perception/registration.hpp"
 
 #include <pcl/console/print.h>
-#include <tbb/parallel_for.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -10,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "vantage/perception/detail/registration_terms.hpp"
 #include "vantage/perception/voxel_filter.hpp"
 #include "vantage/util/parallel.hpp"
 #include "vantage/util/text.hpp"
@@ -17,107 +17,12 @@
 namespace vantage::perception {
 namespace {
 
-using Vector6d = Eigen::Matrix<double, 6, 1>;
-using Matrix6d = Eigen::Matrix<double, 6, 6>;
-
-/// A correction of the guess: rotation `R` about the guess's sensor position `c`, then the
-/// translation `t`, so p -> R (p - c) + c + t. Its coordinates x = (rotation vector, t) are what
-/// the prior weighs: the odometry's error is a rotation about the sensor and a shift.
-struct Correction {
-  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-  Eigen::Vector3d t = Eigen::Vector3d::Zero();
-
-  Vector6d coordinates() const {
-    const Eigen::AngleAxisd aa(R);
-    Vector6d x;
-    x << aa.angle() * aa.axis(), t;
-    return x;
-  }
-  Eigen::Vector3d apply(const Eigen::Vector3d& p, const Eigen::Vector3d& c) const {
-    return R * (p - c) + c + t;
-  }
-};
-
-/// One scan point's pairing at the current correction: residual along the map's normal and its
-/// Jacobian with respect to (rotation about the current sensor position, translation).
-struct Pair {
-  bool valid = false;
-  double residual = 0.0;
-  Vector6d jacobian = Vector6d::Zero();
-};
-
-Matrix6d prior_information(const PoseSigma& s) {
-  Vector6d sigma;
-  sigma << s.roll, s.pitch, s.yaw, s.x, s.y, s.z;
-  return sigma.array().square().inverse().matrix().asDiagonal();
-}
-
-/// Pairs every point of `points_world` (at the guess) moved by `correction` with the map.
-std::vector<Pair> pair_up(const PointCloud& points_world, const Correction& correction,
-                          const Eigen::Vector3d& c, const VoxelMap& map, double distance) {
-  std::vector<Pair> pairs(points_world.size());
-  const Eigen::Vector3d sensor = c + correction.t;
-  tbb::parallel_for(std::size_t{0}, points_world.size(), [&](std::size_t i) {
-    const Eigen::Vector3d y = correction.apply(points_world[i], c);
-    const std::optional<MapMatch> match = map.nearest(y, distance);
-    // NOTE: a surface the sensor sees faces it; the nearest map point on a face turned away (the
-    // far side of a box, seen by an earlier scan) is a parallel plane a box's depth away.
-    if (!match || match->normal.dot(sensor - match->point) <= 0.0) return;
-    Pair& pair = pairs[i];
-    pair.valid = true;
-    pair.residual = match->normal.dot(y - match->point);
-    pair.jacobian << (y - sensor).cross(match->normal), match->normal;
-  });
-  return pairs;
-}
-
-/// The projection onto the directions the data constrains. A scene without structure along a
-/// direction (a plane: the shift along it, the turn about its normal) still gives its points'
-/// noisy normals a small component there, and Gauss-Newton would follow that noise by as much as
-/// residual / (normal tilt × lever): degrees. Directions whose information is below `ratio` of
-/// the strongest are left to the prior. They are judged as motions about the scan's centroid
-/// `m` (the Jacobians turn about the sensor `s`), rotations measured at the scan's radius
-/// `radius` about it, so that a turn the objects' spread pins compares with a shift.
-/// NOTE: the idea of Zhang, Kaess and Singh (ICRA 2016), "On degeneracy of optimization-based
-/// state estimation problems".
-Matrix6d constrained(const Matrix6d& H, const Eigen::Vector3d& m, const Eigen::Vector3d& s,
-                     double radius, double ratio) {
-  // x_m = A x_s: the same motion, turning about m: t_m = t_s + theta x (m - s).
-  Matrix6d A = Matrix6d::Identity();
-  const Eigen::Vector3d d = m - s;
-  Eigen::Matrix3d cross;
-  cross << 0, -d.z(), d.y(), d.z(), 0, -d.x(), -d.y(), d.x(), 0;
-  A.bottomLeftCorner<3, 3>() = -cross;
-  Matrix6d A_inverse = Matrix6d::Identity();
-  A_inverse.bottomLeftCorner<3, 3>() = cross;
-  Vector6d scale;  // x' = x_m / scale
-  scale << 1.0 / radius, 1.0 / radius, 1.0 / radius, 1.0, 1.0, 1.0;
-  const Matrix6d scaled =
-      scale.asDiagonal() * A_inverse.transpose() * H * A_inverse * scale.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Matrix6d> eigen(scaled);
-  const double strongest = eigen.eigenvalues().maxCoeff();
-  Matrix6d keep = Matrix6d::Zero();
-  for (int i = 0; i < 6; ++i) {
-    if (strongest > 0.0 && eigen.eigenvalues()(i) >= ratio * strongest) {
-      keep += eigen.eigenvectors().col(i) * eigen.eigenvectors().col(i).transpose();
-    }
-  }
-  return A_inverse * scale.asDiagonal() * keep * scale.cwiseInverse().asDiagonal() * A;
-}
-
-std::size_t count(const std::vector<Pair>& pairs) {
-  return static_cast<std::size_t>(
-      std::count_if(pairs.begin(), pairs.end(), [](const Pair& p) { return p.valid; }));
-}
-
-/// The weight of each of `pairs` pairs. NOTE: neighbouring points share their map points,
-/// normals and the scan's systematic errors: together they count as at most
-/// `independent_points` independent measurements.
-double independent_share(std::size_t pairs, const RegistrationConfig& config) {
-  return pairs > config.independent_points
-             ? static_cast<double>(config.independent_points) / static_cast<double>(pairs)
-             : 1.0;
-}
+using detail::Correction;
+using detail::count;
+using detail::independent_share;
+using detail::Matrix6d;
+using detail::Pair;
+using detail::Vector6d;
 
 /// A stage of the coarse-to-fine schedule: the scan thinned for it and its correspondence
 /// distance.
@@ -147,7 +52,7 @@ class Problem {
  public:
   Problem(const PointCloud& points_sensor, const Eigen::Isometry3d& T_world_sensor_guess,
           const VoxelMap& map, const RegistrationConfig& config)
-      : prior(prior_information(config.prior)),
+      : prior(detail::prior_information(config.prior)),
         guess_(T_world_sensor_guess),
         c_(T_world_sensor_guess.translation()),
         map_(map),
@@ -271,7 +176,7 @@ class Problem {
     int iteration = 0;
     while (iteration < config_.max_iterations) {
       const std::vector<Pair> pairs =
-          pair_up(stage.points_world, correction, c_, map_, stage.distance);
+          detail::pair_up(stage.points_world, correction, c_, map_, stage.distance);
       ++iteration;
       // Summed in point order, so the result does not depend on the thread count.
       Matrix6d H = Matrix6d::Zero();
@@ -284,8 +189,8 @@ class Problem {
         H += w * pair.jacobian * pair.jacobian.transpose();
         g += w * pair.residual * pair.jacobian;
       }
-      const Matrix6d P = constrained(H, correction.apply(centroid_, c_), c_ + correction.t, radius_,
-                                     config_.degenerate_ratio);
+      const Matrix6d P = detail::constrained(H, correction.apply(centroid_, c_), c_ + correction.t,
+                                             radius_, config_.degenerate_ratio);
       H = prior + P.transpose() * H * P;
       g = prior * correction.coordinates() + P.transpose() * g;
       const Vector6d dx = H.ldlt().solve(-g);
@@ -309,7 +214,8 @@ class Problem {
   /// `correction`'s fit on the last stage's pairing of the full-resolution (voxel_size) scan:
   /// robust point to plane, an unpaired point costing what a pair at the distance limit would.
   Score score(const Correction& correction) const {
-    const std::vector<Pair> pairs = pair_up(full_, correction, c_, map_, config_.min_distance);
+    const std::vector<Pair> pairs =
+        detail::pair_up(full_, correction, c_, map_, config_.min_distance);
     Score s;
     s.correspondences = count(pairs);
     const double kernel = config_.min_distance / 3.0;

@@ -11,6 +11,8 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "vantage/perception/detail/pcl_bridge.hpp"
@@ -136,6 +138,164 @@ Eigen::Vector4d fit_plane(const PointCloud& points, const std::vector<char>& fla
   return plane;
 }
 
+/// The search of a cloud's sample for horizontal planes, largest first.
+class PlaneSearch {
+ public:
+  PlaneSearch(const PointCloud& sample, const std::vector<std::size_t>& weight,
+              const TableConfig& config)
+      : sample_(sample), weight_(weight), config_(config) {}
+
+  /// Whether a plane lies at a table's height (its inliers' mean z within the configured range).
+  bool eligible(const Plane& plane) const {
+    double z = 0.0;
+    for (const int i : plane.inliers) z += sample_[static_cast<std::size_t>(i)].z();
+    z /= static_cast<double>(plane.inliers.size());
+    return z >= config_.min_table_z && z <= config_.max_table_z;
+  }
+
+  /// The planes found, each with the points left by those before it, until RANSAC finds none or
+  /// no plane of what remains could outweigh the largest eligible one.
+  std::vector<Plane> planes() const {
+    // Normals oriented up, toward a viewpoint high above the cloud (only their angle to +z is
+    // used).
+    Eigen::Vector3d top = Eigen::Vector3d::Zero();
+    for (const Eigen::Vector3d& p : sample_) top += p;
+    top = top / static_cast<double>(sample_.size()) + Eigen::Vector3d(0.0, 0.0, 1e3);
+    const std::vector<Eigen::Vector3d> normals =
+        estimate_normals(sample_,
+                         {.k_neighbours = config_.normal_neighbours,
+                          .radius = config_.normal_radius,
+                          .num_threads = config_.num_threads},
+                         top);
+    const pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = to_pcl(sample_, "segment_table");
+    auto pcl_normals = std::make_shared<pcl::PointCloud<pcl::Normal>>();
+    auto remaining = std::make_shared<pcl::Indices>();
+    const double min_cos = std::cos(config_.max_angle);
+    for (std::size_t i = 0; i < normals.size(); ++i) {
+      const Eigen::Vector3f n = normals[i].cast<float>();
+      pcl_normals->push_back(pcl::Normal(n.x(), n.y(), n.z()));
+      // NOTE: only points whose normal is within max_angle of vertical can lie on a horizontal
+      // surface; the rest (sides of objects, points without a normal, whose angle PCL would
+      // compare as NaN) are left out of the search, which cuts RANSAC's work several times over.
+      if (std::abs(normals[i].z()) >= min_cos) remaining->push_back(static_cast<int>(i));
+    }
+    std::vector<Plane> planes;
+    std::size_t most_points = 0;  // of an eligible plane so far
+    std::size_t remaining_points = points_of(*remaining);
+    // NOTE: once fewer points remain than the largest eligible plane holds, no later plane can
+    // beat it, so the search stops: usually after the table, or the floor and then the table.
+    for (int k = 0; k < config_.max_planes && remaining->size() >= config_.min_inliers &&
+                    remaining_points > most_points;
+         ++k) {
+      std::optional<Plane> plane = ransac(cloud, pcl_normals, remaining);
+      if (!plane) break;
+      remaining = outside_slab(*plane, *remaining);
+      remaining_points = points_of(*remaining);
+      if (eligible(*plane)) most_points = std::max(most_points, plane->points);
+      planes.push_back(std::move(*plane));
+    }
+    return planes;
+  }
+
+ private:
+  // NOTE: planes are weighed by the input points their sample points stand for, not by the
+  // sample points: a coarse sample counts area, and a sparse floor's would outweigh the table.
+  std::size_t points_of(const pcl::Indices& indices) const {
+    std::size_t n = 0;
+    for (const int i : indices) n += weight_[static_cast<std::size_t>(i)];
+    return n;
+  }
+
+  /// The largest horizontal plane RANSAC finds among `remaining`, or none.
+  std::optional<Plane> ransac(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
+                              const pcl::PointCloud<pcl::Normal>::Ptr& normals,
+                              const std::shared_ptr<pcl::Indices>& remaining) const {
+    // NOTE: constructed with random = false, PCL seeds its sample consensus with the fixed seed
+    // 12345, and the default thread count (-1) keeps RANSAC serial: the search is repeatable.
+    pcl::SACSegmentationFromNormals<pcl::PointXYZ, pcl::Normal> sac(false);
+    sac.setModelType(pcl::SACMODEL_NORMAL_PARALLEL_PLANE);
+    sac.setMethodType(pcl::SAC_RANSAC);
+    sac.setAxis(Eigen::Vector3f::UnitZ());
+    sac.setEpsAngle(config_.max_angle);
+    sac.setNormalDistanceWeight(config_.normal_distance_weight);
+    sac.setDistanceThreshold(config_.distance_threshold);
+    sac.setMaxIterations(config_.max_iterations);
+    sac.setOptimizeCoefficients(true);
+    sac.setInputCloud(cloud);
+    sac.setInputNormals(normals);
+    sac.setIndices(remaining);
+    pcl::PointIndices inliers;
+    pcl::ModelCoefficients coefficients;
+    sac.segment(inliers, coefficients);
+    if (inliers.indices.size() < config_.min_inliers || coefficients.values.size() != 4) {
+      return std::nullopt;
+    }
+    Plane plane;
+    for (int a = 0; a < 4; ++a)
+      plane.coefficients[a] = coefficients.values[static_cast<std::size_t>(a)];
+    plane.coefficients /= plane.coefficients.head<3>().norm();
+    if (plane.coefficients.z() < 0.0) plane.coefficients = -plane.coefficients;
+    plane.inliers.assign(inliers.indices.begin(), inliers.indices.end());
+    std::sort(plane.inliers.begin(), plane.inliers.end());
+    plane.points = points_of(plane.inliers);
+    return plane;
+  }
+
+  // NOTE: the plane claims its whole slab, not only the inliers whose normals agreed: noisy
+  // normals left ~half of a sparse floor behind, which then came back as many small "planes",
+  // each costing RANSAC its full max_iterations (2 s instead of 0.2 s).
+  std::shared_ptr<pcl::Indices> outside_slab(const Plane& plane,
+                                             const pcl::Indices& remaining) const {
+    auto rest = std::make_shared<pcl::Indices>();
+    for (const int i : remaining) {
+      const Eigen::Vector3d& p = sample_[static_cast<std::size_t>(i)];
+      if (std::abs(plane.coefficients.head<3>().dot(p) + plane.coefficients[3]) >
+          config_.distance_threshold) {
+        rest->push_back(i);
+      }
+    }
+    return rest;
+  }
+
+  const PointCloud& sample_;
+  const std::vector<std::size_t>& weight_;
+  const TableConfig& config_;
+};
+
+/// The table as the full cloud shows it.
+struct TableFit {
+  Eigen::Vector4d plane;
+  Extent extent;
+};
+
+/// The table's plane and extent in the full cloud: the sample's plane and extent first, then the
+/// full cloud's points near that plane and within a voxel of that extent (what sampling may have
+/// pulled in) refit the plane and widen the extent to where the table's points reach. None when
+/// an extent is degenerate.
+std::optional<TableFit> fit_table(const PointCloud& points_world, const PointCloud& sample,
+                                  const Plane& table, const TableConfig& config) {
+  PointCloud sample_inliers;
+  for (const int i : table.inliers) sample_inliers.push_back(sample[static_cast<std::size_t>(i)]);
+  const Extent coarse(table.coefficients, sample_inliers);
+  if (coarse.hull.size() < 3) return std::nullopt;
+  // 1: near the plane, inside the sample's hull; 2: near it, outside, but within a voxel.
+  const std::vector<char> near = flag(points_world, [&](const Eigen::Vector3d& p) -> char {
+    if (std::abs(coarse.height(p)) > config.distance_threshold) return 0;
+    if (coarse.contains(p, 0.0)) return 1;
+    return coarse.contains(p, config.voxel_size) ? 2 : 0;
+  });
+  const Eigen::Vector4d plane = fit_plane(points_world, near, table.coefficients);
+  for (std::size_t i = 0; i < points_world.size(); ++i) {
+    if (near[i] == 2) sample_inliers.push_back(points_world[i]);
+  }
+  // NOTE: the sample's hull holds every full-cloud point inside it, so the points outside it and
+  // its corners give the hull of all the inliers.
+  for (const Eigen::Vector3d& corner : coarse.corners()) sample_inliers.push_back(corner);
+  const Extent extent(plane, sample_inliers);
+  if (extent.hull.size() < 3) return std::nullopt;
+  return TableFit{plane, extent};
+}
+
 }  // namespace
 
 void TableConfig::validate() const {
@@ -182,130 +342,23 @@ TableSegmentation segment_table(const PointCloud& points_world, const TableConfi
   std::vector<std::size_t> weight;  // the input points each sample point stands for
   const PointCloud sample = voxel_downsample(points_world, config.voxel_size, &weight);
   if (sample.size() < config.min_inliers) return result;
-
-  // Normals oriented up, toward a viewpoint high above the cloud (only their angle to +z is used).
-  Eigen::Vector3d top = Eigen::Vector3d::Zero();
-  for (const Eigen::Vector3d& p : sample) top += p;
-  top = top / static_cast<double>(sample.size()) + Eigen::Vector3d(0.0, 0.0, 1e3);
-  const std::vector<Eigen::Vector3d> normals =
-      estimate_normals(sample,
-                       {.k_neighbours = config.normal_neighbours,
-                        .radius = config.normal_radius,
-                        .num_threads = config.num_threads},
-                       top);
-
-  const pcl::PointCloud<pcl::PointXYZ>::Ptr cloud = to_pcl(sample, "segment_table");
-  auto pcl_normals = std::make_shared<pcl::PointCloud<pcl::Normal>>();
-  auto remaining = std::make_shared<pcl::Indices>();
-  const double min_cos = std::cos(config.max_angle);
-  for (std::size_t i = 0; i < normals.size(); ++i) {
-    const Eigen::Vector3f n = normals[i].cast<float>();
-    pcl_normals->push_back(pcl::Normal(n.x(), n.y(), n.z()));
-    // NOTE: only points whose normal is within max_angle of vertical can lie on a horizontal
-    // surface; the rest (sides of objects, points without a normal, whose angle PCL would
-    // compare as NaN) are left out of the search, which cuts RANSAC's work several times over.
-    if (std::abs(normals[i].z()) >= min_cos) remaining->push_back(static_cast<int>(i));
-  }
-
-  std::vector<Plane> planes;
-  std::size_t most_points = 0;  // of an eligible plane so far
-  // NOTE: planes are weighed by the input points their sample points stand for, not by the
-  // sample points: a coarse sample counts area, and a sparse floor's would outweigh the table.
-  const auto points_of = [&](const pcl::Indices& indices) {
-    std::size_t n = 0;
-    for (const int i : indices) n += weight[static_cast<std::size_t>(i)];
-    return n;
-  };
-  std::size_t remaining_points = points_of(*remaining);
-  const auto eligible = [&](const Plane& plane) {
-    double z = 0.0;
-    for (const int i : plane.inliers) z += sample[static_cast<std::size_t>(i)].z();
-    z /= static_cast<double>(plane.inliers.size());
-    return z >= config.min_table_z && z <= config.max_table_z;
-  };
-  // NOTE: once fewer points remain than the largest eligible plane holds, no later plane can
-  // beat it, so the search stops: usually after the table, or the floor and then the table.
-  for (int k = 0; k < config.max_planes && remaining->size() >= config.min_inliers &&
-                  remaining_points > most_points;
-       ++k) {
-    // NOTE: constructed with random = false, PCL seeds its sample consensus with the fixed seed
-    // 12345, and the default thread count (-1) keeps RANSAC serial: the search is repeatable.
-    pcl::SACSegmentationFromNormals<pcl::PointXYZ, pcl::Normal> sac(false);
-    sac.setModelType(pcl::SACMODEL_NORMAL_PARALLEL_PLANE);
-    sac.setMethodType(pcl::SAC_RANSAC);
-    sac.setAxis(Eigen::Vector3f::UnitZ());
-    sac.setEpsAngle(config.max_angle);
-    sac.setNormalDistanceWeight(config.normal_distance_weight);
-    sac.setDistanceThreshold(config.distance_threshold);
-    sac.setMaxIterations(config.max_iterations);
-    sac.setOptimizeCoefficients(true);
-    sac.setInputCloud(cloud);
-    sac.setInputNormals(pcl_normals);
-    sac.setIndices(remaining);
-    pcl::PointIndices inliers;
-    pcl::ModelCoefficients coefficients;
-    sac.segment(inliers, coefficients);
-    if (inliers.indices.size() < config.min_inliers || coefficients.values.size() != 4) break;
-
-    Plane plane;
-    for (int a = 0; a < 4; ++a)
-      plane.coefficients[a] = coefficients.values[static_cast<std::size_t>(a)];
-    plane.coefficients /= plane.coefficients.head<3>().norm();
-    if (plane.coefficients.z() < 0.0) plane.coefficients = -plane.coefficients;
-    plane.inliers.assign(inliers.indices.begin(), inliers.indices.end());
-    std::sort(plane.inliers.begin(), plane.inliers.end());
-    plane.points = points_of(plane.inliers);
-    // NOTE: the plane claims its whole slab, not only the inliers whose normals agreed: noisy
-    // normals left ~half of a sparse floor behind, which then came back as many small "planes",
-    // each costing RANSAC its full max_iterations (2 s instead of 0.2 s).
-    auto rest = std::make_shared<pcl::Indices>();
-    for (const int i : *remaining) {
-      const Eigen::Vector3d& p = sample[static_cast<std::size_t>(i)];
-      if (std::abs(plane.coefficients.head<3>().dot(p) + plane.coefficients[3]) >
-          config.distance_threshold) {
-        rest->push_back(i);
-      }
-    }
-    remaining = rest;
-    remaining_points = points_of(*remaining);
-    if (eligible(plane)) most_points = std::max(most_points, plane.points);
-    planes.push_back(std::move(plane));
-  }
+  const PlaneSearch search(sample, weight, config);
+  const std::vector<Plane> planes = search.planes();
 
   // The table: the eligible plane with the most inliers, the first found on a tie.
   const Plane* table = nullptr;
   for (const Plane& plane : planes) {
-    if (eligible(plane) && (!table || plane.points > table->points)) {
+    if (search.eligible(plane) && (!table || plane.points > table->points)) {
       table = &plane;
     }
   }
   if (!table) return result;
-
-  // The sample's plane and extent, then the full cloud's: its points near that plane and within
-  // a voxel of that extent (what sampling may have pulled in) refit the plane and widen the
-  // extent to where the table's points reach.
-  PointCloud sample_inliers;
-  for (const int i : table->inliers) sample_inliers.push_back(sample[static_cast<std::size_t>(i)]);
-  const Extent coarse(table->coefficients, sample_inliers);
-  if (coarse.hull.size() < 3) return result;
-  // 1: near the plane, inside the sample's hull; 2: near it, outside, but within a voxel.
-  const std::vector<char> near = flag(points_world, [&](const Eigen::Vector3d& p) -> char {
-    if (std::abs(coarse.height(p)) > config.distance_threshold) return 0;
-    if (coarse.contains(p, 0.0)) return 1;
-    return coarse.contains(p, config.voxel_size) ? 2 : 0;
-  });
-  const Eigen::Vector4d plane = fit_plane(points_world, near, table->coefficients);
-  for (std::size_t i = 0; i < points_world.size(); ++i) {
-    if (near[i] == 2) sample_inliers.push_back(points_world[i]);
-  }
-  // NOTE: the sample's hull holds every full-cloud point inside it, so the points outside it and
-  // its corners give the hull of all the inliers.
-  for (const Eigen::Vector3d& corner : coarse.corners()) sample_inliers.push_back(corner);
-  const Extent extent(plane, sample_inliers);
-  if (extent.hull.size() < 3) return result;
+  const std::optional<TableFit> fit = fit_table(points_world, sample, *table, config);
+  if (!fit) return result;
+  const Extent& extent = fit->extent;
 
   result.found = true;
-  result.plane = plane;
+  result.plane = fit->plane;
   result.table_hull = extent.corners();
   const std::vector<char> kind = flag(points_world, [&](const Eigen::Vector3d& p) -> char {
     const double height = extent.height(p);

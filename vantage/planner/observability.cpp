@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <system_error>
 
-#include "vantage/gain/exact.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/util/text.hpp"

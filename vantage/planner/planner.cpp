@@ -12,8 +12,9 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
                     const PlannerConfig& config, std::uint64_t seed) {
   config.validate();
   if (candidates.empty()) throw std::invalid_argument("no candidate views to choose from");
-  if (sequence_of(config).active()) return decide_by_sequence(grid, candidates, config);
-  const SearchTraits& search = search_traits(resolve_search(config));
+  const Decider decider = resolve_decider(config);
+  if (!decider.search) return decide_by_sequence(grid, candidates, config);
+  const SearchTraits& search = search_traits(*decider.search);
   const auto start = std::chrono::steady_clock::now();
   const CandidateViews views(candidates);
   GainConfig gain = config.gain;

@@ -13,8 +13,8 @@
 
 namespace vantage {
 
-/// Scores the candidates and chooses one: by a sequence when config.sequence plans one, else by
-/// the search resolve_search names (config.search, or the fastest that serves the method). Ties
+/// Scores the candidates and chooses one by what resolve_decider names (search.hpp): a sequence
+/// when config.sequence plans one, else config.search, or the fastest that serves the method. Ties
 /// go to the lower index; kRandom uses `seed` and takes the candidate of a uniformly random view
 /// (uniform over candidates of as many views). Throws std::invalid_argument when there are no
 /// candidates, or when config.search does not serve the method.

@@ -6,8 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/methods.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/util/clock.hpp"
 #include "vantage/util/text.hpp"
@@ -53,11 +52,12 @@ DecisionSearch parse_decision_search(std::string_view name) {
   throw std::invalid_argument(cat("unknown decision search '", name, "' (expected ", names, ")"));
 }
 
-DecisionSearch resolve_search(const PlannerConfig& config) {
+Decider resolve_decider(const PlannerConfig& config) {
+  if (sequence_of(config).active()) return {};
   std::string serving;
   for (const SearchTraits& s : decision_searches()) {
     if (!s.serves(config)) continue;
-    if (!config.search || *config.search == s.search) return s.search;
+    if (!config.search || *config.search == s.search) return {s.search};
     serving += cat(serving.empty() ? "" : ", ", s.search.name);
   }
   const std::string what = has_observability(config.method)
@@ -157,7 +157,7 @@ void report_choice(const SearchInput& input, Plan& plan) {
     if (!plan.estimated.empty()) plan.estimated[plan.best] = false;
     plan.prediction_seconds = seconds_since(predict_start);
   }
-  if (method_traits(input.gain.method).counts) {
+  if (input.quantity() == GainQuantity::kCount) {
     // A counting method's gains are greedy's: the reference costs nothing.
     plan.greedy_gains.clear();
     for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);

@@ -2,12 +2,13 @@
 /// @file
 /// One interface for the searches (docs/architecture.md, "Add a search"): each search is one file
 /// under searches/ that defines its SearchTraits, and one row of the registry (search.cpp) lists
-/// it. plan_next_view (planner.hpp) asks the registry which search decides and runs it; what the
+/// it. plan_next_view (planner.hpp) asks resolve_decider which search decides and runs it; what the
 /// searches share (the candidates' views, Latombe's factor, the chosen view's report) is here.
 
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -54,6 +55,8 @@ struct SearchInput {
   std::vector<double> travel_factors() const;
   /// Seconds since `start`.
   double seconds() const;
+  /// Which quantity the decision computes and ranks by (decision_quantity, types.hpp).
+  GainQuantity quantity() const { return decision_quantity(config); }
 };
 
 /// A search: its name, what it guarantees, which decisions it serves and how it runs.
@@ -71,9 +74,19 @@ struct SearchTraits {
 std::span<const SearchTraits> decision_searches();
 /// The traits of `search`; throws std::invalid_argument when no registered search has its name.
 const SearchTraits& search_traits(DecisionSearch search);
-/// The search that decides `config`: config.search, or the first registered search that serves
-/// it. Throws std::invalid_argument when config.search does not serve it, naming those that do.
-DecisionSearch resolve_search(const PlannerConfig& config);
+/// What decides a decision: the sequence (sequence.hpp) when one is planned, else a search.
+struct Decider {
+  std::optional<DecisionSearch> search;  ///< the search that decides; none: the sequence
+  /// As the reports name it: the search's name, or "sequence".
+  std::string_view name() const { return search ? search->name : "sequence"; }
+};
+
+/// What decides `config`, worked out here alone: the sequence when it plans one (sequence_of),
+/// else config.search, or the first registered search that serves it. Throws
+/// std::invalid_argument when config.search does not serve it, naming those that do.
+/// plan_next_view runs what it names; the settings builder, the reports and the decision's cost
+/// ask it, never the registry.
+Decider resolve_decider(const PlannerConfig& config);
 
 /// Candidate `c`'s exact prediction: its views' gains under `gain.method`, summed.
 ViewGain full_prediction(const OccupancyGrid& grid, const CandidateViews& views, std::size_t c,

@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <utility>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/util/clock.hpp"
@@ -125,126 +125,138 @@ double joint_cells(std::span<const ViewCells* const> views) {
   return total;
 }
 
-SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> views,
-                           std::span<const double> travel, const GainConfig& gain,
-                           const SequenceConfig& config) {
-  gain.validate();
-  config.validate();
-  const bool greedy = method_traits(gain.method).counts;
-  if (!greedy && method_traits(gain.method).ray != TargetRay::kSurvival) {
-    throw std::invalid_argument(
-        cat("plan_sequence: gain.method must be survival or greedy, got ", to_string(gain.method)));
-  }
-  if (views.empty()) throw std::invalid_argument("no candidate views to choose from");
-  if (travel.size() != views.size()) {
-    throw std::invalid_argument(
-        cat("plan_sequence: ", views.size(), " views but ", travel.size(), " travel distances"));
-  }
-  const GainMap map(grid, gain.num_threads);
-  const ClassMap classes(grid);  // what the per-cell lists read
-  SequencePlan plan;
-  // Every view's single-view value: bit for bit the exact evaluation's (hierarchy.hpp), or its
-  // estimate from the sample's per-cell lists, which the joint values then share.
-  const double rate = std::ldexp(1.0, config.sample_bits);
+namespace {
+
+/// The views the selection considers (shortlist positions 0 .. m-1) and what it reads of them.
+struct Shortlist {
+  std::vector<std::size_t> views;  ///< candidate views, ascending
+  std::vector<double> between;     ///< [i * m + j]: the travel between views i and j [m]
+  std::vector<ViewCells> lists;    ///< per view its per-cell visibilities; empty at horizon 1
+};
+
+/// Every view's single-view value into `gains`: bit for bit the exact evaluation's
+/// (hierarchy.hpp), or its estimate from the sample's per-cell lists, which it returns so that
+/// the joint values share them (empty when not sampled).
+std::vector<ViewCells> single_values(const OccupancyGrid& grid, const ClassMap& classes,
+                                     std::span<const Frustum> views, const GainConfig& gain,
+                                     const SequenceConfig& config, GainQuantity quantity,
+                                     std::vector<ViewGain>& gains) {
   std::vector<ViewCells> sampled;
   if (config.sample_bits > 0) {
+    const double rate = std::ldexp(1.0, config.sample_bits);
     sampled = exact_view_cells(classes, views, gain, config.sample_bits);
     for (const ViewCells& list : sampled) {
       const double cells = rate * list.sum();
       // NOTE: greedy's gain is its count; the survival reading's bits are left 0, as exactly.
-      plan.gains.push_back(
-          {greedy ? cells : 0.0, cells, static_cast<std::size_t>(rate) * list.targets});
+      gains.push_back({quantity == GainQuantity::kCount ? cells : 0.0, cells,
+                       static_cast<std::size_t>(rate) * list.targets});
     }
   } else {
+    const GainMap map(grid, gain.num_threads);
     const ClassBlocks blocks = summarize_classes(map, views, gain.num_threads);
-    plan.gains = count_view_gains(map, &blocks, views,
-                                  greedy ? CountRule::kGreedy : CountRule::kSurvivalCells, gain);
+    gains = count_view_gains(map, &blocks, views, quantity, gain);
   }
-  double best_value = 0.0;
-  for (const ViewGain& g : plan.gains) best_value = std::max(best_value, g.cells);
-  // NOTE: relative to the best view, so the weight's meaning does not shrink with the map's
-  // unobserved cells.
-  const double cost = config.travel_weight * best_value;  // [cells/m]
-  for (std::size_t v = 0; v < views.size(); ++v) {
-    plan.scores.push_back(plan.gains[v].cells - cost * travel[v]);
-  }
+  return sampled;
+}
 
-  const std::vector<std::size_t> shortlist =
-      best_views(plan.gains, static_cast<std::size_t>(config.shortlist));
-  const std::size_t m = shortlist.size();
-  std::vector<double> between(m * m, 0.0);  // [i * m + j], shortlist positions
-  if (config.horizon > 1) {
-    for (std::size_t i = 0; i < m; ++i) {
-      for (std::size_t j = 0; j < m; ++j) {
-        if (i != j) {
-          between[i * m + j] =
-              config.travel(views[shortlist[i]].origin(), views[shortlist[j]].origin());
-        }
-      }
+/// The shortlist of the views of highest value, with the travel between them and their
+/// per-cell visibilities where a later step needs them (a horizon past 1).
+Shortlist shortlist_of(std::span<const Frustum> views, const ClassMap& classes,
+                       const GainConfig& gain, const SequenceConfig& config,
+                       const std::vector<ViewGain>& gains, std::vector<ViewCells> sampled) {
+  Shortlist s;
+  s.views = best_views(gains, static_cast<std::size_t>(config.shortlist));
+  const std::size_t m = s.views.size();
+  s.between.assign(m * m, 0.0);
+  if (config.horizon == 1) return s;
+  for (std::size_t i = 0; i < m; ++i) {
+    for (std::size_t j = 0; j < m; ++j) {
+      if (i != j)
+        s.between[i * m + j] =
+            config.travel(views[s.views[i]].origin(), views[s.views[j]].origin());
     }
   }
-  // Per-cell visibilities only where a later step needs them.
-  std::vector<ViewCells> lists;
-  if (config.horizon > 1) {
-    if (config.sample_bits > 0) {
-      for (const std::size_t v : shortlist) lists.push_back(std::move(sampled[v]));
-    } else {
-      std::vector<Frustum> frusta;
-      for (const std::size_t v : shortlist) frusta.push_back(views[v]);
-      lists = exact_view_cells(classes, frusta, gain);
-    }
-    plan.shortlisted = m;
+  if (config.sample_bits > 0) {
+    for (const std::size_t v : s.views) s.lists.push_back(std::move(sampled[v]));
+  } else {
+    std::vector<Frustum> frusta;
+    for (const std::size_t v : s.views) frusta.push_back(views[v]);
+    s.lists = exact_view_cells(classes, frusta, gain);
   }
-  const CompactCells compact(lists);
-  std::vector<double> missed(compact.size, 1.0);  // prod over the chosen of (1 - v) per cell
+  return s;
+}
 
-  // The shortest open tour from the current pose through `members` (shortlist positions).
-  const auto tour_through = [&](const std::vector<std::size_t>& members) {
-    const std::size_t n = members.size();
-    std::vector<double> start(n), d(n * n);
-    for (std::size_t a = 0; a < n; ++a) {
-      start[a] = travel[shortlist[members[a]]];
-      for (std::size_t b = 0; b < n; ++b) d[a * n + b] = between[members[a] * m + members[b]];
-    }
-    OpenTour t = shortest_open_tour(start, d);
-    for (std::size_t& k : t.order) k = members[k];
-    return t;
-  };
-  std::vector<std::size_t> chosen;  // shortlist positions
-  OpenTour tour;
+/// The shortest open tour from the current pose through `members` (shortlist positions).
+OpenTour tour_through(const Shortlist& s, std::span<const double> travel,
+                      const std::vector<std::size_t>& members) {
+  const std::size_t m = s.views.size(), n = members.size();
+  std::vector<double> start(n), d(n * n);
+  for (std::size_t a = 0; a < n; ++a) {
+    start[a] = travel[s.views[members[a]]];
+    for (std::size_t b = 0; b < n; ++b) d[a * n + b] = s.between[members[a] * m + members[b]];
+  }
+  OpenTour t = shortest_open_tour(start, d);
+  for (std::size_t& k : t.order) k = members[k];
+  return t;
+}
+
+/// What the greedy selection has chosen so far (shortlist positions).
+struct Selection {
+  std::vector<std::size_t> chosen;  ///< in the order added
+  std::vector<bool> taken;
+  OpenTour tour;               ///< through the chosen, when a travel weight orders them
+  std::vector<double> missed;  ///< per compact cell, prod over the chosen of (1 - v)
+};
+
+/// J(S + i) - J(S) of every view i not taken, estimated on the sample at `rate` (the single-view
+/// values at the first step). Each sum runs in its list's order on one thread: the same for any
+/// thread count.
+void marginal_values(const Shortlist& s, const CompactCells& compact, const Selection& sel,
+                     const std::vector<ViewGain>& gains, double rate, int num_threads,
+                     std::vector<double>& marginal) {
+  const std::size_t m = s.views.size();
+  if (sel.chosen.empty()) {
+    for (std::size_t i = 0; i < m; ++i) marginal[i] = gains[s.views[i]].cells;
+    return;
+  }
+  run_with_threads(num_threads, [&] {
+    tbb::parallel_for(std::size_t{0}, m, [&](std::size_t i) {
+      if (sel.taken[i]) return;
+      const std::vector<std::uint32_t>& at = compact.at[i];
+      const std::vector<double>& seen = s.lists[i].seen;
+      double sum = 0.0;
+      for (std::size_t k = 0; k < at.size(); ++k) sum += seen[k] * sel.missed[at[k]];
+      marginal[i] = rate * sum;
+    });
+  });
+}
+
+/// The greedy selection (docs/decision.md, "Planning a sequence"): up to `config.horizon` views,
+/// each the one of highest marginal value less `cost` times its detour, into `plan`.
+void select_views(const Shortlist& s, std::span<const double> travel, double cost,
+                  const GainConfig& gain, const SequenceConfig& config, SequencePlan& plan) {
+  const std::size_t m = s.views.size();
+  const double rate = std::ldexp(1.0, config.sample_bits);
+  const CompactCells compact(s.lists);
+  Selection sel{{}, std::vector<bool>(m, false), {}, std::vector<double>(compact.size, 1.0)};
   std::vector<double> marginal(m, 0.0);
-  std::vector<bool> taken(m, false);
   for (int step = 0; step < config.horizon; ++step) {
-    if (chosen.empty()) {
-      for (std::size_t i = 0; i < m; ++i) marginal[i] = plan.gains[shortlist[i]].cells;
-    } else {
-      // NOTE: each sum runs in its list's order on one thread: the same for any thread count.
-      run_with_threads(gain.num_threads, [&] {
-        tbb::parallel_for(std::size_t{0}, m, [&](std::size_t i) {
-          if (taken[i]) return;
-          const std::vector<std::uint32_t>& at = compact.at[i];
-          const std::vector<double>& seen = lists[i].seen;
-          double sum = 0.0;
-          for (std::size_t k = 0; k < at.size(); ++k) sum += seen[k] * missed[at[k]];
-          marginal[i] = rate * sum;  // J(S + i) - J(S), estimated on a sample
-        });
-      });
-    }
+    marginal_values(s, compact, sel, plan.gains, rate, gain.num_threads, marginal);
     std::size_t best = m;
     double best_score = -std::numeric_limits<double>::infinity();
     OpenTour best_tour;
     for (std::size_t i = 0; i < m; ++i) {
-      if (taken[i]) continue;
+      if (sel.taken[i]) continue;
       OpenTour t;
-      if (chosen.empty()) {
-        t = {{i}, travel[shortlist[i]]};
+      if (sel.chosen.empty()) {
+        t = {{i}, travel[s.views[i]]};
       } else if (cost > 0.0) {
         // The tour through the chosen views and this one.
-        std::vector<std::size_t> members = chosen;
+        std::vector<std::size_t> members = sel.chosen;
         members.push_back(i);
-        t = tour_through(members);
+        t = tour_through(s, travel, members);
       }
-      const double score = marginal[i] - cost * (t.length - tour.length);
+      const double score = marginal[i] - cost * (t.length - sel.tour.length);
       if (score > best_score) {
         best_score = score;
         best = i;
@@ -253,22 +265,59 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
     }
     // NOTE: after the first view, a view whose marginal value does not pay for its detour
     // shortens the sequence rather than join it.
-    if (best == m || (!chosen.empty() && !(best_score > 0.0))) break;
-    chosen.push_back(best);
-    taken[best] = true;
+    if (best == m || (!sel.chosen.empty() && !(best_score > 0.0))) break;
+    sel.chosen.push_back(best);
+    sel.taken[best] = true;
     plan.value += marginal[best];
-    if (!best_tour.order.empty()) tour = std::move(best_tour);
+    if (!best_tour.order.empty()) sel.tour = std::move(best_tour);
     if (step + 1 < config.horizon) {
       const std::vector<std::uint32_t>& at = compact.at[best];
-      for (std::size_t k = 0; k < at.size(); ++k) missed[at[k]] *= 1.0 - lists[best].seen[k];
+      for (std::size_t k = 0; k < at.size(); ++k) sel.missed[at[k]] *= 1.0 - s.lists[best].seen[k];
     }
   }
   // With no travel weight the tours above were skipped until the last step; order them now.
-  if (tour.order.size() != chosen.size()) tour = tour_through(chosen);
-  for (const std::size_t i : chosen) plan.chosen.push_back(shortlist[i]);
-  for (const std::size_t i : tour.order) plan.tour.push_back(shortlist[i]);
-  plan.tour_length = tour.length;
+  if (sel.tour.order.size() != sel.chosen.size()) sel.tour = tour_through(s, travel, sel.chosen);
+  for (const std::size_t i : sel.chosen) plan.chosen.push_back(s.views[i]);
+  for (const std::size_t i : sel.tour.order) plan.tour.push_back(s.views[i]);
+  plan.tour_length = sel.tour.length;
   plan.first = plan.tour.front();
+}
+
+}  // namespace
+
+SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> views,
+                           std::span<const double> travel, const GainConfig& gain,
+                           const SequenceConfig& config) {
+  gain.validate();
+  config.validate();
+  // NOTE: a sequence ranks by cells, on the cells' classes alone (the survival reading's cells,
+  // greedy's count): what count_view_gains and exact_view_cells compute.
+  const GainQuantity quantity = method_traits(gain.method).quantity(GainObjective::kCells);
+  if (!counts_classes(quantity)) {
+    throw std::invalid_argument(
+        cat("plan_sequence: gain.method must be survival or greedy, got ", to_string(gain.method)));
+  }
+  if (views.empty()) throw std::invalid_argument("no candidate views to choose from");
+  if (travel.size() != views.size()) {
+    throw std::invalid_argument(
+        cat("plan_sequence: ", views.size(), " views but ", travel.size(), " travel distances"));
+  }
+  const ClassMap classes(grid);  // what the per-cell lists read
+  SequencePlan plan;
+  std::vector<ViewCells> sampled =
+      single_values(grid, classes, views, gain, config, quantity, plan.gains);
+  double best_value = 0.0;
+  for (const ViewGain& g : plan.gains) best_value = std::max(best_value, g.cells);
+  // NOTE: relative to the best view, so the weight's meaning does not shrink with the map's
+  // unobserved cells.
+  const double cost = config.travel_weight * best_value;  // [cells/m]
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    plan.scores.push_back(plan.gains[v].cells - cost * travel[v]);
+  }
+  const Shortlist shortlist =
+      shortlist_of(views, classes, gain, config, plan.gains, std::move(sampled));
+  if (config.horizon > 1) plan.shortlisted = shortlist.views.size();
+  select_views(shortlist, travel, cost, gain, config, plan);
   return plan;
 }
 
@@ -298,7 +347,7 @@ Plan decide_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> ca
   plan.sequence = std::move(sequence.tour);
   plan.tour_length = sequence.tour_length;
   plan.sequence_value = sequence.value;
-  const bool counts = method_traits(gain.method).counts;
+  const bool counts = decision_quantity(config) == GainQuantity::kCount;
   const bool sampled = sequence_config.sample_bits > 0;
   if (sampled) plan.estimated.assign(plan.gains.size(), true);
   if (counts) {

@@ -16,8 +16,8 @@
 #include <span>
 #include <vector>
 
+#include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/gain/types.hpp"
-#include "vantage/gain/view_cells.hpp"
 #include "vantage/map/occupancy_grid.hpp"
 #include "vantage/planner/sequence_config.hpp"
 #include "vantage/planner/types.hpp"

@@ -58,6 +58,10 @@ SequenceConfig sequence_of(const PlannerConfig& config) {
   return sequence;
 }
 
+GainQuantity decision_quantity(const PlannerConfig& config) {
+  return method_traits(config.method.gain).quantity(config.objective);
+}
+
 PlannerMethod parse_planner_method(std::string_view name) {
   const std::size_t plus = name.find('+');
   const RankingName* ranking = ranking_named(name.substr(0, plus));
@@ -77,16 +81,6 @@ PlannerMethod parse_planner_method(std::string_view name) {
                                   "or RANKING+GAIN, such as latombe+survival)"));
 }
 
-std::string_view to_string(GainObjective objective) {
-  return objective == GainObjective::kCells ? "cells" : "bits";
-}
-
-GainObjective parse_gain_objective(std::string_view name) {
-  if (name == "bits") return GainObjective::kBits;
-  if (name == "cells") return GainObjective::kCells;
-  throw std::invalid_argument(cat("unknown objective '", name, "' (expected bits or cells)"));
-}
-
 GainObjective natural_objective(PlannerMethod method) {
   return uses_survival_reading(method) ? GainObjective::kCells : GainObjective::kBits;
 }
@@ -104,7 +98,7 @@ bool uses_travel(PlannerMethod method) {
   return method.ranking == Ranking::kTravel || method.ranking == Ranking::kNearest;
 }
 
-bool has_observability(PlannerMethod method) { return method_traits(method.gain).has_objective; }
+bool has_observability(PlannerMethod method) { return method_traits(method.gain).has_objective(); }
 
 void PlannerConfig::validate() const {
   gain.validate();
@@ -116,12 +110,14 @@ void PlannerConfig::validate() const {
   }
   sequence.validate();
   if (sequence.active() || method.ranking == Ranking::kSequence) {
-    if ((method.gain != GainMethod::kSurvival && method.gain != GainMethod::kGreedy) ||
+    // NOTE: a sequence plans on the cells' classes alone (counts_classes), by cells.
+    const GainQuantity by_cells = method_traits(method.gain).quantity(GainObjective::kCells);
+    if (!counts_classes(by_cells) ||
         (method.ranking != Ranking::kBest && method.ranking != Ranking::kSequence)) {
       throw std::invalid_argument(
           cat("planner.sequence plans with survival, sequence or greedy, not ", to_string(method)));
     }
-    if (uses_survival_reading(method) && objective != GainObjective::kCells) {
+    if (decision_quantity(*this) != by_cells) {
       throw std::invalid_argument("planner.sequence ranks survival's views by cells, not bits");
     }
     if (search) {

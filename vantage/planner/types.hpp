@@ -78,15 +78,6 @@ bool ranks_by_gain(PlannerMethod method);
 /// Whether the method weighs travel, so a decision needs the robot's pose (Latombe, Yamauchi).
 bool uses_travel(PlannerMethod method);
 
-/// What the probabilistic method maximises over the candidates.
-enum class GainObjective {
-  kBits,   ///< the expected information gain of eq. (1), ViewGain::gain [bits]
-  kCells,  ///< the expected number of unobserved cells seen, ViewGain::cells [cells]
-};
-
-std::string_view to_string(GainObjective objective);
-/// Parses "bits" or "cells"; throws std::invalid_argument naming the value.
-GainObjective parse_gain_objective(std::string_view name);
 /// What a method ranks by when not told: the survival reading its expected cells seen (what its
 /// a is fitted to), the paper's method the information gain of eq. (1).
 GainObjective natural_objective(PlannerMethod method);
@@ -137,8 +128,8 @@ struct PlannerConfig {
   /// Gain evaluation settings; `gain.method` is set from `method.gain`.
   GainConfig gain;
   double lambda = 0.5;  ///< kLatombe's travel penalty [1/m]
-  /// The search; none: the fastest that serves the method (resolve_search, search.hpp). A
-  /// search named here that does not serve the method is refused by resolve_search, which
+  /// The search; none: the fastest that serves the method (resolve_decider, search.hpp). A
+  /// search named here that does not serve the method is refused by resolve_decider, which
   /// plan_next_view calls, naming the searches that do.
   std::optional<DecisionSearch> search;
   /// The swept search's rays across a view's image (SweptConfig::rays_across), in [1, 4096].
@@ -218,5 +209,8 @@ struct Plan {
 /// The sequence the decision plans: `config.sequence`, with kSequenceDefaults' horizon and
 /// travel weight for PlannerMethod::kSequence when it plans one view.
 SequenceConfig sequence_of(const PlannerConfig& config);
+/// Which quantity the decision computes and ranks by: the registry's row of the method's gain
+/// model read with the objective (MethodTraits::quantity). Every search asks it.
+GainQuantity decision_quantity(const PlannerConfig& config);
 
 }  // namespace vantage

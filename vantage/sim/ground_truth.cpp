@@ -160,13 +160,12 @@ std::vector<std::uint32_t> observable_cells(const World& world, const GridSpec& 
   return out;
 }
 
-std::vector<Eigen::Vector2d> reachable_stops(const Scene& scene,
-                                             const std::vector<std::uint8_t>& occupied) {
+namespace {
+
+/// Per column of the grid (x + nx * y), whether it holds an obstacle below the robot's height.
+std::vector<std::uint8_t> blocked_columns(const Scene& scene,
+                                          const std::vector<std::uint8_t>& occupied) {
   const GridSpec& grid = scene.grid;
-  if (occupied.size() != grid.num_cells()) {
-    throw std::invalid_argument("reachable_stops: occupancy does not match the scene's grid");
-  }
-  // Columns that hold an obstacle below the robot's height.
   const int nx = grid.dims.x(), ny = grid.dims.y();
   std::vector<std::uint8_t> blocked(static_cast<std::size_t>(nx) * ny, 0);
   for (int z = 0; z < grid.dims.z(); ++z) {
@@ -178,8 +177,17 @@ std::vector<Eigen::Vector2d> reachable_stops(const Scene& scene,
       }
     }
   }
-  const double radius = scene.robot.footprint / 2;
-  auto clear = [&](const Eigen::Vector2d& p) {
+  return blocked;
+}
+
+/// Whether the robot's footprint, a disc, stands clear of every blocked column at a position.
+struct Footprint {
+  const GridSpec& grid;
+  const std::vector<std::uint8_t>& blocked;  // blocked_columns
+  double radius;
+
+  bool clear(const Eigen::Vector2d& p) const {
+    const int nx = grid.dims.x(), ny = grid.dims.y();
     const Eigen::Vector2d lo = grid.origin.head<2>(), hi = grid.max_corner().head<2>();
     if ((p.array() - radius < lo.array()).any() || (p.array() + radius > hi.array()).any()) {
       return false;
@@ -199,64 +207,97 @@ std::vector<Eigen::Vector2d> reachable_stops(const Scene& scene,
       }
     }
     return true;
-  };
+  }
+};
 
-  const double spacing = scene.robot.stop_spacing;
-  const Eigen::AlignedBox2d& area = scene.floor_area;
-  const int sx = std::max(1, static_cast<int>(std::floor(area.sizes().x() / spacing)));
-  const int sy = std::max(1, static_cast<int>(std::floor(area.sizes().y() / spacing)));
-  auto position = [&](int i, int j) {
+/// The floor's stops, `spacing` apart over its area, each marked 0 blocked, 1 clear or 2 reached.
+struct StopLattice {
+  StopLattice(const Eigen::AlignedBox2d& floor, double step, const Footprint& footprint)
+      : area(floor),
+        spacing(step),
+        sx(std::max(1, static_cast<int>(std::floor(area.sizes().x() / spacing)))),
+        sy(std::max(1, static_cast<int>(std::floor(area.sizes().y() / spacing)))),
+        state(static_cast<std::size_t>(sx) * sy, 0) {
+    for (int j = 0; j < sy; ++j) {
+      for (int i = 0; i < sx; ++i) at(i, j) = footprint.clear(position(i, j));
+    }
+  }
+  Eigen::Vector2d position(int i, int j) const {
     return Eigen::Vector2d(area.min().x() + (i + 0.5) * spacing,
                            area.min().y() + (j + 0.5) * spacing);
-  };
-  std::vector<std::uint8_t> state(static_cast<std::size_t>(sx) * sy, 0);  // 1 clear, 2 reached
-  for (int j = 0; j < sy; ++j) {
-    for (int i = 0; i < sx; ++i)
-      state[static_cast<std::size_t>(j) * sx + i] = clear(position(i, j));
   }
-  std::deque<std::pair<int, int>> queue;
-  for (std::size_t k = 0; k < scene.start_poses.size(); ++k) {
-    const Eigen::Vector2d p = scene.start_poses[k].translation().head<2>();
-    if (!clear(p)) {
-      throw std::invalid_argument(cat(scene.name, ": start_poses[", k, "] at (", p.x(), ", ", p.y(),
-                                      ") is not clear for a robot of footprint ",
-                                      scene.robot.footprint, " m"));
-    }
-    bool seeded = false;
-    for (int j = 0; j < sy; ++j) {
-      for (int i = 0; i < sx; ++i) {
-        std::uint8_t& s = state[static_cast<std::size_t>(j) * sx + i];
-        if (s == 1 && (position(i, j) - p).norm() <= spacing) {
-          s = 2;
-          queue.emplace_back(i, j);
-          seeded = true;
-        } else if (s == 2 && (position(i, j) - p).norm() <= spacing) {
-          seeded = true;
+  std::uint8_t& at(int i, int j) { return state[static_cast<std::size_t>(j) * sx + i]; }
+
+  /// Marks reached every clear stop within a spacing of each start pose, queued to spread from.
+  void seed(const Scene& scene, const Footprint& footprint) {
+    for (std::size_t k = 0; k < scene.start_poses.size(); ++k) {
+      const Eigen::Vector2d p = scene.start_poses[k].translation().head<2>();
+      if (!footprint.clear(p)) {
+        throw std::invalid_argument(cat(scene.name, ": start_poses[", k, "] at (", p.x(), ", ",
+                                        p.y(), ") is not clear for a robot of footprint ",
+                                        scene.robot.footprint, " m"));
+      }
+      bool seeded = false;
+      for (int j = 0; j < sy; ++j) {
+        for (int i = 0; i < sx; ++i) {
+          std::uint8_t& s = at(i, j);
+          if (s == 1 && (position(i, j) - p).norm() <= spacing) {
+            s = 2;
+            queue.emplace_back(i, j);
+            seeded = true;
+          } else if (s == 2 && (position(i, j) - p).norm() <= spacing) {
+            seeded = true;
+          }
         }
       }
-    }
-    if (!seeded) {
-      throw std::invalid_argument(cat(scene.name, ": start_poses[", k, "] at (", p.x(), ", ", p.y(),
-                                      ") has no clear stop within ", spacing, " m"));
-    }
-  }
-  while (!queue.empty()) {
-    const auto [i, j] = queue.front();
-    queue.pop_front();
-    constexpr std::array<std::array<int, 2>, 4> kSteps = {{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
-    for (const auto& [di, dj] : kSteps) {
-      const int a = i + di, b = j + dj;
-      if (a < 0 || b < 0 || a >= sx || b >= sy) continue;
-      std::uint8_t& s = state[static_cast<std::size_t>(b) * sx + a];
-      if (s != 1) continue;
-      s = 2;
-      queue.emplace_back(a, b);
+      if (!seeded) {
+        throw std::invalid_argument(cat(scene.name, ": start_poses[", k, "] at (", p.x(), ", ",
+                                        p.y(), ") has no clear stop within ", spacing, " m"));
+      }
     }
   }
+
+  /// Spreads from the queued stops to every clear stop four-connected to them.
+  void spread() {
+    while (!queue.empty()) {
+      const auto [i, j] = queue.front();
+      queue.pop_front();
+      constexpr std::array<std::array<int, 2>, 4> kSteps = {{{1, 0}, {-1, 0}, {0, 1}, {0, -1}}};
+      for (const auto& [di, dj] : kSteps) {
+        const int a = i + di, b = j + dj;
+        if (a < 0 || b < 0 || a >= sx || b >= sy) continue;
+        std::uint8_t& s = at(a, b);
+        if (s != 1) continue;
+        s = 2;
+        queue.emplace_back(a, b);
+      }
+    }
+  }
+
+  const Eigen::AlignedBox2d& area;
+  double spacing;
+  int sx, sy;
+  std::vector<std::uint8_t> state;
+  std::deque<std::pair<int, int>> queue;
+};
+
+}  // namespace
+
+std::vector<Eigen::Vector2d> reachable_stops(const Scene& scene,
+                                             const std::vector<std::uint8_t>& occupied) {
+  const GridSpec& grid = scene.grid;
+  if (occupied.size() != grid.num_cells()) {
+    throw std::invalid_argument("reachable_stops: occupancy does not match the scene's grid");
+  }
+  const std::vector<std::uint8_t> blocked = blocked_columns(scene, occupied);
+  const Footprint footprint{grid, blocked, scene.robot.footprint / 2};
+  StopLattice lattice(scene.floor_area, scene.robot.stop_spacing, footprint);
+  lattice.seed(scene, footprint);
+  lattice.spread();
   std::vector<Eigen::Vector2d> stops;
-  for (int j = 0; j < sy; ++j) {
-    for (int i = 0; i < sx; ++i) {
-      if (state[static_cast<std::size_t>(j) * sx + i] == 2) stops.push_back(position(i, j));
+  for (int j = 0; j < lattice.sy; ++j) {
+    for (int i = 0; i < lattice.sx; ++i) {
+      if (lattice.at(i, j) == 2) stops.push_back(lattice.position(i, j));
     }
   }
   return stops;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "vantage/sim/builtin_models.hpp"
 #include "vantage/sim/furniture.hpp"
 #include "vantage/sim/mesh_io.hpp"
 #include "vantage/util/limits.hpp"

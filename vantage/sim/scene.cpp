@@ -8,8 +8,8 @@
 
 #include "vantage/io/format_parsing.hpp"
 #include "vantage/io/input_file.hpp"
+#include "vantage/sim/builtin_models.hpp"
 #include "vantage/sim/builtin_scenes.hpp"
-#include "vantage/sim/mesh_io.hpp"
 #include "vantage/sim/object_scene.hpp"
 #include "vantage/util/text.hpp"
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "vantage/sim/builtin_models.hpp"
 #include "vantage/sim/furniture.hpp"
 #include "vantage/sim/geometry.hpp"
 #include "vantage/sim/mesh_io.hpp"

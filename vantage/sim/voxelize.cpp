@@ -66,33 +66,40 @@ bool segment_meets_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& d,
   return t >= -kEps && t <= 1.0 + kEps;
 }
 
-/// Linear indices of the grid cells a closed mesh occupies: the cells its surface crosses, and
-/// the cells the outside cannot reach. The outside floods from cell centre to neighbouring cell
-/// centre wherever the segment between them meets no triangle, so that a face lying exactly on
-/// cell boundaries still walls the inside off.
-std::vector<std::uint32_t> voxelize_mesh(const TriangleMesh& mesh, const GridSpec& grid) {
-  const Eigen::AlignedBox3d box = mesh.bounds();
-  const Index3 lo_full = grid.lattice_index(box.min()) - Index3::Ones();
-  const Index3 hi_full = grid.lattice_index(box.max()) + Index3::Ones();
-  // NOTE: the local box is clipped to the grid plus one cell. Its unclipped faces lie outside the
-  // solid and seed the outside; clipped faces may cut through the solid, so they seed nothing.
-  const Index3 lo = lo_full.cwiseMax(Index3::Constant(-1));
-  const Index3 hi = hi_full.cwiseMin(grid.dims);
-  if ((hi.array() < lo.array()).any()) return {};
-  const Index3 size = hi - lo + Index3::Ones();
-  const auto local = [&](const Index3& c) {
+// Per local cell: bit 0-2 the segment to the +x/+y/+z neighbour's centre meets the surface,
+// bit 3 the surface crosses the cell, bit 4 the outside reached it.
+constexpr std::uint8_t kCrossed = 1 << 3, kOutside = 1 << 4;
+
+/// The cells around a mesh, one cell beyond its bounds and clipped to the grid plus one cell,
+/// with their flags.
+struct LocalBox {
+  LocalBox(const Eigen::AlignedBox3d& box, const GridSpec& grid)
+      : lo_full(grid.lattice_index(box.min()) - Index3::Ones()),
+        hi_full(grid.lattice_index(box.max()) + Index3::Ones()),
+        lo(lo_full.cwiseMax(Index3::Constant(-1))),
+        hi(hi_full.cwiseMin(grid.dims)),
+        size(hi - lo + Index3::Ones()) {}
+
+  bool empty() const { return (hi.array() < lo.array()).any(); }
+  std::size_t local(const Index3& c) const {
     const Index3 l = c - lo;
     return static_cast<std::size_t>(l.x()) +
            static_cast<std::size_t>(size.x()) *
                (static_cast<std::size_t>(l.y()) +
                 static_cast<std::size_t>(size.y()) * static_cast<std::size_t>(l.z()));
-  };
-  const std::size_t count = static_cast<std::size_t>(size.x()) * size.y() * size.z();
-  // Per local cell: bit 0-2 the segment to the +x/+y/+z neighbour's centre meets the surface,
-  // bit 3 the surface crosses the cell, bit 4 the outside reached it.
-  constexpr std::uint8_t kCrossed = 1 << 3, kOutside = 1 << 4;
-  std::vector<std::uint8_t> flags(count, 0);
+  }
 
+  Index3 lo_full, hi_full;
+  // NOTE: the local box is clipped to the grid plus one cell. Its unclipped faces lie outside the
+  // solid and seed the outside; clipped faces may cut through the solid, so they seed nothing.
+  Index3 lo, hi;
+  Index3 size;
+  std::vector<std::uint8_t> flags;
+};
+
+/// Flags the cells the mesh's surface crosses, and the segments between cell centres it meets.
+void mark_surface(const TriangleMesh& mesh, const GridSpec& grid, LocalBox& box) {
+  const Index3 lo = box.lo, hi = box.hi;
   const Eigen::Vector3d half = Eigen::Vector3d::Constant(grid.resolution * (0.5 - kShrink));
   for (const Eigen::Vector3i& t : mesh.triangles) {
     const Eigen::Vector3d& a = mesh.vertices[static_cast<std::size_t>(t[0])];
@@ -106,7 +113,7 @@ std::vector<std::uint32_t> voxelize_mesh(const TriangleMesh& mesh, const GridSpe
       for (int y = c_lo.y(); y <= c_hi.y(); ++y) {
         for (int x = c_lo.x(); x <= c_hi.x(); ++x) {
           const Index3 cell(x, y, z);
-          std::uint8_t& f = flags[local(cell)];
+          std::uint8_t& f = box.flags[box.local(cell)];
           const Eigen::Vector3d center = grid.center(cell);
           if ((f & kCrossed) == 0 && triangle_overlaps_box(center, half, a, b, d)) f |= kCrossed;
           for (int axis = 0; axis < 3; ++axis) {
@@ -121,18 +128,23 @@ std::vector<std::uint32_t> voxelize_mesh(const TriangleMesh& mesh, const GridSpe
       }
     }
   }
+}
 
-  // Flood the outside from the unclipped faces of the local box.
+/// Floods the outside from the unclipped faces of the local box, across every segment between
+/// cell centres that meets no triangle.
+void flood_outside(LocalBox& box) {
+  const Index3 lo = box.lo, hi = box.hi;
+  std::vector<std::uint8_t>& flags = box.flags;
   std::deque<Index3> queue;
   auto reach = [&](const Index3& c) {
-    std::uint8_t& f = flags[local(c)];
+    std::uint8_t& f = flags[box.local(c)];
     if ((f & kOutside) != 0) return;
     f |= kOutside;
     queue.push_back(c);
   };
   for (int axis = 0; axis < 3; ++axis) {
     for (const bool upper : {false, true}) {
-      const bool clipped = upper ? hi[axis] != hi_full[axis] : lo[axis] != lo_full[axis];
+      const bool clipped = upper ? hi[axis] != box.hi_full[axis] : lo[axis] != box.lo_full[axis];
       if (clipped) continue;
       const int fixed = upper ? hi[axis] : lo[axis];
       const int u = (axis + 1) % 3, w = (axis + 2) % 3;
@@ -152,7 +164,7 @@ std::vector<std::uint32_t> voxelize_mesh(const TriangleMesh& mesh, const GridSpe
     queue.pop_front();
     for (int axis = 0; axis < 3; ++axis) {
       const auto bit = static_cast<std::uint8_t>(1 << axis);
-      if (c[axis] < hi[axis] && (flags[local(c)] & bit) == 0) {
+      if (c[axis] < hi[axis] && (flags[box.local(c)] & bit) == 0) {
         Index3 n = c;
         ++n[axis];
         reach(n);
@@ -160,17 +172,29 @@ std::vector<std::uint32_t> voxelize_mesh(const TriangleMesh& mesh, const GridSpe
       if (c[axis] > lo[axis]) {
         Index3 n = c;
         --n[axis];
-        if ((flags[local(n)] & bit) == 0) reach(n);
+        if ((flags[box.local(n)] & bit) == 0) reach(n);
       }
     }
   }
+}
 
+/// Linear indices of the grid cells a closed mesh occupies: the cells its surface crosses, and
+/// the cells the outside cannot reach. The outside floods from cell centre to neighbouring cell
+/// centre wherever the segment between them meets no triangle, so that a face lying exactly on
+/// cell boundaries still walls the inside off.
+std::vector<std::uint32_t> voxelize_mesh(const TriangleMesh& mesh, const GridSpec& grid) {
+  LocalBox box(mesh.bounds(), grid);
+  if (box.empty()) return {};
+  box.flags.assign(static_cast<std::size_t>(box.size.x()) * box.size.y() * box.size.z(), 0);
+  mark_surface(mesh, grid, box);
+  flood_outside(box);
+  const Index3 lo = box.lo, hi = box.hi;
   std::vector<std::uint32_t> cells;
   for (int z = std::max(lo.z(), 0); z <= std::min(hi.z(), grid.dims.z() - 1); ++z) {
     for (int y = std::max(lo.y(), 0); y <= std::min(hi.y(), grid.dims.y() - 1); ++y) {
       for (int x = std::max(lo.x(), 0); x <= std::min(hi.x(), grid.dims.x() - 1); ++x) {
         const Index3 cell(x, y, z);
-        const std::uint8_t f = flags[local(cell)];
+        const std::uint8_t f = box.flags[box.local(cell)];
         if ((f & kCrossed) != 0 || (f & kOutside) == 0) {
           cells.push_back(static_cast<std::uint32_t>(grid.linear(cell)));
         }

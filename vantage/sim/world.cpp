@@ -50,6 +50,85 @@ float intersect(RTCScene scene, const Eigen::Vector3f& origin, const Eigen::Vect
   return rh.hit.geomID == RTC_INVALID_GEOMETRY_ID ? -1.0f : rh.ray.tfar;
 }
 
+/// A scan's rays, cast block by block: each ray's point in the sensor frame, with its range
+/// noise, into its own slot.
+struct ScanRays {
+  const std::vector<Eigen::Vector3d>& directions;  ///< in the sensor frame
+  Eigen::Matrix3d R;                               ///< the sensor's rotation in the world
+  Eigen::Vector3f origin;
+  double min_range, max_range;
+  bool depth_noise;  ///< the noise is along the depth (an RGB-D camera), else along the ray
+  RangeNoise noise;
+  std::uint64_t noise_seed;
+  // NOTE: per-ray slots, compacted in ray order afterwards, so that the result does not depend
+  // on which thread cast which ray.
+  std::vector<Eigen::Vector3d> points;
+  std::vector<std::uint8_t> valid;
+
+  /// Casts the rays [begin, end).
+  void cast(RTCScene scene, std::size_t begin, std::size_t end) {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    // NOTE: packets of 16 neighbouring rays, which Embree traces together; a scan's rays are
+    // coherent (row by row), so this is about twice as fast as one ray at a time.
+    RTCRayHit16 packet;
+    alignas(64) int lanes[16];
+    for (std::size_t first = begin; first < end; first += 16) {
+      const std::size_t count = std::min<std::size_t>(16, end - first);
+      fill(packet, lanes, first, count);
+      rtcIntersect16(lanes, scene, &context, &packet);
+      for (std::size_t k = 0; k < count; ++k) {
+        if (packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID) hit(first + k, packet.ray.tfar[k]);
+      }
+    }
+  }
+
+ private:
+  /// The packet of rays [first, first + count), its other lanes off.
+  void fill(RTCRayHit16& packet, int* lanes, std::size_t first, std::size_t count) const {
+    for (std::size_t k = 0; k < 16; ++k) {
+      lanes[k] = k < count ? -1 : 0;
+      const Eigen::Vector3f d = k < count
+                                    ? Eigen::Vector3f((R * directions[first + k]).cast<float>())
+                                    : Eigen::Vector3f::UnitX();
+      packet.ray.org_x[k] = origin.x();
+      packet.ray.org_y[k] = origin.y();
+      packet.ray.org_z[k] = origin.z();
+      packet.ray.dir_x[k] = d.x();
+      packet.ray.dir_y[k] = d.y();
+      packet.ray.dir_z[k] = d.z();
+      packet.ray.tnear[k] = 0.0f;
+      packet.ray.tfar[k] = static_cast<float>(max_range);
+      packet.ray.time[k] = 0.0f;
+      packet.ray.mask[k] = 0xFFFFFFFFu;  // NOTE: Debian's Embree filters by mask
+      packet.ray.id[k] = static_cast<unsigned>(k);
+      packet.ray.flags[k] = 0;
+      packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+  }
+
+  /// Ray `i` hit a surface at `tfar`: its point, unless too close or, with noise, out of range.
+  void hit(std::size_t i, float tfar) {
+    const Eigen::Vector3d& d = directions[i];
+    double range = tfar;
+    if (range < min_range) return;  // too close: no return
+    if (noise.enabled()) {
+      const double z = standard_normal(noise_seed, RandomStream::kRange, i);
+      if (depth_noise) {
+        const double depth = range * d.x();
+        range = (depth + noise.sigma_at(depth) * z) / d.x();
+      } else {
+        range += noise.sigma_at(range) * z;
+      }
+      if (range < min_range || range > max_range) return;
+    }
+    points[i] = d * range;
+    valid[i] = 1;
+  }
+};
+
 }  // namespace
 
 struct World::Embree {
@@ -221,71 +300,22 @@ SimulatedScan World::scan_with(const Eigen::Isometry3d& T_true, const Eigen::Iso
   if (!T_true.matrix().allFinite()) throw std::invalid_argument("scan pose must be finite");
   check_origin(T_true.translation(), "scan pose");
   const std::size_t n = directions.size();
-  const Eigen::Matrix3d R = T_true.linear();
-  const Eigen::Vector3f origin = T_true.translation().cast<float>();
-  const double min_range = sensor.fov.min_range, max_range = sensor.fov.max_range;
-  const bool depth_noise = sensor.type == SensorType::kRgbd;
-  const RangeNoise noise = sensor.noise;
-  // NOTE: per-ray slots, compacted in ray order afterwards, so that the result does not depend on
-  // which thread cast which ray.
-  std::vector<Eigen::Vector3d> points(n);
-  std::vector<std::uint8_t> valid(n, 0);
+  ScanRays rays{directions,
+                T_true.linear(),
+                T_true.translation().cast<float>(),
+                sensor.fov.min_range,
+                sensor.fov.max_range,
+                sensor.type == SensorType::kRgbd,
+                sensor.noise,
+                noise_seed,
+                std::vector<Eigen::Vector3d>(n),
+                std::vector<std::uint8_t>(n, 0)};
   RTCScene scene = embree_->scene;
   run_with_threads(config_.num_threads, [&] {
-    tbb::parallel_for(
-        tbb::blocked_range<std::size_t>(0, n, kRayBlock),
-        [&](const tbb::blocked_range<std::size_t>& block) {
-          RTCIntersectContext context;
-          rtcInitIntersectContext(&context);
-          context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-          // NOTE: packets of 16 neighbouring rays, which Embree traces together; a scan's rays
-          // are coherent (row by row), so this is about twice as fast as one ray at a time.
-          RTCRayHit16 packet;
-          alignas(64) int lanes[16];
-          for (std::size_t first = block.begin(); first < block.end(); first += 16) {
-            const std::size_t count = std::min<std::size_t>(16, block.end() - first);
-            for (std::size_t k = 0; k < 16; ++k) {
-              lanes[k] = k < count ? -1 : 0;
-              const Eigen::Vector3f d =
-                  k < count ? Eigen::Vector3f((R * directions[first + k]).cast<float>())
-                            : Eigen::Vector3f::UnitX();
-              packet.ray.org_x[k] = origin.x();
-              packet.ray.org_y[k] = origin.y();
-              packet.ray.org_z[k] = origin.z();
-              packet.ray.dir_x[k] = d.x();
-              packet.ray.dir_y[k] = d.y();
-              packet.ray.dir_z[k] = d.z();
-              packet.ray.tnear[k] = 0.0f;
-              packet.ray.tfar[k] = static_cast<float>(max_range);
-              packet.ray.time[k] = 0.0f;
-              packet.ray.mask[k] = 0xFFFFFFFFu;  // NOTE: Debian's Embree filters by mask
-              packet.ray.id[k] = static_cast<unsigned>(k);
-              packet.ray.flags[k] = 0;
-              packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-              packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-            }
-            rtcIntersect16(lanes, scene, &context, &packet);
-            for (std::size_t k = 0; k < count; ++k) {
-              if (packet.hit.geomID[k] == RTC_INVALID_GEOMETRY_ID) continue;
-              const std::size_t i = first + k;
-              const Eigen::Vector3d& d = directions[i];
-              double range = packet.ray.tfar[k];
-              if (range < min_range) continue;  // too close: no return
-              if (noise.enabled()) {
-                const double z = standard_normal(noise_seed, RandomStream::kRange, i);
-                if (depth_noise) {
-                  const double depth = range * d.x();
-                  range = (depth + noise.sigma_at(depth) * z) / d.x();
-                } else {
-                  range += noise.sigma_at(range) * z;
-                }
-                if (range < min_range || range > max_range) continue;
-              }
-              points[i] = d * range;
-              valid[i] = 1;
-            }
-          }
-        });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, kRayBlock),
+                      [&](const tbb::blocked_range<std::size_t>& block) {
+                        rays.cast(scene, block.begin(), block.end());
+                      });
   });
   SimulatedScan scan;
   scan.T_world_sensor_true = T_true;
@@ -293,10 +323,10 @@ SimulatedScan World::scan_with(const Eigen::Isometry3d& T_true, const Eigen::Iso
   scan.fov = sensor.fov;
   scan.rays = n;
   std::size_t count = 0;
-  for (const std::uint8_t v : valid) count += v;
+  for (const std::uint8_t v : rays.valid) count += v;
   scan.points_sensor.reserve(count);
   for (std::size_t i = 0; i < n; ++i) {
-    if (valid[i] != 0) scan.points_sensor.push_back(points[i]);
+    if (rays.valid[i] != 0) scan.points_sensor.push_back(rays.points[i]);
   }
   return scan;
 }

@@ -30,6 +30,11 @@ constexpr std::array kRows{
                     "four level views at the centroid of every frontier region of the map "
                     "(Yamauchi), travel the straight-line path",
                     frontier_candidates, /*needs_map=*/true},
+    CandidateSetRow{"stops",
+                    "an office robot's next stops: the centroids of the map's frontier regions it "
+                    "has not visited, travel its drive on the map (section 5.2)",
+                    stop_candidates, /*needs_map=*/true, /*needs_list=*/false,
+                    /*needs_robot=*/true},
     CandidateSetRow{"file", "the user's own poses, travel the straight-line path",
                     listed_candidates, /*needs_map=*/false, /*needs_list=*/true},
 };

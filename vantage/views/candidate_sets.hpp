@@ -19,8 +19,9 @@ struct CandidateSetRow {
   /// Builds the views; throws std::invalid_argument naming the field for bad parameters and
   /// std::runtime_error when the world offers no view (a map with no frontier).
   PlacedViews (*build)(const CandidateSite& site, const CandidateParams& params);
-  bool needs_map = false;   ///< found in the map (CandidateSite::grid), not placed around it
-  bool needs_list = false;  ///< the user's poses (CandidateParams::listed)
+  bool needs_map = false;    ///< found in the map (CandidateSite::grid), not placed around it
+  bool needs_list = false;   ///< the user's poses (CandidateParams::listed)
+  bool needs_robot = false;  ///< a ground robot that drives to them (CandidateSite::robot)
 };
 
 /// Every candidate set, in the order help lists them.

@@ -107,7 +107,7 @@ PlacedViews hemisphere_candidates(const CandidateSite& site, const CandidatePara
     hemisphere.base = site.arm->base;
     hemisphere.reach = site.arm->reach;
   }
-  return {hemisphere_poses(hemisphere), TravelRule{}, {}};
+  return {.poses = hemisphere_poses(hemisphere), .travel = TravelRule{}};
 }
 
 }  // namespace vantage

@@ -8,7 +8,7 @@ namespace vantage {
 
 PlacedViews listed_candidates(const CandidateSite& /*site*/, const CandidateParams& params) {
   if (params.listed.empty()) throw std::invalid_argument("file: the pose list holds no pose");
-  return {params.listed, TravelRule{}, {}};
+  return {.poses = params.listed, .travel = TravelRule{}};
 }
 
 }  // namespace vantage

@@ -98,7 +98,8 @@ PlacedViews ring_candidates(const CandidateSite& site, const CandidateParams& pa
     }
     ring.positions = params.views / offsets;
   }
-  return {ring_poses(ring), {TravelRule::Kind::kRingWalk, ring.center, ring.radius}, {}};
+  return {.poses = ring_poses(ring),
+          .travel = {TravelRule::Kind::kRingWalk, ring.center, ring.radius}};
 }
 
 }  // namespace vantage

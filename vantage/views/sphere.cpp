@@ -55,7 +55,7 @@ PlacedViews sphere_candidates(const CandidateSite& site, const CandidateParams& 
   const double half_diagonal = 0.5 * site.region.sizes().head<2>().norm();
   sphere.radius = params.radius > 0.0 ? params.radius : std::max(1.0, 2.0 * half_diagonal);
   sphere.views = params.views > 0 ? params.views : 50;
-  return {sphere_poses(sphere), TravelRule{}, {}};
+  return {.poses = sphere_poses(sphere), .travel = TravelRule{}};
 }
 
 SphereConfig object_view_sphere(const Eigen::Vector3d& center, double radius, int views) {
@@ -76,7 +76,8 @@ PlacedViews view_sphere_candidates(const CandidateSite& site, const CandidatePar
                             : object_view_sphere(site.target, std::max(1.0, 2.0 * half_diagonal));
   if (params.radius > 0.0) sphere.radius = params.radius;
   if (params.views > 0) sphere.views = params.views;
-  return {sphere_poses(sphere), {TravelRule::Kind::kSphereArc, sphere.center, sphere.radius}, {}};
+  return {.poses = sphere_poses(sphere),
+          .travel = {TravelRule::Kind::kSphereArc, sphere.center, sphere.radius}};
 }
 
 }  // namespace vantage

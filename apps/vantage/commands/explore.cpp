@@ -84,10 +84,14 @@ void print_scan(const ScanRecord& r, int total, bool ranks_by_bits) {
   std::fflush(stdout);
 }
 
-void run(const ExploreOptions& o) {
-  const sim::Scene scene = o.object.empty()
-                               ? sim::load_scene(o.scene, o.candidates.object_protocol())
-                               : sim::single_object_scene(o.object, o.candidates.object_protocol());
+/// The run's settings, and the a it was given.
+struct ExploreSettings {
+  ExplorationConfig config;
+  AlphaSetting alpha;
+};
+
+/// The run's settings from the options and the scene.
+ExploreSettings explore_settings(const ExploreOptions& o, const sim::Scene& scene) {
   const bool office = scene.kind == sim::SceneKind::kOffice;
   // The paper's a for the scene's kind (§5.1, §5.2); the method's own a (default_alpha) when
   // --alpha is not given, and the prior of --alpha auto.
@@ -122,12 +126,13 @@ void run(const ExploreOptions& o) {
   config.seed = o.seed;
   o.candidates.apply(config, scene.kind);
   from_options([&] { config.validate(); });
+  return {config, alpha};
+}
 
-  const fs::path out = o.out.empty() ? default_out(o, config.planner.method) : fs::path(o.out);
-  if (fs::exists(out) && !fs::is_empty(out)) {
-    throw std::invalid_argument(fmt::format("--out {} exists and is not empty", out.string()));
-  }
-  // Refused before any work: a grid too large for memory, or one whose map cannot be written.
+/// Refuses before any work a grid too large for memory or one whose map cannot be written, and
+/// a decision or yardstick past the work budget (which it sets).
+void check_before_work(const ExploreOptions& o, const sim::Scene& scene,
+                       ExplorationConfig& config) {
   const std::string grid_name =
       fmt::format("the grid of scene {} ({} x {} x {} cells)", scene.name, scene.grid.dims.x(),
                   scene.grid.dims.y(), scene.grid.dims.z());
@@ -140,14 +145,27 @@ void run(const ExploreOptions& o) {
     // NOTE: a table top's run scans every candidate for the yardstick before its first decision.
     check_surface_truth(scene, run_candidates(scene, config).size(), config.budget);
   }
+}
+
+void run(const ExploreOptions& o) {
+  const sim::Scene scene = o.object.empty()
+                               ? sim::load_scene(o.scene, o.candidates.object_protocol())
+                               : sim::single_object_scene(o.object, o.candidates.object_protocol());
+  ExploreSettings settings = explore_settings(o, scene);
+  ExplorationConfig& config = settings.config;
+  const AlphaSetting& alpha = settings.alpha;
+
+  const fs::path out = o.out.empty() ? default_out(o, config.planner.method) : fs::path(o.out);
+  if (fs::exists(out) && !fs::is_empty(out)) {
+    throw std::invalid_argument(fmt::format("--out {} exists and is not empty", out.string()));
+  }
+  check_before_work(o, scene, config);
   if (!o.quiet) {
     fmt::print(
         "exploring {} with {} ({} evaluation, {} search{}), {} scans from start {}, "
         "seed {}\n",
         scene.name, config.greedy_oracle ? o.planning.method : to_string(config.planner.method),
-        o.planning.evaluation,
-        sequence_of(config.planner).active() ? "sequence"
-                                             : to_string(resolve_search(config.planner)),
+        o.planning.evaluation, resolve_decider(config.planner).name(),
         has_observability(config.planner.method)
             ? fmt::format(", a = {}, ranking by {}", alpha.label(),
                           to_string(config.planner.objective))
@@ -173,8 +191,7 @@ void run(const ExploreOptions& o) {
   write_folder_atomically(out, [&](const fs::path& dir) {
     write_run_files(dir, scene, config, result, mapper);
     if (truth) {
-      write_yardstick_file(dir / kYardstickFolder / (scene.name + ".json"), scene, config,
-                           *truth);
+      write_yardstick_file(dir / kYardstickFolder / (scene.name + ".json"), scene, config, *truth);
       run_plot_script("set_cover.py", {dir.string()});
     }
     if (o.plots) run_plot_script("plot_run.py", {dir.string()});

@@ -1,7 +1,8 @@
 #pragma once
 /// @file
-/// `vantage plan`'s parts (plan.cpp: mapping and the decision; plan_candidates.cpp: the sensor
-/// and the candidate views; plan_report.cpp: plan.json and the table).
+/// `vantage plan`'s parts (plan.cpp: the command line and the decision; plan_map.cpp: the input
+/// read and mapped; plan_candidates.cpp: the sensor and the candidate views; plan_report.cpp:
+/// plan.json and the table).
 
 #include <Eigen/Geometry>
 #include <cstdint>
@@ -17,6 +18,7 @@
 #include "vantage/experiment/results.hpp"
 #include "vantage/io/manifest.hpp"
 #include "vantage/map/occupancy_grid.hpp"
+#include "vantage/perception/mapper.hpp"
 #include "vantage/planner/types.hpp"
 #include "vantage/views/frustum.hpp"
 
@@ -71,6 +73,32 @@ std::vector<Eigen::Isometry3d> candidate_poses(const PlanOptions& o, const Eigen
 
 /// The pose as `--pose` takes it: x,y,z,roll,pitch,yaw (m, deg).
 std::string pose_argument(const Eigen::Isometry3d& T);
+
+/// The robot's sensor pose now, for the travel of latombe and yamauchi, and where it came from.
+struct RobotPose {
+  std::optional<Eigen::Isometry3d> pose;
+  std::string source;
+};
+
+/// What `vantage plan` carries from one step to the next (plan.cpp's run).
+struct PlanRun {
+  const PlanOptions& o;
+  PlannerConfig planner;
+  std::filesystem::path dir = {};  ///< the results folder
+  RobotPose robot = {};
+  std::optional<Manifest> manifest = {};  ///< none: --map alone
+  SensorFov fov = {};
+  CloudFrame frame = CloudFrame::kOptical;
+};
+
+/// Reads the input (plan_map.cpp): a manifest or a data folder, a recording alone, or none
+/// (--map alone), a damaged recording's salvage said; the sensor, the manifest's or --fov-deg and
+/// --range. Throws UsageError for the options that do not fit the input.
+void read_input(PlanRun& run);
+/// Builds the map (plan_map.cpp) from --map and the manifest's clouds, each said in a line unless
+/// --json, the grid first checked against the memory and work budgets; the robot's pose the last
+/// cloud's unless --pose gave it.
+Mapper build_map(PlanRun& run);
 
 /// What plan.json and the table report of a decision.
 struct PlanReport {

@@ -71,6 +71,31 @@ bool inside_geometry(const sim::World& world, const Eigen::Vector3d& p) {
   return odd >= 3;
 }
 
+/// Writes the scan to --out, in the sensor's frame (with the believed pose as its VIEWPOINT) or
+/// the world's; a scan that hit nothing is refused, saying so when the sensor is inside geometry.
+void write_scan(const ScanOptions& o, const sim::World& world, const PointCloud& points,
+                const Eigen::Isometry3d& T_true, const Eigen::Isometry3d& T_noisy) {
+  if (points.empty()) {
+    if (inside_geometry(world, T_true.translation())) {
+      throw std::runtime_error(fmt::format(
+          "the scan hit nothing within range: the sensor at {} lies inside the scene's geometry "
+          "(a wall or an object), so every ray ends on its inside nearer than the sensor's "
+          "min_range; {} not written (move the pose, or the scene's start, out of it)",
+          describe_pose(T_true), o.out));
+    }
+    throw std::runtime_error(
+        fmt::format("the scan hit nothing within range; {} not written", o.out));
+  }
+  // NOTE: points in the sensor frame carry the believed pose as their PCD VIEWPOINT, as a robot's
+  // recording would (a manifest without poses plans from it); points in the world need none.
+  if (o.frame == "world") {
+    write_point_cloud(o.out, transform(T_true, points));
+  } else {
+    write_point_cloud(o.out, points, T_noisy);
+  }
+  fmt::print("wrote {} ({} frame)\n", o.out, o.frame);
+}
+
 void run(const ScanOptions& o) {
   if (o.frame != "sensor" && o.frame != "world") {
     throw UsageError(
@@ -132,26 +157,7 @@ void run(const ScanOptions& o) {
                o.threads == 0 ? std::string("all") : std::to_string(o.threads));
   }
 
-  if (o.out.empty()) return;
-  if (points.empty()) {
-    if (inside_geometry(world, T_true.translation())) {
-      throw std::runtime_error(fmt::format(
-          "the scan hit nothing within range: the sensor at {} lies inside the scene's geometry "
-          "(a wall or an object), so every ray ends on its inside nearer than the sensor's "
-          "min_range; {} not written (move the pose, or the scene's start, out of it)",
-          describe_pose(T_true), o.out));
-    }
-    throw std::runtime_error(
-        fmt::format("the scan hit nothing within range; {} not written", o.out));
-  }
-  // NOTE: points in the sensor frame carry the believed pose as their PCD VIEWPOINT, as a robot's
-  // recording would (a manifest without poses plans from it); points in the world need none.
-  if (o.frame == "world") {
-    write_point_cloud(o.out, transform(T_true, points));
-  } else {
-    write_point_cloud(o.out, points, T_noisy);
-  }
-  fmt::print("wrote {} ({} frame)\n", o.out, o.frame);
+  if (!o.out.empty()) write_scan(o, world, points, T_true, T_noisy);
 }
 
 }  // namespace

@@ -13,7 +13,7 @@
 
 #include "vantage/experiment/exploration.hpp"
 #include "vantage/experiment/yardstick.hpp"
-#include "vantage/gain/surface_rates.hpp"
+#include "vantage/gain/models/surface_rates.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/perception/registration.hpp"
 #include "vantage/perception/voxel_filter.hpp"
@@ -111,6 +111,9 @@ class Explorer {
   /// Office: a 360° sweep at the stop, one scan of many views for the mapper.
   void observe_sweep(int k, ScanRecord& record);
 
+  /// Where an office's next stops are found (the stops set): the map and the robot as it believes
+  /// it stands.
+  CandidateSite stop_site() const;
   /// The frusta a scan from `pose` covers: the sensor's, or an office stop's whole sweep.
   std::vector<Frustum> views_at(const Eigen::Isometry3d& pose) const;
 

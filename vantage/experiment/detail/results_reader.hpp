@@ -1,8 +1,9 @@
 #pragma once
 /// @file
 /// What `vantage view` reads (viewer.hpp): a results file (run.json, plan.json) checked field by
-/// field with one-line errors that say where (Field), its candidates streamed, its grid, and the
-/// map's layers for the page. Included by the viewer's .cpp files only.
+/// field with one-line errors that say where (Field), its candidates streamed, its grid, the
+/// map's layers for the page, and the page's data from a results folder. Included by the viewer's
+/// .cpp files only.
 
 #include <fmt/core.h>
 
@@ -117,5 +118,12 @@ json pose_of(const Field& pose);
 /// still unknown; cells deeper inside it would be hidden behind those anyway). Counted first and
 /// drawn second, so that what the page holds is bounded by the cap whatever the grid's size.
 json map_layers(const fs::path& map_file, const GridSpec& spec, const ViewerConfig& config);
+
+/// The page's data for an explore folder (run.json and map.bt): the scans, each decision's
+/// candidates, the map's layers and the notes (detail/viewer_data.cpp).
+json explore_data(const fs::path& dir, const ViewerConfig& config);
+
+/// The same for a plan folder (plan.json and map.bt): its one decision.
+json plan_data(const fs::path& dir, const ViewerConfig& config);
 
 }  // namespace vantage::detail

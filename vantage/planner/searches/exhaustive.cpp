@@ -4,7 +4,6 @@
 
 #include <algorithm>
 
-#include "vantage/gain/methods.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/search.hpp"
@@ -37,8 +36,7 @@ Plan run_without_gain(const SearchInput& in) {
     }
   }
   const CandidateViews chosen = in.views.subset(among);
-  const std::vector<ViewGain> gains =
-      chosen.sums(evaluate_views(in.grid, chosen.frusta, in.gain));
+  const std::vector<ViewGain> gains = chosen.sums(evaluate_views(in.grid, chosen.frusta, in.gain));
   std::vector<double> counts;
   for (std::size_t i = 0; i < among.size(); ++i) {
     plan.gains[among[i]] = gains[i];
@@ -57,20 +55,16 @@ Plan run_without_gain(const SearchInput& in) {
 
 Plan run(const SearchInput& in) {
   if (!ranks_by_gain(in.config.method)) return run_without_gain(in);
-  const PlannerConfig& config = in.config;
   Plan plan;
   plan.search = DecisionSearch::kExhaustive;
   const std::vector<ViewGain> per_view = evaluate_views(in.grid, in.views.frusta, in.gain);
-  // NOTE: greedy's gain is its count of cells; only the models with an objective differ.
-  const bool cells =
-      config.objective == GainObjective::kCells && method_traits(in.gain.method).has_objective;
+  const GainQuantity quantity = in.quantity();
   std::vector<double> values;
   values.reserve(per_view.size());
   for (std::size_t v = 0; v < per_view.size(); ++v) {
     // NOTE: a score is summed over the candidate's views, each times the candidate's travel
     // factor (Latombe), in the order of its views.
-    values.push_back((cells ? per_view[v].cells : per_view[v].gain) *
-                     in.travel_factor(in.views.candidate_of(v)));
+    values.push_back(per_view[v].value(quantity) * in.travel_factor(in.views.candidate_of(v)));
   }
   plan.gains = in.views.sums(per_view);
   plan.scores = in.views.sums(values);

@@ -10,10 +10,9 @@
 #include <limits>
 #include <numeric>
 
-#include "vantage/gain/bounds.hpp"
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/hierarchy.hpp"
-#include "vantage/gain/methods.hpp"
+#include "vantage/gain/evaluators/bounds.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/planner/search.hpp"
 
 namespace vantage {
@@ -30,17 +29,37 @@ struct Pruning {
   std::size_t evaluated = 0;    ///< candidates evaluated exactly
 };
 
-/// Whether the score `kind` bounds is in bits (ViewGain::gain), not cells.
-bool in_bits(BoundKind kind) {
-  return kind == BoundKind::kSurvivalBits || kind == BoundKind::kEntropy;
+/// The views' exact values: counted across the map's blocks for a quantity of the cells'
+/// classes alone (hierarchy.hpp), else evaluated exactly (exact.hpp).
+std::vector<ViewGain> exact_values(const GainMap& map, const ClassBlocks& blocks,
+                                   std::span<const Frustum> views, GainQuantity quantity,
+                                   const GainConfig& config) {
+  return counts_classes(quantity) ? count_view_gains(map, &blocks, views, quantity, config)
+                                  : exact_view_gains(map, views, config);
 }
 
+/// The candidates grouped by the origin of their first view (views_by_origin).
+struct OriginGroups {
+  std::vector<std::vector<std::size_t>> candidates;  ///< per origin, its candidates
+  std::vector<std::size_t> group_of;                 ///< per candidate, its origin's group
+  OriginGroups(std::span<const Frustum> frusta, std::span<const std::size_t> first) {
+    const std::size_t n = first.size() - 1;
+    std::vector<Frustum> first_views;
+    for (std::size_t c = 0; c < n; ++c) first_views.push_back(frusta[first[c]]);
+    candidates = views_by_origin(first_views);
+    group_of.resize(n);
+    for (std::size_t g = 0; g < candidates.size(); ++g) {
+      for (const std::size_t c : candidates[g]) group_of[c] = g;
+    }
+  }
+};
+
 /// Chooses among the candidates whose views are `frusta[first[c] .. first[c + 1])`; candidate c's
-/// score, what `kind` bounds, is the sum over its views of the view's value times `factor[c]`, in
-/// view order, exactly as the exhaustive search sums it.
+/// score is the sum over its views of the view's `quantity` times `factor[c]`, in view order,
+/// exactly as the exhaustive search sums it.
 Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> frusta,
                          std::span<const std::size_t> first, std::span<const double> factor,
-                         const GainConfig& config, BoundKind kind) {
+                         const GainConfig& config, GainQuantity quantity) {
   config.validate();
   const std::size_t n = first.size() - 1;
   const auto factor_of = [&](std::size_t c) { return factor.empty() ? 1.0 : factor[c]; };
@@ -48,7 +67,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
   const GainMap map(grid, config.num_threads);
   const ClassBlocks blocks = summarize_classes(map, frusta, config.num_threads);
   const std::vector<double> view_bounds =
-      view_upper_bounds(blocks, map.spec(), map, frusta, kind, config.alpha);
+      view_upper_bounds(blocks, map.spec(), map, frusta, quantity, config.alpha);
   out.gains.assign(n, ViewGain{});
   out.estimated.assign(n, true);
   out.scores.assign(n, 0.0);
@@ -59,8 +78,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
       bound += view_bounds[v] * factor_of(c);
     }
     out.scores[c] = bound;
-    (in_bits(kind) ? out.gains[c].gain : out.gains[c].cells) = raw;
-    if (kind == BoundKind::kCount) out.gains[c].gain = raw;
+    out.gains[c] = ViewGain::of(quantity, raw);
   }
 
   // Best first: the highest bound, ties to the lower index, as choose_best breaks them.
@@ -73,13 +91,9 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
   // Single-view candidates by origin: views from one origin share each target's ray
   // (exact_view_gains), so the candidates of an origin still in the race are evaluated together.
   const auto single = [&](std::size_t c) { return first[c + 1] - first[c] == 1; };
-  std::vector<Frustum> first_views;
-  for (std::size_t c = 0; c < n; ++c) first_views.push_back(frusta[first[c]]);
-  const std::vector<std::vector<std::size_t>> by_origin = views_by_origin(first_views);
-  std::vector<std::size_t> group_of(n);
-  for (std::size_t g = 0; g < by_origin.size(); ++g) {
-    for (const std::size_t c : by_origin[g]) group_of[c] = g;
-  }
+  const OriginGroups origins(frusta, first);
+  const std::vector<std::vector<std::size_t>>& by_origin = origins.candidates;
+  const std::vector<std::size_t>& group_of = origins.group_of;
   for (const std::size_t c : order) {
     if (!out.estimated[c]) continue;  // evaluated with another of its origin
     // NOTE: bounds are in descending order, so once one cannot beat the best, none after can.
@@ -98,12 +112,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
       views.insert(views.end(), frusta.begin() + static_cast<std::ptrdiff_t>(first[b]),
                    frusta.begin() + static_cast<std::ptrdiff_t>(first[b + 1]));
     }
-    const std::vector<ViewGain> gains =
-        kind == BoundKind::kSurvivalCells
-            ? count_view_gains(map, &blocks, views, CountRule::kSurvivalCells, config)
-        : kind == BoundKind::kCount
-            ? count_view_gains(map, &blocks, views, CountRule::kGreedy, config)
-            : exact_view_gains(map, views, config);
+    const std::vector<ViewGain> gains = exact_values(map, blocks, views, quantity, config);
     std::size_t v = 0;
     for (const std::size_t b : batch) {
       ViewGain sum;
@@ -111,7 +120,7 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
       for (std::size_t k = first[b]; k < first[b + 1]; ++k, ++v) {
         const ViewGain& g = gains[v];
         sum += g;
-        value += (in_bits(kind) ? g.gain : g.cells) * factor_of(b);
+        value += g.value(quantity) * factor_of(b);
       }
       out.gains[b] = sum;
       out.estimated[b] = false;
@@ -127,23 +136,15 @@ Pruning prune_candidates(const OccupancyGrid& grid, std::span<const Frustum> fru
   return out;
 }
 
+// NOTE: the blocks bound every quantity but a metric's value (view_upper_bounds).
 bool serves(const PlannerConfig& config) {
-  return ranks_by_gain(config.method) &&
-         method_traits(config.method.gain).kind == MethodKind::kTargetModel;
+  return ranks_by_gain(config.method) && decision_quantity(config) != GainQuantity::kMetric;
 }
 
 Plan run(const SearchInput& in) {
-  // NOTE: what the method ranks by decides the score; the paper's model's cells have no
-  // reachability to prune by (its visibility never reaches 0).
-  const bool survival = uses_survival_reading(in.config.method);
-  BoundKind kind = survival ? BoundKind::kSurvivalBits : BoundKind::kEntropy;
-  if (method_traits(in.gain.method).counts) {
-    kind = BoundKind::kCount;
-  } else if (in.config.objective == GainObjective::kCells) {
-    kind = survival ? BoundKind::kSurvivalCells : BoundKind::kAllCells;
-  }
+  const GainQuantity quantity = in.quantity();
   Pruning pruning = prune_candidates(in.grid, in.views.frusta, in.views.first, in.travel_factors(),
-                                     in.gain, kind);
+                                     in.gain, quantity);
   Plan plan;
   plan.search = DecisionSearch::kPruned;
   plan.best = pruning.best;
@@ -151,7 +152,8 @@ Plan run(const SearchInput& in) {
   plan.estimated = std::move(pruning.estimated);
   plan.scores = std::move(pruning.scores);
   plan.evaluated = pruning.evaluated;
-  plan.bits_of_chosen_only = kind == BoundKind::kSurvivalCells;
+  // NOTE: count_view_gains computes no bits for the survival reading's cells.
+  plan.bits_of_chosen_only = quantity == GainQuantity::kSurvivalCells;
   plan.seconds = in.seconds();
   report_choice(in, plan);
   return plan;

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <utility>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/view_cells.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/planner/choose.hpp"
 
 namespace vantage::detail {
@@ -87,6 +87,48 @@ Targets united(const Targets& a, const Targets& b) {
   return out;
 }
 
+/// The unseen target (RaceRules::unseen) at the sample of `bits`: the largest value of a boost
+/// at its weight, times the largest factor of the candidates `alive`.
+double unseen_target(const ByBoost& largest, const std::vector<std::size_t>& alive,
+                     std::span<const double> factor, int bits) {
+  double most_factor = 0.0, unseen = 0.0;
+  for (const std::size_t k : alive) most_factor = std::max(most_factor, factor[k]);
+  for (int o = 0; o <= kMostBoost; ++o) {
+    unseen = std::max(unseen, weight(bits, o) * most_factor * largest[o]);
+  }
+  return unseen;
+}
+
+/// The candidates of `alive` that stay in the race after the sample of `bits`: the leader
+/// (`alive[lead]`) and every one whose gap to it is not beyond `rules.standard_errors` of the
+/// gap's error, less the tolerance. A pair's difference on one sample is estimated with its own
+/// error, far smaller than the sum of the two estimates' errors when the views see many of the
+/// same cells.
+std::vector<std::size_t> still_racing(const std::vector<std::size_t>& alive, std::size_t lead,
+                                      const std::vector<Targets>& targets,
+                                      std::span<const double> factor,
+                                      const std::vector<double>& scores, double unseen, int bits,
+                                      const RaceRules& rules) {
+  std::vector<std::size_t> next;
+  for (std::size_t a = 0; a < alive.size(); ++a) {
+    if (a != lead) {
+      const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]],
+                                        targets[alive[a]], factor[alive[a]], rules.boost);
+      double gap = 0.0, variance = 0.0;
+      for (int o = 0; o <= kMostBoost; ++o) {
+        const double w = weight(bits, o);
+        gap += w * sum[o];
+        variance += w * (w - 1.0) * sq[o];
+      }
+      const double error = std::sqrt(variance + unseen * unseen);
+      const double slack = rules.tolerance * scores[lead];
+      if (gap + slack > rules.standard_errors * error && gap + slack > 0.0) continue;
+    }
+    next.push_back(alive[a]);
+  }
+  return next;
+}
+
 }  // namespace
 
 Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
@@ -118,16 +160,7 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
         m = std::max(m, std::abs(l.seen[k]));
       }
     }
-    // The unseen target (RaceRules::unseen): the largest value of a boost at its weight, times the
-    // largest factor.
-    double unseen = 0.0;
-    if (rules.unseen) {
-      double most_factor = 0.0;
-      for (const std::size_t k : alive) most_factor = std::max(most_factor, factor[k]);
-      for (int o = 0; o <= kMostBoost; ++o) {
-        unseen = std::max(unseen, weight(bits, o) * most_factor * largest[o]);
-      }
-    }
+    const double unseen = rules.unseen ? unseen_target(largest, alive, factor, bits) : 0.0;
     std::vector<double> scores;
     for (std::size_t a = 0; a < alive.size(); ++a) {
       Targets& mine = targets[alive[a]];
@@ -147,27 +180,8 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
       race.exact = true;
       return race;
     }
-    // NOTE: a pair's difference on one sample is estimated with its own error, far smaller than
-    // the sum of the two estimates' errors when the views see many of the same cells.
-    std::vector<std::size_t> next;
-    for (std::size_t a = 0; a < alive.size(); ++a) {
-      if (a != lead) {
-        const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]],
-                                          targets[alive[a]], factor[alive[a]], boost);
-        double gap = 0.0, variance = 0.0;
-        for (int o = 0; o <= kMostBoost; ++o) {
-          const double w = weight(bits, o);
-          gap += w * sum[o];
-          variance += w * (w - 1.0) * sq[o];
-        }
-        const double error = std::sqrt(variance + unseen * unseen);
-        const double slack = rules.tolerance * scores[lead];
-        if (gap + slack > rules.standard_errors * error && gap + slack > 0.0) continue;
-      }
-      next.push_back(alive[a]);
-    }
     const std::size_t leader = alive[lead];  // never drops out
-    alive = std::move(next);
+    alive = still_racing(alive, lead, targets, factor, scores, unseen, bits, rules);
     if (alive.size() == 1) {
       race.winner = alive.front();
       return race;

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "vantage/gain/class_map.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/gain/types.hpp"
-#include "vantage/gain/view_cells.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage::detail {

@@ -1,26 +1,24 @@
 // The swept search (DecisionSearch::kSwept; docs/decision.md, "The swept search"): every
-// candidate ranked by its swept estimate (gain/swept.hpp: a thousand rays cast outward a view,
-// each crediting the volume it sweeps through unobserved cells); the leaders cast again at twice
-// the rays a side; the leaders of that raced on nested samples of their cells up to all of them
-// (race.hpp); the winner's full prediction after. Under the paper's model no ray sweeps a volume,
-// so every candidate enters the race on the model's exact per-target v_M. A metric's rounds cast
-// the metric's own rays, coarser but in the last (run_metric); a metric whose value is a sum of
-// cell credits races every candidate on samples of those cells (run_cell_sum; docs/decision.md,
+// candidate ranked by its swept estimate (gain/evaluators/swept.hpp: a thousand rays cast outward a
+// view, each crediting the volume it sweeps through unobserved cells); the leaders cast again at
+// twice the rays a side; the leaders of that raced on nested samples of their cells up to all of
+// them (race.hpp); the winner's full prediction after. Under the paper's model no ray sweeps a
+// volume, so every candidate enters the race on the model's exact per-target v_M. A metric's rounds
+// cast the metric's own rays, coarser but in the last (run_metric); a metric whose value is a sum
+// of cell credits races every candidate on samples of those cells (run_cell_sum; docs/decision.md,
 // "A metric raced cell by cell"). Statistical, with the exhaustive exact search's choice, or one
 // within 0.5 % of it, in every oracle state but one raced cell by cell (0.9915)
 // (tests/planner/swept_scenes_test.cpp, tests/gain/metrics_race_scenes_test.cpp).
 
-#include "vantage/gain/swept.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
 
 #include <algorithm>
 #include <chrono>
-#include <optional>
 
-#include "vantage/gain/exact.hpp"
-#include "vantage/gain/hierarchy.hpp"
+#include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
+#include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/gain/methods.hpp"
-#include "vantage/gain/metrics.hpp"
-#include "vantage/gain/view_cells.hpp"
 #include "vantage/planner/choose.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/planner/searches/race.hpp"
@@ -29,35 +27,16 @@
 namespace vantage {
 namespace {
 
-/// What the swept rays estimate for the method, if they serve it: the survival reading's expected
-/// cells seen (when it ranks by cells) or greedy's count (greedy, Latombe).
-std::optional<CountRule> swept_rule(const PlannerConfig& config) {
-  const TargetRay ray = method_traits(config.method.gain).ray;
-  if (!ranks_by_gain(config.method)) return std::nullopt;
-  if (ray == TargetRay::kUnblocked) return CountRule::kGreedy;
-  if (ray == TargetRay::kSurvival && config.objective == GainObjective::kCells) {
-    return CountRule::kSurvivalCells;
-  }
-  return std::nullopt;
-}
-
-/// Whether the search serves the paper's model: it races every candidate on the model's exact
-/// v_M. Only by cells: a target's gain in bits can sit in a few cells a sample misses
-/// (docs/decision.md, "The paper's model").
-bool paper_race(const PlannerConfig& config) {
-  return ranks_by_gain(config.method) &&
-         method_traits(config.method.gain).ray == TargetRay::kPaper &&
-         config.objective == GainObjective::kCells;
-}
-
-/// Whether the search serves a metric (metrics.hpp): its rounds cast the metric's rays.
-bool metric_race(const PlannerConfig& config) {
-  return ranks_by_gain(config.method) && config.method.ranking != Ranking::kSequence &&
-         method_traits(config.method.gain).kind == MethodKind::kMetric;
-}
-
+/// Whether the search serves the decision, by the quantity it computes: the survival reading's
+/// expected cells seen and greedy's count, which the swept rays estimate; the paper's expected
+/// cells, raced on every candidate's exact v_M (only by cells: a target's gain in bits can sit
+/// in a few cells a sample misses, docs/decision.md "The paper's model"); a metric's value, its
+/// rounds on the metric's own rays (evaluators/metric_evaluator.hpp).
 bool serves(const PlannerConfig& config) {
-  return swept_rule(config).has_value() || paper_race(config) || metric_race(config);
+  if (!ranks_by_gain(config.method)) return false;
+  const GainQuantity quantity = decision_quantity(config);
+  if (quantity == GainQuantity::kMetric) return config.method.ranking != Ranking::kSequence;
+  return counts_classes(quantity) || quantity == GainQuantity::kPaperCells;
 }
 
 /// The rounds: how many candidates the second round casts again at twice the rays a side, and
@@ -127,13 +106,12 @@ Plan estimates(const SearchInput& in) {
 /// scores and the winner into the plan, the decision's time, and the winner's full prediction.
 Plan finish(const SearchInput& in, const std::vector<std::size_t>& raced,
             const std::vector<double>& factor, const detail::Race& race, Plan plan) {
-  const bool counts = method_traits(in.gain.method).counts;
+  const GainQuantity quantity = in.quantity();
   for (std::size_t k = 0; k < raced.size(); ++k) {
     const std::size_t c = raced[k];
     plan.scores[c] = race.scores[k];
     // NOTE: every race is by cells; a counting method's gain is its count.
-    plan.gains[c].cells = race.scores[k] / factor[k];
-    plan.gains[c].gain = counts ? plan.gains[c].cells : 0.0;
+    plan.gains[c] = ViewGain::of(quantity, race.scores[k] / factor[k]);
   }
   plan.best = raced[race.winner];
   // NOTE: a race that reached the full lists has the winner's exact cells (a counting method's
@@ -141,7 +119,7 @@ Plan finish(const SearchInput& in, const std::vector<std::size_t>& raced,
   // is not predicted in full after.
   if (race.exact && !in.config.predict_chosen) plan.estimated[plan.best] = false;
   plan.evaluated = raced.size();
-  plan.bits_of_chosen_only = !counts;
+  plan.bits_of_chosen_only = quantity != GainQuantity::kCount;
   plan.seconds = in.seconds();
   report_choice(in, plan);
   plan.scores[plan.best] = plan.gains[plan.best].cells * in.travel_factor(plan.best);
@@ -238,9 +216,9 @@ Plan run_cell_sum(const SearchInput& in, const MetricEvaluator& metric) {
   return plan;
 }
 
-/// A metric's race (metric_race_rounds): every candidate estimated by the metric's coarser rays,
-/// the best of each round passed on to the next, the last round's evaluated at the metric's own
-/// pitch, exactly; the best exact value decides, the lower index on a tie.
+/// A metric's race (MethodTraits::race_rounds): every candidate estimated by the metric's coarser
+/// rays, the best of each round passed on to the next, the last round's evaluated at the metric's
+/// own pitch, exactly; the best exact value decides, the lower index on a tie.
 Plan run_metric(const SearchInput& in) {
   const MetricEvaluator metric(in.grid, in.gain);
   if (metric.lists_cells()) return run_cell_sum(in, metric);
@@ -259,7 +237,7 @@ Plan run_metric(const SearchInput& in) {
       plan.scores[c] = sums[k].gain * in.travel_factor(c);
     }
   };
-  for (const MetricRound& round : metric_race_rounds(in.gain.method)) {
+  for (const MetricRound& round : method_traits(in.gain.method).race_rounds) {
     evaluate(round.coarseness);
     among = leaders(plan.scores, among, round.keep, 1.0);
     // NOTE: in candidate order, so that an exact tie goes to the lower index, as in the
@@ -278,8 +256,9 @@ Plan run_metric(const SearchInput& in) {
 }
 
 Plan run(const SearchInput& in) {
-  if (paper_race(in.config)) return run_paper(in);
-  if (metric_race(in.config)) return run_metric(in);
+  const GainQuantity quantity = in.quantity();
+  if (quantity == GainQuantity::kPaperCells) return run_paper(in);
+  if (quantity == GainQuantity::kMetric) return run_metric(in);
   // NOTE: the grid's own classes and census, no snapshot: the swept rays and the race read
   // classes only.
   const ClassMap map(in.grid);
@@ -287,19 +266,16 @@ Plan run(const SearchInput& in) {
   swept.alpha = in.gain.alpha;
   swept.epsilon = in.gain.epsilon;
   swept.num_threads = in.gain.num_threads;
-  const CountRule rule = *swept_rule(in.config);
-  const bool counts = method_traits(in.gain.method).counts;
   Plan plan = estimates(in);
   // Candidates `among` estimated at `rays` across, into the plan's gains and scores.
   const auto estimate = [&](const std::vector<std::size_t>& among, int rays) {
     const CandidateViews subset = in.views.subset(among);
     swept.rays_across = rays;
     const std::vector<double> sums =
-        subset.sums(swept_view_counts(map, subset.frusta, rule, swept));
+        subset.sums(swept_view_counts(map, subset.frusta, quantity, swept));
     for (std::size_t k = 0; k < among.size(); ++k) {
       const std::size_t c = among[k];
-      plan.gains[c].cells = sums[k];
-      plan.gains[c].gain = counts ? sums[k] : 0.0;
+      plan.gains[c] = ViewGain::of(quantity, sums[k]);
       plan.scores[c] = sums[k] * in.travel_factor(c);
     }
   };
@@ -321,9 +297,8 @@ Plan run(const SearchInput& in) {
   const CandidateViews finalists = in.views.subset(final_round);
   std::vector<double> factor;
   for (const std::size_t c : final_round) factor.push_back(in.travel_factor(c));
-  const detail::Race race =
-      detail::race_candidates(map, finalists.frusta, finalists.first, factor, in.gain, kSample,
-                              kSweptTolerance);
+  const detail::Race race = detail::race_candidates(map, finalists.frusta, finalists.first, factor,
+                                                    in.gain, kSample, kSweptTolerance);
   return finish(in, final_round, factor, race, std::move(plan));
 }
 
