@@ -82,6 +82,9 @@ struct MethodTraits {
   /// empty when its coarser rays rank too poorly to race, so that every view is evaluated
   /// exactly, or raced cell by cell (`cells`).
   std::span<const MetricRound> race_rounds = {};
+  /// A metric raced cell by cell whose walk by codes crosses cubes of unobserved cells far from
+  /// every occupied cell (MetricContext::far_unobserved).
+  bool crosses_far_unobserved = false;
 
   /// What it computes when it ranks by `objective`: the one answer to "which quantity".
   constexpr GainQuantity quantity(GainObjective objective) const {

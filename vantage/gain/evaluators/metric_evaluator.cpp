@@ -120,6 +120,15 @@ FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
                   }));
 }
 
+/// From the codes (detail::reach_codes), the cubes of unobserved cells beyond D of every occupied
+/// cell (detail::MetricContext::far_unobserved); empty without codes.
+FreeSpace far_unobserved_space(const GridSpec& spec, const std::vector<std::uint8_t>& reach) {
+  if (reach.empty()) return FreeSpace{};
+  return cubes_of(block_dims(spec), block_labels(spec, [&](std::size_t i) -> std::int64_t {
+                    return reach[i] == detail::kFarCode ? 0 : -1;
+                  }));
+}
+
 /// The occupied cells' box and cubes that `method` needs (detail::OccupiedCells).
 detail::OccupiedCells occupied_cells(const GainMap& map, GainMethod method) {
   const MethodTraits& traits = method_traits(method);
@@ -189,6 +198,7 @@ struct Spaces {
   const Eigen::AlignedBox3d* occupied = nullptr;  // detail::MetricContext::occupied
   const OctantShadows* shadows = nullptr;         // detail::MetricContext::shadows
   const std::uint8_t* reach = nullptr;            // detail::MetricContext::reach
+  const FreeSpace* far_unobserved = nullptr;      // detail::MetricContext::far_unobserved
 };
 
 }  // namespace detail
@@ -215,7 +225,8 @@ detail::MetricContext context(const GainMap& map, const std::vector<float>& near
           .coarseness = coarseness,
           .surface_rates = config.surface_rates,
           .shadows = spaces.shadows,
-          .reach = spaces.reach};
+          .reach = spaces.reach,
+          .far_unobserved = spaces.far_unobserved};
 }
 
 /// The metric's rays at `coarseness` times the pitch `config` asks for, by the jumping walk over
@@ -256,7 +267,10 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
                    ? OctantShadows(grid.spec(), grid.classes(), grid.census(), config.num_threads)
                    : OctantShadows{}),
       reach_(lists_cells() ? detail::reach_codes(map_, near_, free_, config.num_threads)
-                           : std::vector<std::uint8_t>{}) {}
+                           : std::vector<std::uint8_t>{}),
+      far_unobserved_(method_traits(config.method).crosses_far_unobserved
+                          ? far_unobserved_space(map_.spec(), reach_)
+                          : FreeSpace{}) {}
 
 Spaces MetricEvaluator::spaces() const {
   return Spaces{&free_,
@@ -265,7 +279,8 @@ Spaces MetricEvaluator::spaces() const {
                 occupied_.open.empty() ? nullptr : &occupied_.open,
                 occupied_.box ? &*occupied_.box : nullptr,
                 shadows_.empty() ? nullptr : &shadows_,
-                reach_.empty() ? nullptr : reach_.data()};
+                reach_.empty() ? nullptr : reach_.data(),
+                far_unobserved_.empty() ? nullptr : &far_unobserved_};
 }
 
 std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int coarseness,

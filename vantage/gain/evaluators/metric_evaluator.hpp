@@ -118,6 +118,7 @@ class MetricEvaluator {
   // Empty unless the metric's value is a sum of cell credits: what its lists read.
   OctantShadows shadows_;
   std::vector<std::uint8_t> reach_;  // detail::reach_codes
+  FreeSpace far_unobserved_;         // detail::MetricContext::far_unobserved
 };
 
 /// The reference the evaluation above is held to (tests/gain/metrics_test.cpp): the same rays,

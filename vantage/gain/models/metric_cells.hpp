@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "vantage/gain/models/metric_rays.hpp"
+#include "vantage/gain/models/reach_codes.hpp"
 #include "vantage/gain/octant_shadows.hpp"
 
 namespace vantage::detail {
@@ -83,64 +84,6 @@ inline bool rays_through_cell(const RayImage& image, const GridSpec& spec, const
   };
   return range(u_lo, u_hi, image.tan_h, image.su, image.cols, col_lo, col_hi) &&
          range(v_lo, v_hi, image.tan_v, image.sv, image.rows, row_lo, row_hi);
-}
-
-/// What a listed cell's walks read of a cell (reach_codes), a byte a cell where the snapshot's
-/// codes and the distances take five: an unobserved cell within D of an occupied one is coded by
-/// its squared distance to the nearest occupied cell's centre, 0-16 [cells^2]; the others by
-/// their class.
-inline constexpr std::uint8_t kFarCode = 17;        ///< unobserved, beyond D of every occupied cell
-inline constexpr std::uint8_t kFreeCode = 18;       ///< free, in a block of 4^3 cells not all free
-inline constexpr std::uint8_t kFreeBlockCode = 19;  ///< free, in a block of free cells only
-inline constexpr std::uint8_t kOccupiedCode = 20;
-
-/// The distance [cells] of a code below kFarCode, as occupied_distance gives it, bit for bit.
-inline const std::array<float, kFarCode> kCodeDistance = [] {
-  std::array<float, kFarCode> out{};
-  for (std::size_t n = 0; n < out.size(); ++n) {
-    out[n] = static_cast<float>(std::sqrt(static_cast<double>(n)));
-  }
-  return out;
-}();
-
-/// The state a code stands for.
-inline CellState code_state(std::uint8_t code) {
-  return code < kFreeCode ? CellState::kUnobserved
-                          : (code < kOccupiedCode ? CellState::kFree : CellState::kOccupied);
-}
-
-/// Every cell's code (kFarCode's note) from the snapshot, the distances (occupied_distance,
-/// within D) and the free space's blocks, on `num_threads` threads; the same for any number.
-inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const float> near,
-                                             const FreeSpace& free, int num_threads) {
-  const GridSpec& spec = map.spec();
-  std::vector<std::uint8_t> out(map.size());
-  const std::size_t nx = static_cast<std::size_t>(spec.dims.x());
-  run_with_threads(num_threads, [&] {
-    tbb::parallel_for(0, spec.dims.z(), [&](int z) {
-      for (int y = 0; y < spec.dims.y(); ++y) {
-        const std::size_t row = spec.linear(Index3(0, y, z));
-        for (std::size_t x = 0; x < nx; ++x) {
-          const std::size_t i = row + x;
-          const CellState state = map.value(i).state;
-          if (state == CellState::kFree) {
-            // NOTE: a block of free cells only lies in a free cube of every octant.
-            const bool cube =
-                !free.empty() && free.extent_at(0, Index3(static_cast<int>(x), y, z)) > 0;
-            out[i] = cube ? kFreeBlockCode : kFreeCode;
-          } else if (state == CellState::kOccupied) {
-            out[i] = kOccupiedCode;
-          } else if (!(near[i] <= kProximityCells)) {
-            out[i] = kFarCode;
-          } else {
-            const double d = near[i];
-            out[i] = static_cast<std::uint8_t>(std::lround(d * d));
-          }
-        }
-      }
-    });
-  });
-  return out;
 }
 
 /// How many cells before a target `blocked_before` looks back along a ray at most.
@@ -253,6 +196,21 @@ RayEnd walk_codes(const MetricContext& ctx, const RayImage& image, const std::ui
           ctx.far->cross(walk, spec)) {
         if (!spec.contains(walk.cell())) return {};  // left the grid
         continue;
+      }
+    }
+    if constexpr (far_alike<Metric>()) {
+      if (!ctx.count_cells && code == kFarCode && ctx.far_unobserved != nullptr) {
+        const Index3 from = walk.cell();
+        if (ctx.far_unobserved->cross(walk, spec)) {
+          // NOTE: the cells crossed between are unobserved and beyond D, each handed to the
+          // metric as a step would hand it (kFarAlike: their index and range read by none), so
+          // its value is the steps' to the last bit.
+          const RayCell alike{linear, kValues[0], 1.0, far, in_range, 1.0};
+          const int between = (walk.cell() - from).cwiseAbs().sum() - 1;
+          for (int k = 0; k < between; ++k) metric.cell(alike, credit);
+          if (!spec.contains(walk.cell())) return {};  // left the grid
+          continue;
+        }
       }
     }
     if (free_inert<Metric>() && ctx.free != nullptr && code == kFreeBlockCode &&

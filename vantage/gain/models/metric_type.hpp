@@ -17,6 +17,11 @@
 /// A free-inert metric may also say which other cells change nothing after the first of them
 /// (the jumping walk crosses cubes of those too when it need not count the unobserved cells):
 ///   static constexpr QuietCells kQuiet;
+/// A metric raced cell by cell (metric_cells.hpp) may say that every unobserved cell beyond D of
+/// every occupied cell changes it alike, whatever its index and range (optional; false by
+/// default): its walk by codes then crosses cubes of such cells when it need not count the
+/// unobserved cells, handing the metric one such cell for each it crosses:
+///   static constexpr bool kFarAlike;
 /// A metric may say that only the unobserved cells within D (kProximityCells) of an occupied cell
 /// change it (optional; false by default):
 ///   static constexpr bool kNearRays;
@@ -118,6 +123,9 @@ struct MetricContext {
   /// For such a metric, every cell's code (reach_codes in models/metric_cells.hpp), which its
   /// lists' walks read; nullptr for another.
   const std::uint8_t* reach = nullptr;
+  /// For such a metric that says kFarAlike, the cubes of unobserved cells beyond D of every
+  /// occupied cell, which its walk by codes crosses in one step; nullptr: none.
+  const FreeSpace* far_unobserved = nullptr;
 };
 
 /// Which cells besides free ones change nothing for a metric after the first of them on a ray.
@@ -140,6 +148,17 @@ template <typename Metric>
 constexpr bool free_dims() {
   if constexpr (requires { Metric::kFreeDims; }) {
     return Metric::kFreeDims;
+  } else {
+    return false;
+  }
+}
+
+/// Whether every unobserved cell beyond D changes `Metric` alike (the file's note); false unless
+/// it says so.
+template <typename Metric>
+constexpr bool far_alike() {
+  if constexpr (requires { Metric::kFarAlike; }) {
+    return Metric::kFarAlike;
   } else {
     return false;
   }

@@ -26,6 +26,7 @@ struct Surface {
   static constexpr bool kFreeInert = true;
   static constexpr bool kNearRays = true;  // the far class dims, but a ray of it alone credits 0
   static constexpr bool kCellSum = true;   // models/metric_cells.hpp
+  static constexpr bool kFarAlike = true;  // a far cell dims by its class's rate, credits nothing
   explicit Surface(const detail::MetricContext& ctx) : rates(ctx.surface_rates) {}
   SurfaceRates rates;
   double sum = 0.0;

@@ -1,0 +1,82 @@
+#pragma once
+/// @file
+/// A byte a cell for the walks of a metric raced cell by cell (metric_cells.hpp; docs/decision.md,
+/// "A metric raced cell by cell"): each cell's state or, unobserved within D of an occupied cell,
+/// its squared distance to the nearest one, where the snapshot's codes and the distances take five
+/// bytes a cell.
+
+#include <tbb/parallel_for.h>
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "vantage/gain/free_space.hpp"
+#include "vantage/gain/models/metrics/shared.hpp"
+#include "vantage/gain/snapshot.hpp"
+#include "vantage/util/parallel.hpp"
+
+namespace vantage::detail {
+
+/// What a listed cell's walks read of a cell (reach_codes), a byte a cell where the snapshot's
+/// codes and the distances take five: an unobserved cell within D of an occupied one is coded by
+/// its squared distance to the nearest occupied cell's centre, 0-16 [cells^2]; the others by
+/// their class.
+inline constexpr std::uint8_t kFarCode = 17;        ///< unobserved, beyond D of every occupied cell
+inline constexpr std::uint8_t kFreeCode = 18;       ///< free, in a block of 4^3 cells not all free
+inline constexpr std::uint8_t kFreeBlockCode = 19;  ///< free, in a block of free cells only
+inline constexpr std::uint8_t kOccupiedCode = 20;
+
+/// The distance [cells] of a code below kFarCode, as occupied_distance gives it, bit for bit.
+inline const std::array<float, kFarCode> kCodeDistance = [] {
+  std::array<float, kFarCode> out{};
+  for (std::size_t n = 0; n < out.size(); ++n) {
+    out[n] = static_cast<float>(std::sqrt(static_cast<double>(n)));
+  }
+  return out;
+}();
+
+/// The state a code stands for.
+inline CellState code_state(std::uint8_t code) {
+  return code < kFreeCode ? CellState::kUnobserved
+                          : (code < kOccupiedCode ? CellState::kFree : CellState::kOccupied);
+}
+
+/// Every cell's code (kFarCode's note) from the snapshot, the distances (occupied_distance,
+/// within D) and the free space's blocks, on `num_threads` threads; the same for any number.
+inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const float> near,
+                                             const FreeSpace& free, int num_threads) {
+  const GridSpec& spec = map.spec();
+  std::vector<std::uint8_t> out(map.size());
+  const std::size_t nx = static_cast<std::size_t>(spec.dims.x());
+  run_with_threads(num_threads, [&] {
+    tbb::parallel_for(0, spec.dims.z(), [&](int z) {
+      for (int y = 0; y < spec.dims.y(); ++y) {
+        const std::size_t row = spec.linear(Index3(0, y, z));
+        for (std::size_t x = 0; x < nx; ++x) {
+          const std::size_t i = row + x;
+          const CellState state = map.value(i).state;
+          if (state == CellState::kFree) {
+            // NOTE: a block of free cells only lies in a free cube of every octant.
+            const bool cube =
+                !free.empty() && free.extent_at(0, Index3(static_cast<int>(x), y, z)) > 0;
+            out[i] = cube ? kFreeBlockCode : kFreeCode;
+          } else if (state == CellState::kOccupied) {
+            out[i] = kOccupiedCode;
+          } else if (!(near[i] <= kProximityCells)) {
+            out[i] = kFarCode;
+          } else {
+            const double d = near[i];
+            out[i] = static_cast<std::uint8_t>(std::lround(d * d));
+          }
+        }
+      }
+    });
+  });
+  return out;
+}
+
+}  // namespace vantage::detail
