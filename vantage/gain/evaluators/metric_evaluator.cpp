@@ -120,13 +120,41 @@ FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
                   }));
 }
 
-/// From the codes (detail::reach_codes), the cubes of unobserved cells beyond D of every occupied
-/// cell (detail::MetricContext::far_unobserved); empty without codes.
-FreeSpace far_unobserved_space(const GridSpec& spec, const std::vector<std::uint8_t>& reach) {
-  if (reach.empty()) return FreeSpace{};
-  return cubes_of(block_dims(spec), block_labels(spec, [&](std::size_t i) -> std::int64_t {
-                    return reach[i] == detail::kFarCode ? 0 : -1;
-                  }));
+/// From the census, the cubes of blocks of unobserved cells beyond D of every occupied cell
+/// (detail::MetricContext::far_unobserved): blocks of unobserved cells only whose 26 neighbours
+/// hold no occupied cell. NOTE: a cell two blocks off on an axis lies at least 2 * 4 - 3 = 5 > D
+/// cells away, so every cell of such a block is beyond D; a pass over the blocks (1/64 of the
+/// cells), where labelling every cell by its code took 2 ms of a ring decision's 25.
+FreeSpace far_unobserved_space(const BlockCensus& census) {
+  static_assert(BlockCensus::kBlock == FreeSpace::kBlock &&
+                2 * FreeSpace::kBlock - 3 > kProximityCells);
+  const Index3 d = census.dims();
+  const auto block = [&](int x, int y, int z) {
+    return static_cast<std::size_t>(x) +
+           static_cast<std::size_t>(d.x()) *
+               (static_cast<std::size_t>(y) + static_cast<std::size_t>(d.y()) * z);
+  };
+  std::vector<std::int64_t> label(static_cast<std::size_t>(d.prod()), -1);
+  for (std::size_t b = 0; b < label.size(); ++b) {
+    if (census.classes(b) == class_bit(CellState::kUnobserved)) label[b] = 0;
+  }
+  Index3 c;
+  for (c.z() = 0; c.z() < d.z(); ++c.z()) {
+    for (c.y() = 0; c.y() < d.y(); ++c.y()) {
+      for (c.x() = 0; c.x() < d.x(); ++c.x()) {
+        if (!(census.classes(block(c.x(), c.y(), c.z())) & class_bit(CellState::kOccupied))) {
+          continue;
+        }
+        const Index3 lo = (c.array() - 1).max(0), hi = (c.array() + 1).min(d.array() - 1);
+        for (int z = lo.z(); z <= hi.z(); ++z) {
+          for (int y = lo.y(); y <= hi.y(); ++y) {
+            for (int x = lo.x(); x <= hi.x(); ++x) label[block(x, y, z)] = -1;
+          }
+        }
+      }
+    }
+  }
+  return cubes_of(d, label);
 }
 
 /// The occupied cells' box and cubes that `method` needs (detail::OccupiedCells).
@@ -269,7 +297,7 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       reach_(lists_cells() ? detail::reach_codes(map_, near_, free_, config.num_threads)
                            : std::vector<std::uint8_t>{}),
       far_unobserved_(method_traits(config.method).crosses_far_unobserved
-                          ? far_unobserved_space(map_.spec(), reach_)
+                          ? far_unobserved_space(grid.census())
                           : FreeSpace{}) {}
 
 Spaces MetricEvaluator::spaces() const {
