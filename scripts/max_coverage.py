@@ -104,8 +104,9 @@ def _relaxation(cells, open_groups, columns, k, active):
 class Search:
     """Do k views hit `need` cells? A depth-first branch and bound on one view at a time (taken,
     then left out). At each node: the bound above from the multipliers it inherits; if that does
-    not refute, the relaxation's own (its u, and the next view to branch on: the one it takes
-    most of); with one view left, every view tried. Raises OutOfTime past `deadline`
+    not refute, the relaxation's own (its u; the views that, taken, would bring it below `need`
+    are dropped below the node; the next view to branch on is the one it takes most of); with
+    one view left, every view tried. Raises OutOfTime past `deadline`
     (time.monotonic())."""
 
     def __init__(self, cells, need, deadline):
@@ -154,6 +155,11 @@ class Search:
                 value, c = self.bound(covered, open_groups, u, columns, left)
                 if value < need - EPS:
                     continue
+                # A view outside the k best by c_v, taken, trades the k-th best c for its own:
+                # where that refutes, no solution below this node holds it (reduced-cost fixing).
+                kth = -np.partition(-c, left - 1)[left - 1]
+                keep = value - np.maximum(0.0, kth - c) >= need - EPS
+                columns, x, c = columns[keep], x[keep], c[keep]
                 score = x + 1e-9 * c
                 active = open_groups & (cells.hits[:, columns] @ x < 1.5)
             j = int(np.argmax(score))
