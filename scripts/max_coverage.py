@@ -105,9 +105,9 @@ class Search:
     """Do k views hit `need` cells? A depth-first branch and bound on one view at a time (taken,
     then left out). At each node: the bound above from the multipliers it inherits; if that does
     not refute, the relaxation's own (its u; the views that, taken, would bring it below `need`
-    are dropped below the node; the next view to branch on is the one it takes most of); with
-    one view left, every view tried. Raises OutOfTime past `deadline`
-    (time.monotonic())."""
+    are dropped below the node; the next view to branch on is the one with the most of what the
+    relaxation takes of it times the open cells it hits); with one view left, every view tried.
+    Raises OutOfTime past `deadline` (time.monotonic())."""
 
     def __init__(self, cells, need, deadline):
         self.cells, self.need, self.deadline = cells, need, deadline
@@ -160,7 +160,9 @@ class Search:
                 kth = -np.partition(-c, left - 1)[left - 1]
                 keep = value - np.maximum(0.0, kth - c) >= need - EPS
                 columns, x, c = columns[keep], x[keep], c[keep]
-                score = x + 1e-9 * c
+                # NOTE: what the relaxation takes of a view times the open cells it hits
+                # branched on fewer nodes than its share alone (docs/yardstick.md).
+                score = x * (cells.by_view[columns] @ (w * open_groups))
                 active = open_groups & (cells.hits[:, columns] @ x < 1.5)
             j = int(np.argmax(score))
             groups = cells.groups_of(columns[j])
