@@ -55,6 +55,7 @@ def test_the_cover_beats_the_greedy_oracle_where_greedy_overlaps(tmp_path, set_c
     assert got["100"]["views"] == "1 2"
     assert got["100"]["lower_bound"] == "2"
     assert float(got["100"]["gap"]) == 0.0
+    assert 0 <= float(got["100"]["cpu_seconds"])
     # The shortest path from 0 through the views at 5 and 2: 0 -> 2 -> 5 = 5 m.
     assert float(got["100"]["tour_m"]) == pytest.approx(5.0)
     assert got["100"]["tour_method"] == "exact"
