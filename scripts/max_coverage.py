@@ -184,12 +184,13 @@ def relaxation_bound(cells, need, k):
     return Search(cells, need, np.inf).bound(0.0, everything, u, columns, k)[0]
 
 
-def tabu(cells, k, need, seed, deadline, iterations=300, tenure=7):
+def tabu(cells, k, need, seed, deadline, iterations=50, tenure=7):
     """k columns whose groups weigh at least `need`, or None: a tabu search over swaps. From
     `seed` (cut to k, filled greedily), each step the swap of a chosen column for another that
     leaves the most weight hit, among those not tabu (a column swapped out stays out for `tenure`
     + 0-4 steps, one swapped in stays in for tenure / 2) unless it beats the best; ties broken by
-    a seeded random jitter. A heuristic: it only lowers the upper bound."""
+    a seeded random jitter; `iterations` steps at most. A heuristic: it only lowers the upper
+    bound."""
     rng = np.random.default_rng(1)
     a = cells.by_view.toarray()
     w = cells.weight
