@@ -24,6 +24,7 @@ from scipy import sparse
 from scipy.optimize import linprog
 
 EPS = 1e-6  # below `need` by more than this, a bound refutes (coverages are integers)
+ACTIVE = 1.5  # a group stays in the next relaxation while the views cover it less than this
 
 
 class OutOfTime(Exception):
@@ -104,10 +105,11 @@ def _relaxation(cells, open_groups, columns, k, active):
 class Search:
     """Do k views hit `need` cells? A depth-first branch and bound on one view at a time (taken,
     then left out). At each node: the bound above from the multipliers it inherits; if that does
-    not refute, the relaxation's own (its u; the views that, taken, would bring it below `need`
-    are dropped below the node; the next view to branch on is the one with the most of what the
-    relaxation takes of it times the open cells it hits); with one view left, every view tried.
-    Raises OutOfTime past `deadline` (time.monotonic())."""
+    not refute, the relaxation's own (its u; a view that, taken, would bring it below `need` is
+    dropped below the node, and one of the best by c_v that, left out, would is taken: every
+    solution below holds it; the next view to branch on is the one with the most of what the
+    relaxation takes of it times the open cells it hits); with two views left, or no more views
+    than are left, every choice is tried. Raises OutOfTime past `deadline` (time.monotonic())."""
 
     def __init__(self, cells, need, deadline):
         self.cells, self.need, self.deadline = cells, need, deadline
@@ -123,56 +125,97 @@ class Search:
         top = -np.partition(-c, k - 1)[:k].sum()
         return covered + (w * open_groups).sum() - u.sum() + top, c
 
+    def exact(self, covered, open_groups, columns, left):
+        """The best of at most `left` (<= 2, or all) of `columns`, if it reaches `need`."""
+        w, need = self.cells.weight, self.need
+        block = self.cells.by_view[columns]
+        if len(columns) <= left:
+            hit = open_groups & (block.sum(axis=0).A1 > 0)
+            if covered + w[hit].sum() >= need - EPS:
+                return [int(j) for j in columns]
+            return None
+        gain = block @ (w * open_groups)
+        if left == 1:
+            j = int(np.argmax(gain))
+            return [int(columns[j])] if covered + gain[j] >= need - EPS else None
+        shared = ((block @ sparse.diags(w * open_groups)) @ block.T).toarray()
+        pair = gain[:, None] + gain[None, :] - shared
+        i, j = np.unravel_index(np.argmax(pair), pair.shape)
+        if covered + pair[i, j] >= need - EPS:
+            return sorted({int(columns[i]), int(columns[j])})
+        return None
+
     def reach(self, k):
         """k columns whose groups weigh at least `need`, or None when none exist (proven)."""
         cells, w, need = self.cells, self.cells.weight, self.need
         everything = np.ones(len(w), dtype=bool)
         stack = [(0.0, everything, np.zeros(len(w)), np.arange(len(cells.views)), k, (),
-                  everything)]
+                  everything, True)]
         while stack:
-            covered, open_groups, u, columns, left, chosen, active = stack.pop()
+            covered, open_groups, u, columns, left, chosen, active, solve = stack.pop()
             self.nodes += 1
             if time.monotonic() > self.deadline:
                 raise OutOfTime()
             if covered >= need - EPS:
                 return list(chosen)
-            if left == 0 or len(columns) < left:
+            if left == 0 or len(columns) == 0:
                 continue
-            if left == 1:
-                gain = cells.by_view[columns] @ (w * open_groups)
-                j = int(np.argmax(gain))
-                if covered + gain[j] >= need - EPS:
-                    return list(chosen) + [int(columns[j])]
+            if left <= 2 or len(columns) <= left:
+                found = self.exact(covered, open_groups, columns, left)
+                if found is not None:
+                    return list(chosen) + found
                 continue
             value, c = self.bound(covered, open_groups, u, columns, left)
             if value < need - EPS:
                 continue
-            score = c
-            relaxed = _relaxation(cells, open_groups, columns, left, active)
-            self.relaxations += 1
-            if relaxed is not None:
+            relaxed = _relaxation(cells, open_groups, columns, left, active) if solve else None
+            self.relaxations += solve
+            if relaxed is None:
+                x = c
+            else:
                 u, x = relaxed
                 value, c = self.bound(covered, open_groups, u, columns, left)
                 if value < need - EPS:
                     continue
-                # A view outside the k best by c_v, taken, trades the k-th best c for its own:
-                # where that refutes, no solution below this node holds it (reduced-cost fixing).
-                kth = -np.partition(-c, left - 1)[left - 1]
-                keep = value - np.maximum(0.0, kth - c) >= need - EPS
-                columns, x, c = columns[keep], x[keep], c[keep]
-                # NOTE: what the relaxation takes of a view times the open cells it hits
-                # branched on fewer nodes than its share alone (docs/yardstick.md).
-                score = x * (cells.by_view[columns] @ (w * open_groups))
-                active = open_groups & (cells.hits[:, columns] @ x < 1.5)
+            # A view outside the `left` best by c_v, taken, trades the left-th best c for its
+            # own: where that refutes, no solution below this node holds it (reduced-cost
+            # fixing); one of the best left out gives way to the next: where that refutes,
+            # every solution below holds it.
+            order = np.argsort(-c, kind="stable")
+            kth, next_c = c[order[left - 1]], c[order[left]]
+            keep = value - np.maximum(0.0, kth - c) >= need - EPS
+            forced = np.zeros(len(columns), dtype=bool)
+            forced[order[:left]] = value - c[order[:left]] + next_c < need - EPS
+            if (forced & ~keep).any():
+                continue
+            if forced.any():
+                picked = columns[forced]
+                groups = np.unique(np.concatenate([cells.groups_of(j) for j in picked]))
+                groups = groups[open_groups[groups]]
+                taken = open_groups.copy()
+                taken[groups] = False
+                stack.append((covered + w[groups].sum(), taken, u, columns[keep & ~forced],
+                              left - len(picked), chosen + tuple(int(j) for j in picked),
+                              active, True))
+                continue
+            columns, x, c = columns[keep], x[keep], c[keep]
+            if len(columns) <= left:
+                stack.append((covered, open_groups, u, columns, left, chosen, active, False))
+                continue
+            if relaxed is not None:
+                active = open_groups & (cells.hits[:, columns] @ x < ACTIVE)
+            # NOTE: what the relaxation takes of a view times the open cells it hits
+            # branched on fewer nodes than its share alone (docs/yardstick.md).
+            score = x * (cells.by_view[columns] @ (w * open_groups))
             j = int(np.argmax(score))
             groups = cells.groups_of(columns[j])
             groups = groups[open_groups[groups]]
             rest = np.delete(columns, j)
-            taken = open_groups.copy()
-            taken[groups] = False
-            stack.append((covered, open_groups, u, rest, left, chosen, active))
-            stack.append((covered + w[groups].sum(), taken, u, rest, left - 1,
-                          chosen + (int(columns[j]),), active))
+            taken_groups = open_groups.copy()
+            taken_groups[groups] = False
+            stack.append((covered, open_groups, u, rest, left, chosen, active, True))
+            stack.append((covered + w[groups].sum(), taken_groups, u, rest, left - 1,
+                          chosen + (int(columns[j]),), active, True))
         return None
 
 
@@ -180,7 +223,10 @@ def relaxation_bound(cells, need, k):
     """The relaxation's bound on the cells k views hit (for tests and reports)."""
     everything = np.ones(len(cells.weight), dtype=bool)
     columns = np.arange(len(cells.views))
-    u, _ = _relaxation(cells, everything, columns, k, everything)
+    relaxed = _relaxation(cells, everything, columns, k, everything)
+    if relaxed is None:
+        return np.inf
+    u = relaxed[0]
     return Search(cells, need, np.inf).bound(0.0, everything, u, columns, k)[0]
 
 

@@ -149,14 +149,27 @@ def set_cover(truth, start, need, incumbent, time_limit, cache=None):
             steps.append("tabu")
     nodes = 0
     try:
+        # k views that reach the level are k + 1 that do, so refuting one view fewer than the
+        # best refutes every smaller k: the search asks only that; the bound at the time limit
+        # is the least k the root's relaxation does not refute (it grows with k: bisected).
+        low, high = lower, len(best) - 1
+        while low < high:
+            mid = (low + high) // 2
+            if max_coverage.relaxation_bound(cells, remaining, mid) < remaining - 1e-6:
+                low = mid + 1
+            else:
+                high = mid
+            if time.monotonic() > deadline:
+                raise max_coverage.OutOfTime()
+        lower = low
         while lower < len(best):
             search = max_coverage.Search(cells, remaining, deadline)
             try:
-                found = search.reach(lower)
+                found = search.reach(len(best) - 1)
             finally:
                 nodes += search.nodes
             if found is None:
-                lower += 1
+                lower = len(best)
             else:
                 best = sorted(int(cells.views[j]) for j in found)
     except max_coverage.OutOfTime:
