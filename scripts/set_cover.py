@@ -26,14 +26,17 @@ the candidates hit, MA-SCVP's full cover; need_cells says how many):
 
 The fewest views are the least k for which some k views reach the level: the cells the start
 does not hit are merged into groups hit by the same views (weighted by their number; a view whose
-groups lie in another's is dropped, valid for the count), and for k from the counting bound (k
-views hit at most the sum of the k largest new-cell counts) up, scripts/max_coverage.py decides
-exactly whether the most cells k views hit reach the level: a branch and bound over the linear
-relaxation of maximum coverage with k views (HiGHS through scipy.optimize.linprog, in its dual
-form). No for every k below the best cover proves it; a yes gives a cover of k views. Before it, a
-tabu search over swaps looks for a cover of one view fewer than the greedy oracle's (the upper
-bound). Time limit per level: --time-limit seconds (wall clock, the start's groups built within
-its first level's), at which the best cover stands with the lower bound proven so far.
+groups lie in another's is dropped, valid for the count), and scripts/max_coverage.py decides
+exactly whether the most cells k views hit reach the level, for k one fewer than the best cover
+(if k views reach it, so do k + 1: a no for that k proves the cover the fewest): a branch and
+bound over the linear relaxation of maximum coverage with k views (HiGHS through
+scipy.optimize.linprog, in its dual form); a yes gives a cover of k views, and the question is
+asked again. Before it, a tabu search over swaps looks for a cover of one view fewer than the
+greedy oracle's (the upper bound), and the least k the root's relaxation does not refute
+(bisected from the counting bound: k views hit at most the sum of the k largest new-cell counts)
+is the lower bound until the search answers. Time limit per level: --time-limit seconds (wall
+clock, the start's groups built within its first level's), at which the best cover stands with
+the lower bound proven so far.
 """
 import csv
 import glob
@@ -116,10 +119,11 @@ def set_cover(truth, start, need, incumbent, time_limit, cache=None):
     """(views, lower bound, status, solver) of the fewest views whose hits with the start's
     reach `need` cells, never more than the incumbent (a feasible cover). Steps, each stopping
     once the lower bound meets the best cover: the counting bound; the tabu search for a cover of
-    one view fewer than the best (a fifth of the time at most); then for k from the lower bound
-    up, max_coverage.Search: do k views reach the level? No raises the bound to k + 1, yes gives
-    the cover (and the proof, every smaller k refuted). Status `proven` or `time limit` (the
-    lower bound is what was proven by then). `cache`: a dict that keeps the start's
+    one view fewer than the best (a fifth of the time at most); the least k the root's relaxation
+    does not refute (bisected); then max_coverage.Search: do one view fewer than the best reach
+    the level? No proves the best (every smaller k refuted with it), yes gives a smaller cover
+    and the question again. Status `proven` or `time limit` (the lower bound is what was proven
+    by then). `cache`: a dict that keeps the start's
     max_coverage.Cells for its other levels (built within the first level's time)."""
     start_hits = truth["starts"][start]
     remaining = need - len(start_hits)
@@ -150,8 +154,8 @@ def set_cover(truth, start, need, incumbent, time_limit, cache=None):
     nodes = 0
     try:
         # k views that reach the level are k + 1 that do, so refuting one view fewer than the
-        # best refutes every smaller k: the search asks only that; the bound at the time limit
-        # is the least k the root's relaxation does not refute (it grows with k: bisected).
+        # best refutes every smaller k: the search asks that last; the bound until it answers
+        # starts at the least k the root's relaxation does not refute (it grows with k: bisected).
         low, high = lower, len(best) - 1
         while low < high:
             mid = (low + high) // 2
@@ -162,6 +166,21 @@ def set_cover(truth, start, need, incumbent, time_limit, cache=None):
             if time.monotonic() > deadline:
                 raise max_coverage.OutOfTime()
         lower = low
+        # Below one fewer than the best, each k the search refutes raises the bound reported at
+        # the time limit; those searches share a fifth of the time, then the last k has the rest.
+        upward_end = time.monotonic() + 0.2 * time_limit
+        while lower < len(best) - 1 and time.monotonic() < upward_end:
+            search = max_coverage.Search(cells, remaining, min(deadline, upward_end))
+            try:
+                found = search.reach(lower)
+            except max_coverage.OutOfTime:
+                break
+            finally:
+                nodes += search.nodes
+            if found is None:
+                lower += 1
+            else:
+                best = sorted(int(cells.views[j]) for j in found)
         while lower < len(best):
             search = max_coverage.Search(cells, remaining, deadline)
             try:

@@ -173,6 +173,22 @@ def test_the_search_answers_as_every_subset_does(max_coverage, seed):
 
 
 @pytest.mark.parametrize("seed", range(6))
+def test_the_search_answers_as_every_subset_does_deeper(max_coverage, seed):
+    # The same at k = 5 and 6 of 14 views, where the search branches below the root, takes the
+    # views whose leaving out refutes and tries two views left exactly.
+    rng = random.Random(500 + seed)
+    truth, views, start = random_truth(rng, 70, 14, 4, 14)
+    cells = max_coverage.Cells(views, start)
+    for k in (5, 6):
+        most = brute_most(views, start, k)
+        found = max_coverage.Search(cells, most, math.inf).reach(k)
+        assert found is not None and len(found) <= k, (k, most)
+        chosen = [int(cells.views[j]) for j in found]
+        assert len(set().union(*(views[v] for v in chosen)) - start) >= most
+        assert max_coverage.Search(cells, most + 1, math.inf).reach(k) is None, (k, most)
+
+
+@pytest.mark.parametrize("seed", range(6))
 def test_the_relaxation_bounds_every_subset_from_above(max_coverage, seed):
     rng = random.Random(300 + seed)
     truth, views, start = random_truth(rng, 50, 12, 4, 16)
