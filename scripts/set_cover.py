@@ -17,23 +17,26 @@ the candidates hit, MA-SCVP's full cover; need_cells says how many):
 - set_cover_views: the fewest views found; never more than greedy_views.
 - lower_bound, gap, status: the proven lower bound on the number of views, the relative gap
   (set_cover_views - lower_bound) / set_cover_views, and `proven` (gap 0) or `time limit`.
-- solver: the steps that ran (below); seconds: their wall-clock time.
+- solver: the steps that ran (below); seconds: their wall-clock time; cpu_seconds: the CPU time
+  of this process in them (on a shared machine, what the load left it).
 - tour_m: the shortest path from the start through the chosen views (no return): exact (Held-Karp
   dynamic programme) up to 12 views, else nearest neighbour improved by 2-opt (tour_method says
   which); in the sweep's travel rule [m].
 - views: the chosen candidate indices, space-separated.
 
-The integer program: the cells the start does not hit, merged into groups hit by the same views
-(weighted by their number); x_v in {0, 1} per view, y_g in [0, 1] per group, y_g <= the sum of
-x_v over the views hitting g, sum of w_g y_g >= the cells still needed; minimise the sum of x_v.
-A view whose groups lie in another's is dropped (valid for the count). Its steps, each stopping
-once the lower bound meets the best cover: the counting bound (k views hit at most the sum of
-the k largest new-cell counts); swaps that look for a cover of one view fewer (heuristic, for the
-upper bound); a branch and bound of our own for k <= 3 views (faster than the solver there); the
-linear relaxation, rounded up; the integer program, with at most the best cover - 1 views. The
-last two are solved by HiGHS through scipy.optimize.milp, their rows y_g <= ... added lazily
-(the groups left out count as hit, so every bound holds). Time limit per level: --time-limit
-seconds (wall clock), at which the best cover stands with the bound proven so far.
+The fewest views are the least k for which some k views reach the level: the cells the start
+does not hit are merged into groups hit by the same views (weighted by their number; a view whose
+groups lie in another's is dropped, valid for the count), and scripts/max_coverage.py decides
+exactly whether the most cells k views hit reach the level, for k one fewer than the best cover
+(if k views reach it, so do k + 1: a no for that k proves the cover the fewest): a branch and
+bound over the linear relaxation of maximum coverage with k views (HiGHS through
+scipy.optimize.linprog, in its dual form); a yes gives a cover of k views, and the question is
+asked again. Before it, a tabu search over swaps looks for a cover of one view fewer than the
+greedy oracle's (the upper bound), and the least k the root's relaxation does not refute
+(bisected from the counting bound: k views hit at most the sum of the k largest new-cell counts)
+is the lower bound until the search answers. Time limit per level: --time-limit seconds (wall
+clock, the start's groups built within its first level's), at which the best cover stands with
+the lower bound proven so far.
 """
 import csv
 import glob
@@ -43,6 +46,9 @@ import math
 import os
 import sys
 import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import max_coverage  # noqa: E402  (the yes-or-no question for each k)
 
 FULL = "full"  # the level: every cell of V the start and the candidates hit
 LEVELS = (0.80, 0.90, 0.95, 0.99, FULL)
@@ -109,245 +115,16 @@ def size_bound(truth, start, remaining):
     return len(sizes) + 1
 
 
-class _Groups:
-    """The cells of V the start does not hit, merged by the set of views that hit them: a sparse
-    0/1 matrix of views by groups (`hits`) and each group's weight (its number of cells). `useful`
-    marks the views that count: a view whose groups all lie in another's is dropped (of views
-    with the same groups, the lowest index stays). That is valid for the number of views, not
-    for the tour: the other view does as well."""
-
-    def __init__(self, truth, start):
-        import numpy as np
-        from scipy import sparse
-        covering = {}  # cell -> views that hit it
-        start_hits = truth["starts"][start]
-        for v, cells in enumerate(truth["views"]):
-            for c in cells - start_hits:
-                covering.setdefault(c, []).append(v)
-        weights = {}
-        for views in covering.values():
-            weights[tuple(views)] = weights.get(tuple(views), 0) + 1
-        keys = list(weights)
-        rows = [v for views in keys for v in views]
-        cols = [g for g, views in enumerate(keys) for _ in views]
-        self.hits = sparse.csr_matrix((np.ones(len(rows)), (rows, cols)),
-                                      shape=(len(truth["views"]), len(keys)))
-        self.weight = np.array([weights[k] for k in keys], dtype=np.float64)
-        inside = (self.hits @ self.hits.T).toarray()  # groups two views share
-        size = np.diag(inside)
-        self.useful = np.ones(len(truth["views"]), dtype=bool)
-        for v in range(len(size)):
-            within = np.flatnonzero(inside[v] == size[v])
-            if any(size[u] > size[v] or u < v for u in within if u != v and self.useful[u]):
-                self.useful[v] = False
-
-    def covered(self, views):
-        """The weight of the groups `views` hit [cells]."""
-        import numpy as np
-        if not views:
-            return 0.0
-        count = np.asarray(self.hits[list(views)].sum(axis=0)).ravel()
-        return float(self.weight[count > 0].sum())
-
-
-class _OutOfTime(Exception):
-    pass
-
-
-def _cover_of(groups, k, remaining, deadline):
-    """Views, at most k, whose hits reach `remaining` cells, or None when no such set exists:
-    a depth-first branch and bound. A node's children are its allowed views by their new cells,
-    most first; the t-th child excludes the t - 1 before it (so each set is visited once). New
-    cells only shrink as views are added, so a child t is skipped when its cells and the k - 1
-    views after it that add the most once t is in fall short, and the children stop where the k
-    best counts left do; the last two views are found among every pair at once. Raises
-    _OutOfTime."""
-    import numpy as np
-    dense = groups.hits.toarray()
-
-    def search(allowed, open_weight, covered, k):
-        if covered >= remaining:
-            return []
-        if k == 0:
-            return None
-        if time.monotonic() > deadline:
-            raise _OutOfTime()
-        index = np.flatnonzero(allowed)
-        gain = dense[index] @ open_weight
-        order = np.argsort(-gain, kind="stable")
-        index, gain = index[order], gain[order]
-        keep = gain > 0
-        index, gain = index[keep], gain[keep]
-        if len(index) and covered + gain[0] >= remaining:
-            return [int(index[0])]
-        if k == 1 or len(index) < 2:
-            return None
-        # What view u adds after view t: what it adds now less the open cells both hit.
-        hits = dense[index]
-        after = gain[None, :] - (hits * open_weight) @ hits.T
-        after[np.tril_indices(len(index))] = -np.inf  # child t's sets take views after t only
-        if k == 2:
-            pair = gain[:, None] + after
-            t, u = np.unravel_index(np.argmax(pair), pair.shape)
-            if covered + pair[t, u] >= remaining:
-                return [int(index[t]), int(index[u])]
-            return None
-        # Child t's bound: t's cells and the k - 1 views after it that add the most once t is in.
-        best_after = -np.partition(-after, k - 2, axis=1)[:, :k - 1]
-        reach = covered + gain + np.where(np.isfinite(best_after), best_after, 0.0).sum(axis=1)
-        window = np.concatenate([[0.0], np.cumsum(gain)])
-        allowed = allowed.copy()
-        for t in range(len(index)):
-            # The k best counts from t on bound every child from t on: stop.
-            if covered + window[min(t + k, len(index))] - window[t] < remaining - 1e-9:
-                return None
-            allowed[index[t]] = False
-            if reach[t] < remaining - 1e-9:
-                continue
-            view = index[t]
-            found = search(allowed, open_weight * (1.0 - dense[view]), covered + gain[t], k - 1)
-            if found is not None:
-                return [int(view)] + found
-        return None
-
-    return search(groups.useful.copy(), groups.weight.copy(), 0.0, k)
-
-
-def _swap_search(groups, k, remaining, seed, deadline, patience=40):
-    """k views whose hits reach `remaining` cells, or None: from `seed` (cut to k views, or
-    filled greedily), the swap of a chosen view for another that adds the most, until the level
-    is reached, no swap helps (then a random swap among the 20 views adding the most; seed 1)
-    or `patience` swaps pass without a new best. A heuristic: it only lowers the upper bound."""
-    import numpy as np
-    rng = np.random.default_rng(1)
-    hits, weight = groups.hits, groups.weight
-    allowed = groups.useful
-    chosen = [v for v in seed if allowed[v]][:k]
-    best, since = -1.0, 0
-    while since < patience:
-        if time.monotonic() > deadline:
-            return None
-        count = (np.asarray(hits[chosen].sum(axis=0)).ravel() if chosen
-                 else np.zeros(hits.shape[1]))
-        covered = weight[count > 0].sum()
-        if covered >= remaining:
-            return sorted(chosen)
-        if len(chosen) == k:
-            best, since = (covered, 0) if covered > best else (best, since + 1)
-        gain = hits @ (weight * (count == 0))
-        gain[~allowed] = -1.0
-        gain[chosen] = -1.0
-        if len(chosen) < k:
-            chosen.append(int(np.argmax(gain)))
-            continue
-        only = weight * (count == 1)
-        mine = hits[chosen]
-        # Swapping chosen a for b: what b adds, less what only a hit, plus what b hits of that.
-        value = (gain[None, :] - (mine @ only)[:, None]
-                 + (mine.multiply(only[None, :]) @ hits.T).toarray())
-        value[:, ~allowed] = -np.inf
-        value[:, chosen] = -np.inf
-        a, b = np.unravel_index(np.argmax(value), value.shape)
-        if value[a, b] <= 0:
-            a = int(rng.integers(k))
-            top = [int(v) for v in np.argsort(-gain)[:20] if v not in chosen and gain[v] > 0]
-            if not top:
-                return None
-            b = int(rng.choice(top))
-        chosen[a] = int(b)
-    return None
-
-
-def _model(groups, rows, remaining, lo, hi):
-    """The integer program on the groups `rows` (the others count as hit: a relaxation) for
-    scipy's milp: variables x (the useful views) then y (the rows' groups)."""
-    import numpy as np
-    from scipy import sparse
-    from scipy.optimize import LinearConstraint
-    views = np.flatnonzero(groups.useful)
-    n, m = len(views), len(rows)
-    part = groups.hits[views][:, rows]
-    link = sparse.hstack([-part.T, sparse.identity(m)]).tocsr()  # y_g <= sum of its views' x
-    need = remaining - groups.weight[np.setdiff1d(np.arange(len(groups.weight)), rows)].sum()
-    constraints = [LinearConstraint(link, -np.inf, 0.0),
-                   LinearConstraint(np.concatenate([np.zeros(n), groups.weight[rows]])[None, :],
-                                    need, np.inf),
-                   LinearConstraint(np.concatenate([np.ones(n), np.zeros(m)])[None, :], lo, hi)]
-    cost = np.concatenate([np.ones(n), np.zeros(m)])
-    integrality = np.concatenate([np.ones(n), np.zeros(m)])
-    return views, cost, constraints, integrality
-
-
-def _lp_bound(groups, remaining, rows, deadline):
-    """(the linear relaxation's fewest views, the rows it needed), or None at the deadline. Rows
-    are added where the relaxation's views hit a group less than once, the least hit first, at
-    most max(300, half the rows) a round, until none is."""
-    import numpy as np
-    from scipy.optimize import milp, Bounds
-    rows = np.array(sorted(rows), dtype=int)
-    while True:
-        left = deadline - time.monotonic()
-        if left <= 0:
-            return None
-        views, cost, constraints, integrality = _model(groups, rows, remaining, 0, np.inf)
-        result = milp(cost, bounds=Bounds(0, 1), constraints=constraints,
-                      options={"time_limit": left})
-        if result.status != 0:
-            return None
-        x = np.zeros(groups.hits.shape[0])
-        x[views] = result.x[:len(views)]
-        reach = groups.hits.T @ x
-        out = np.ones(len(reach), dtype=bool)
-        out[rows] = False
-        short = np.flatnonzero(out & (reach < 1 - 1e-9))
-        if len(short) == 0:
-            return result.fun, rows
-        short = short[np.argsort(reach[short], kind="stable")[:max(300, len(rows) // 2)]]
-        rows = np.union1d(rows, short)
-
-
-def _milp(groups, remaining, rows, lo, hi, deadline):
-    """(views, lower bound, proven) of the integer program: at most `hi` views whose hits
-    reach `remaining` cells, at least `lo`; views None when there are none (proven: none exist,
-    else the time ran out). Groups outside `rows` count as hit (a relaxation, so its bound holds);
-    a solution that falls short on them adds those rows and the program is solved again."""
-    import numpy as np
-    from scipy.optimize import milp, Bounds
-    rows = np.array(sorted(rows), dtype=int)
-    while True:
-        left = deadline - time.monotonic()
-        if left <= 0:
-            return None, lo, False
-        views, cost, constraints, integrality = _model(groups, rows, remaining, lo, hi)
-        result = milp(cost, integrality=integrality, bounds=Bounds(0, 1),
-                      constraints=constraints, options={"time_limit": left})
-        if result.status == 2:
-            return None, hi + 1, True
-        bound = lo
-        if result.mip_dual_bound is not None and np.isfinite(result.mip_dual_bound):
-            bound = max(lo, math.ceil(result.mip_dual_bound - 1e-6))
-        if result.x is None:
-            return None, bound, False
-        chosen = [int(v) for v, on in zip(views, result.x[:len(views)]) if on > 0.5]
-        if groups.covered(chosen) >= remaining - 1e-9:
-            return chosen, bound, result.status == 0
-        count = np.asarray(groups.hits[chosen].sum(axis=0)).ravel()
-        out = np.ones(len(count), dtype=bool)
-        out[rows] = False
-        rows = np.union1d(rows, np.flatnonzero(out & (count == 0)))
-
-
-SOLVER = "HiGHS (scipy.optimize.milp)"
-
-
-def set_cover(truth, start, need, incumbent, time_limit):
+def set_cover(truth, start, need, incumbent, time_limit, cache=None):
     """(views, lower bound, status, solver) of the fewest views whose hits with the start's
-    reach `need` cells, never more than the incumbent (a feasible cover). Bounds, in order, each
-    stopping as soon as the lower bound meets the best cover: the counting bound; swaps that
-    find covers of fewer views; the branch and bound for k = 2 and 3 views; the linear
-    relaxation; the integer program (HiGHS, via scipy.optimize.milp). Status `proven` or
-    `time limit` (the lower bound is what was proven by then)."""
-    import numpy as np
+    reach `need` cells, never more than the incumbent (a feasible cover). Steps, each stopping
+    once the lower bound meets the best cover: the counting bound; the tabu search for a cover of
+    one view fewer than the best (a fifth of the time at most); the least k the root's relaxation
+    does not refute (bisected); then max_coverage.Search: do one view fewer than the best reach
+    the level? No proves the best (every smaller k refuted with it), yes gives a smaller cover
+    and the question again. Status `proven` or `time limit` (the lower bound is what was proven
+    by then). `cache`: a dict that keeps the start's
+    max_coverage.Cells for its other levels (built within the first level's time)."""
     start_hits = truth["starts"][start]
     remaining = need - len(start_hits)
     if remaining <= 0:
@@ -356,56 +133,68 @@ def set_cover(truth, start, need, incumbent, time_limit):
     lower = size_bound(truth, start, remaining)
     if lower >= len(best):
         return best, lower, "proven", "counting bound"
-    deadline = time.monotonic() + time_limit
-    groups = _Groups(truth, start)
-    steps = []
-
-    def done(step):
-        steps.append(step)
-        return lower >= len(best)
-
-    # Upper bound: swaps, each k below the best cover, within a fifth of the time.
-    search_end = time.monotonic() + 0.2 * time_limit
-    while len(best) > lower and time.monotonic() < search_end:
-        found = _swap_search(groups, len(best) - 1, remaining, best, search_end)
+    began = time.monotonic()
+    deadline = began + time_limit
+    cache = {} if cache is None else cache
+    if "cells" not in cache:
+        cache["cells"] = max_coverage.Cells(truth["views"], start_hits)
+    cells = cache["cells"]
+    column = {int(v): j for j, v in enumerate(cells.views)}
+    steps = ["counting bound"]
+    # Upper bound: a cover of one view fewer, while one is found, within a fifth of the time.
+    tabu_end = min(deadline, began + 0.2 * time_limit)
+    while len(best) > lower and time.monotonic() < tabu_end:
+        seed = [column[v] for v in best if v in column]
+        found = max_coverage.tabu(cells, len(best) - 1, remaining, seed, tabu_end)
         if found is None:
             break
-        best = found
-    if done("swaps"):
-        return best, lower, "proven", "counting bound + swaps"
-    # Lower bound, small k: the branch and bound proves no 2 or 3 views do, quickly.
+        best = sorted(int(cells.views[j]) for j in found)
+        if "tabu" not in steps:
+            steps.append("tabu")
+    nodes = 0
     try:
-        while lower <= 3 and lower < len(best):
-            found = _cover_of(groups, lower, remaining, min(deadline, time.monotonic() +
-                                                            0.2 * time_limit))
-            if found is not None:
-                best = sorted(found)
+        # k views that reach the level are k + 1 that do, so refuting one view fewer than the
+        # best refutes every smaller k: the search asks that last; the bound until it answers
+        # starts at the least k the root's relaxation does not refute (it grows with k: bisected).
+        low, high = lower, len(best) - 1
+        while low < high:
+            mid = (low + high) // 2
+            if max_coverage.relaxation_bound(cells, remaining, mid) < remaining - 1e-6:
+                low = mid + 1
+            else:
+                high = mid
+            if time.monotonic() > deadline:
+                raise max_coverage.OutOfTime()
+        lower = low
+        # Below one fewer than the best, each k the search refutes raises the bound reported at
+        # the time limit; those searches share a fifth of the time, then the last k has the rest.
+        upward_end = time.monotonic() + 0.2 * time_limit
+        while lower < len(best) - 1 and time.monotonic() < upward_end:
+            search = max_coverage.Search(cells, remaining, min(deadline, upward_end))
+            try:
+                found = search.reach(lower)
+            except max_coverage.OutOfTime:
                 break
-            lower += 1
-    except _OutOfTime:
+            finally:
+                nodes += search.nodes
+            if found is None:
+                lower += 1
+            else:
+                best = sorted(int(cells.views[j]) for j in found)
+        while lower < len(best):
+            search = max_coverage.Search(cells, remaining, deadline)
+            try:
+                found = search.reach(len(best) - 1)
+            finally:
+                nodes += search.nodes
+            if found is None:
+                lower = len(best)
+            else:
+                best = sorted(int(cells.views[j]) for j in found)
+    except max_coverage.OutOfTime:
         pass
-    if done("branch and bound"):
-        return best, lower, "proven", " + ".join(steps)
-    # The linear relaxation, from the groups the best cover leaves and the rarest 5 %.
-    count = np.asarray(groups.hits[best].sum(axis=0)).ravel()
-    degree = np.asarray(groups.hits[np.flatnonzero(groups.useful)].sum(axis=0)).ravel()
-    rows = np.flatnonzero((count == 0) | (degree <= np.percentile(degree, 5)))
-    relaxed = _lp_bound(groups, remaining, rows, deadline)
-    if relaxed is not None:
-        value, rows = relaxed
-        lower = max(lower, math.ceil(value - 1e-6))
-        if done("HiGHS LP"):
-            return best, lower, "proven", " + ".join(steps)
-    # The integer program: fewer views than the best cover, or the proof that none do.
-    while len(best) > lower:
-        found, bound, proven = _milp(groups, remaining, rows, lower, len(best) - 1, deadline)
-        lower = max(lower, bound)
-        if found is None:
-            break
-        best = sorted(found)
-        if not proven:
-            break
-    steps.append("HiGHS MILP")
+    if nodes:
+        steps.append(f"branch and bound over HiGHS relaxations ({nodes} nodes)")
     status = "proven" if lower >= len(best) else "time limit"
     return best, min(lower, len(best)), status, " + ".join(steps)
 
@@ -468,7 +257,7 @@ def trial_starts(out, scene, starts):
 
 HEADER = ["scene", "candidates", "start", "level", "visible_cells", "start_cells", "need_cells",
           "greedy_views", "set_cover_views", "lower_bound", "gap", "status", "solver", "seconds",
-          "tour_m", "tour_method", "greedy_tour_m", "views"]
+          "cpu_seconds", "tour_m", "tour_method", "greedy_tour_m", "views"]
 USAGE = ("usage: set_cover.py DIR [--levels 80,90,95,99,full] [--time-limit 60] "
          "[--scenes A,B,...]")
 
@@ -500,6 +289,7 @@ def rows_for(truth, start, levels, time_limit):
     order = greedy_oracle(truth, start)
     start_cells = len(truth["starts"][start])
     rows = []
+    cache = {}
     for level in levels:
         need = reachable(truth, start) if level == FULL else needed(truth, level)
         base = {"scene": truth["scene"], "candidates": truth["candidates"], "start": start,
@@ -510,16 +300,18 @@ def rows_for(truth, start, levels, time_limit):
         if greedy is None:
             rows.append(dict(base, status="not reachable from this start", greedy_views="",
                              set_cover_views="", lower_bound="", gap="", solver="", seconds="",
-                             tour_m="", tour_method="", greedy_tour_m="", views=""))
+                             cpu_seconds="", tour_m="", tour_method="", greedy_tour_m="",
+                             views=""))
             continue
-        began = time.monotonic()
-        views, bound, status, solver = set_cover(truth, start, need, greedy, time_limit)
-        seconds = time.monotonic() - began
+        began, cpu = time.monotonic(), time.process_time()
+        views, bound, status, solver = set_cover(truth, start, need, greedy, time_limit, cache)
+        seconds, cpu = time.monotonic() - began, time.process_time() - cpu
         length, method = tour(truth, start, views)
         gap = (len(views) - bound) / len(views) if views else 0.0
         rows.append(dict(base, greedy_views=len(greedy), set_cover_views=len(views),
                          lower_bound=bound, gap=f"{gap:.3g}", status=status, solver=solver,
-                         seconds=f"{seconds:.3g}", tour_m=f"{length:.4g}", tour_method=method,
+                         seconds=f"{seconds:.3g}", cpu_seconds=f"{cpu:.3g}",
+                         tour_m=f"{length:.4g}", tour_method=method,
                          greedy_tour_m=f"{tour(truth, start, greedy)[0]:.4g}",
                          views=" ".join(map(str, sorted(views)))))
     return rows

@@ -1,14 +1,15 @@
 """The fewest views (scripts/set_cover.py) on hand-made hit sets: a case where the greedy oracle
 takes one view too many, the tour through the chosen views worked out by hand, the full cover, and
-random cases (fixed seeds) in which the cover, the integer program (HiGHS) and the linear
-relaxation are held to the fewest views found by trying every subset."""
+random cases (fixed seeds) in which the cover, the branch and bound's answer for each k
+(scripts/max_coverage.py), its relaxation and the tabu search are held to the fewest views and the
+most cells found by trying every subset."""
 
 import csv
 import itertools
 import json
+import math
 import random
 import sys
-import time
 
 import pytest
 
@@ -54,6 +55,7 @@ def test_the_cover_beats_the_greedy_oracle_where_greedy_overlaps(tmp_path, set_c
     assert got["100"]["views"] == "1 2"
     assert got["100"]["lower_bound"] == "2"
     assert float(got["100"]["gap"]) == 0.0
+    assert 0 <= float(got["100"]["cpu_seconds"])
     # The shortest path from 0 through the views at 5 and 2: 0 -> 2 -> 5 = 5 m.
     assert float(got["100"]["tour_m"]) == pytest.approx(5.0)
     assert got["100"]["tour_method"] == "exact"
@@ -142,49 +144,88 @@ def random_truth(rng, cells, count, low, high):
     return truth, views, start
 
 
+def brute_most(views, start, k):
+    """The most cells k views hit beyond `start`, by trying every set of k."""
+    return max(len(set().union(*(views[v] for v in subset)) - start)
+               for subset in itertools.combinations(range(len(views)), k))
+
+
+@pytest.fixture(scope="module")
+def max_coverage(set_cover):
+    import max_coverage
+    return max_coverage
+
+
 @pytest.mark.parametrize("seed", range(10))
-def test_the_integer_program_alone_finds_the_fewest_views(set_cover, seed):
-    # HiGHS on the whole program (every group a row), from no bound: its optimum and its proof
-    # against every subset, at each partial level and the full cover.
+def test_the_search_answers_as_every_subset_does(max_coverage, seed):
+    # Do k views hit `need` new cells? At the most cells some k views hit, yes (and the views it
+    # gives do); one cell more, no: the branch and bound against every subset, k = 1..4.
     rng = random.Random(200 + seed)
     truth, views, start = random_truth(rng, 60, 12, 5, 20)
-    groups = set_cover._Groups(truth, 0)
-    everything = range(len(groups.weight))
-    for level in (0.8, 0.9, 0.95, 0.99, 1.0):
-        need = set_cover.needed(truth, level)
-        fewest = brute_fewest(views, start, need)
-        if fewest == 0:
-            continue
-        remaining = need - len(start)
-        found, bound, proven = set_cover._milp(groups, remaining, everything, 0, len(views),
-                                               time.monotonic() + 30)
-        assert proven and bound == fewest and len(found) == fewest, (level, found, bound)
-        assert len(start.union(*(views[v] for v in found))) >= need
-        # From a few rows only, rows are added until the cover holds: the same optimum.
-        found, bound, proven = set_cover._milp(groups, remaining, [0], 0, len(views),
-                                               time.monotonic() + 30)
-        assert proven and len(found) == fewest
-        # The relaxation bounds it from below, and no view set below `fewest` exists.
-        value, _ = set_cover._lp_bound(groups, remaining, [0], time.monotonic() + 30)
-        assert value <= fewest + 1e-6
-        found, bound, proven = set_cover._milp(groups, remaining, everything, 0, fewest - 1,
-                                               time.monotonic() + 30)
-        assert found is None and proven and bound == fewest
+    cells = max_coverage.Cells(views, start)
+    for k in range(1, 5):
+        most = brute_most(views, start, k)
+        found = max_coverage.Search(cells, most, math.inf).reach(k)
+        assert found is not None and len(found) <= k, (k, most)
+        chosen = [int(cells.views[j]) for j in found]
+        assert len(set().union(*(views[v] for v in chosen)) - start) >= most
+        assert max_coverage.Search(cells, most + 1, math.inf).reach(k) is None, (k, most)
 
 
 @pytest.mark.parametrize("seed", range(6))
-def test_swaps_and_the_branch_and_bound_never_claim_a_wrong_count(set_cover, seed):
+def test_the_search_answers_as_every_subset_does_deeper(max_coverage, seed):
+    # The same at k = 5 and 6 of 14 views, where the search branches below the root, takes the
+    # views whose leaving out refutes and tries two views left exactly.
+    rng = random.Random(500 + seed)
+    truth, views, start = random_truth(rng, 70, 14, 4, 14)
+    cells = max_coverage.Cells(views, start)
+    for k in (5, 6):
+        most = brute_most(views, start, k)
+        found = max_coverage.Search(cells, most, math.inf).reach(k)
+        assert found is not None and len(found) <= k, (k, most)
+        chosen = [int(cells.views[j]) for j in found]
+        assert len(set().union(*(views[v] for v in chosen)) - start) >= most
+        assert max_coverage.Search(cells, most + 1, math.inf).reach(k) is None, (k, most)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_relaxation_bounds_every_subset_from_above(max_coverage, seed):
     rng = random.Random(300 + seed)
     truth, views, start = random_truth(rng, 50, 12, 4, 16)
-    groups = set_cover._Groups(truth, 0)
-    need = set_cover.needed(truth, 0.95)
-    remaining = need - len(start)
-    fewest = brute_fewest(views, start, need)
-    deadline = time.monotonic() + 30
-    assert set_cover._cover_of(groups, fewest - 1, remaining, deadline) is None
-    assert len(set_cover._cover_of(groups, fewest, remaining, deadline)) <= fewest
-    found = set_cover._swap_search(groups, fewest, remaining, [], deadline)
-    assert found is None or len(start.union(*(views[v] for v in found))) >= need
+    cells = max_coverage.Cells(views, start)
+    for k in range(1, 5):
+        assert max_coverage.relaxation_bound(cells, 0, k) >= brute_most(views, start, k) - 1e-6
+    # Every view: every new cell.
+    everything = len(set().union(*views) - start)
+    assert max_coverage.relaxation_bound(cells, 0, len(cells.views)) == pytest.approx(everything)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_tabu_search_never_claims_a_cover_it_lacks(max_coverage, seed):
+    rng = random.Random(400 + seed)
+    truth, views, start = random_truth(rng, 50, 12, 4, 16)
+    cells = max_coverage.Cells(views, start)
+    for k in range(1, 5):
+        most = brute_most(views, start, k)
+        for need in (most, most + 1):
+            found = max_coverage.tabu(cells, k, need, [], math.inf)
+            if need > most:
+                assert found is None
+            elif found is not None:
+                chosen = [int(cells.views[j]) for j in found]
+                assert len(chosen) == k
+                assert len(set().union(*(views[v] for v in chosen)) - start) >= need
+
+
+def test_a_view_within_another_is_dropped_and_equal_ones_keep_the_first(max_coverage):
+    # Beyond the start's cell 9: view 1's cells lie in view 0's; views 2 and 3 hit the same new
+    # cells (3 also hits the start's); view 4 hits one cell no other does.
+    views = [{0, 1, 2}, {1, 2}, {3, 4}, {3, 4, 9}, {5}]
+    cells = max_coverage.Cells(views, {9})
+    assert cells.views.tolist() == [0, 2, 4]
+    # Groups by the views that hit them: {0} (view 0), {1, 2} (views 0, 1), {3, 4}, {5}.
+    assert sorted(cells.weight.tolist()) == [1, 1, 2, 2]
+    assert cells.covered([0, 1]) == 5  # columns 0 and 1: views 0 and 2
 
 
 def test_the_full_cover_counts_what_the_start_and_the_candidates_hit(tmp_path, set_cover):
