@@ -51,7 +51,8 @@ constexpr MethodTraits metric(GainMethod method, std::string_view name, MetricRo
           detail::free_dims<Metric>(),
           detail::quiet_cells<Metric>() == detail::QuietCells::kFar,
           detail::rear_side_rays<Metric>(),
-          row.race_rounds};
+          row.race_rounds,
+          detail::surface_cells<Metric>()};
 }
 
 // NOTE: the rounds of the metrics' races (MethodTraits::race_rounds): the worst rank of the exact

@@ -82,6 +82,9 @@ struct MethodTraits {
   /// empty when its coarser rays rank too poorly to race, so that every view is evaluated
   /// exactly, or raced cell by cell (`cells`).
   std::span<const MetricRound> race_rounds = {};
+  /// A metric whose value is the surface a scan is expected to add [cells], by chances per cell
+  /// (GainConfig::surface_rates) that a run fits from its own scans (SurfaceRateFit).
+  bool surface_cells = false;
 
   /// What it computes when it ranks by `objective`: the one answer to "which quantity".
   constexpr GainQuantity quantity(GainObjective objective) const {
