@@ -21,6 +21,7 @@
 #include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/evaluators/view_cells.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/models/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/views/ring.hpp"
@@ -343,8 +344,24 @@ TEST(Sequence, PlansKViewsThatJointlySeeMoreThanTheBestViewTwice) {
   EXPECT_EQ(a, b);
 }
 
-// The surface model's sequence: each cell's credit (the chance that the view adds the surface
-// there) stands in for its visibility, so a cell two views would both reach counts once.
+// The surface model's sequence: a cell's credit is v(x) r(x), the chance that the view's ray
+// reaches it times the chance that it holds a surface, which all views share; so the joint value
+// is sum_x r(x) [1 - prod_k (1 - v_k(x))], and a cell two views would both reach counts once.
+double surface_joint(const std::vector<ViewCells>& lists, const std::vector<std::size_t>& set,
+                     const std::vector<float>& near, const SurfaceRates& rates) {
+  std::map<std::uint32_t, double> missed;
+  for (const std::size_t v : set) {
+    for (std::size_t k = 0; k < lists[v].cells.size(); ++k) {
+      const std::uint32_t c = lists[v].cells[k];
+      const double r = rates[surface_class(near[c])];
+      missed.try_emplace(c, 1.0).first->second *= 1.0 - lists[v].seen[k] / r;
+    }
+  }
+  double total = 0.0;
+  for (const auto& [c, m] : missed) total += rates[surface_class(near[c])] * (1.0 - m);
+  return total;
+}
+
 TEST(Sequence, TheSurfaceModelsSequenceCountsACellsSurfaceOnce) {
   const Clutter s;
   std::vector<double> travel(s.views.size(), 0.0);
@@ -356,14 +373,18 @@ TEST(Sequence, TheSurfaceModelsSequenceCountsACellsSurfaceOnce) {
   ASSERT_EQ(plan.chosen.size(), 3u);
   const MetricEvaluator evaluator(s.grid, gain);
   const std::vector<ViewCells> lists = evaluator.cells(s.views, evaluator.creditable());
-  EXPECT_NEAR(plan.value, joint_of(lists, plan.chosen), 1e-9 * plan.value);
+  const std::vector<float> near = occupied_distance(GainMap(s.grid), kProximityCells);
+  const auto joint = [&](const std::vector<std::size_t>& set) {
+    return surface_joint(lists, set, near, gain.surface_rates);
+  };
+  EXPECT_NEAR(plan.value, joint(plan.chosen), 1e-9 * plan.value);
   double singles = 0.0;
   for (const std::size_t v : plan.chosen) singles += plan.gains[v].gain;
   EXPECT_LT(plan.value, singles);  // the views overlap: some cells are not counted twice
   EXPECT_GT(plan.value, plan.gains[plan.chosen[0]].gain);
   for (std::size_t v = 0; v < s.views.size(); ++v) {  // no swap of the last view does better
     if (std::count(plan.chosen.begin(), plan.chosen.end(), v) > 0) continue;
-    EXPECT_LE(joint_of(lists, {plan.chosen[0], plan.chosen[1], v}), plan.value * (1 + 1e-12));
+    EXPECT_LE(joint({plan.chosen[0], plan.chosen[1], v}), plan.value * (1 + 1e-12));
   }
 }
 

@@ -16,6 +16,7 @@
 #include "vantage/gain/evaluators/hierarchy.hpp"
 #include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/models/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/util/clock.hpp"
 #include "vantage/util/parallel.hpp"
@@ -63,72 +64,6 @@ struct CompactCells {
 
 }  // namespace
 
-void SequenceConfig::validate() const {
-  if (horizon < 1 || horizon > kMaxHorizon) {
-    throw std::invalid_argument(
-        cat("planner.sequence.horizon must lie in [1, ", kMaxHorizon, "], got ", horizon));
-  }
-  if (!(travel_weight >= 0.0 && std::isfinite(travel_weight))) {
-    throw std::invalid_argument(
-        cat("planner.sequence.travel_weight must be >= 0 [1/m], got ", travel_weight));
-  }
-  if (shortlist < 1) {
-    throw std::invalid_argument(cat("planner.sequence.shortlist must be >= 1, got ", shortlist));
-  }
-  if (sample_bits < 0 || sample_bits > 16) {
-    throw std::invalid_argument(
-        cat("planner.sequence.sample_bits must lie in [0, 16], got ", sample_bits));
-  }
-}
-
-OpenTour shortest_open_tour(std::span<const double> from_start, std::span<const double> between) {
-  const std::size_t n = from_start.size();
-  if (between.size() != n * n) {
-    throw std::invalid_argument(cat("shortest_open_tour: ", n, " views but ", between.size(),
-                                    " distances between them (expected ", n * n, ")"));
-  }
-  if (n > static_cast<std::size_t>(SequenceConfig::kMaxHorizon) + 2) {
-    throw std::invalid_argument(cat("shortest_open_tour: ", n,
-                                    " views are too many to order by "
-                                    "brute force (at most ",
-                                    SequenceConfig::kMaxHorizon + 2, ")"));
-  }
-  OpenTour best;
-  if (n == 0) return best;
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  best.length = std::numeric_limits<double>::infinity();
-  do {
-    double length = from_start[order[0]];
-    for (std::size_t i = 1; i < n && length < best.length; ++i) {
-      length += between[order[i - 1] * n + order[i]];
-    }
-    if (length < best.length) {
-      best.length = length;
-      best.order = order;
-    }
-  } while (std::next_permutation(order.begin(), order.end()));
-  return best;
-}
-
-double joint_cells(std::span<const ViewCells* const> views) {
-  std::vector<std::pair<std::uint32_t, double>> all;
-  for (const ViewCells* v : views) {
-    for (std::size_t i = 0; i < v->cells.size(); ++i) all.emplace_back(v->cells[i], v->seen[i]);
-  }
-  std::stable_sort(all.begin(), all.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  double total = 0.0;
-  for (std::size_t i = 0; i < all.size();) {
-    double missed = 1.0;  // prod (1 - v): no view of the set sees the cell
-    std::size_t j = i;
-    for (; j < all.size() && all[j].first == all[i].first; ++j) missed *= 1.0 - all[j].second;
-    total += 1.0 - missed;
-    i = j;
-  }
-  return total;
-}
-
 namespace {
 
 /// What the sequence's values are read from: the cells' classes (the survival reading's cells,
@@ -138,6 +73,9 @@ struct Values {
   GainQuantity quantity;
   const ClassMap* classes = nullptr;        ///< for a quantity of the classes
   const MetricEvaluator* metric = nullptr;  ///< for a metric
+  /// For the surface model, every cell's distance to the nearest occupied cell [cells], whose
+  /// class gives the chance r(x) that it holds a surface (surface_class, GainConfig's rates).
+  std::vector<float> near;
 };
 
 /// The views the selection considers (shortlist positions 0 .. m-1) and what it reads of them.
@@ -146,6 +84,10 @@ struct Shortlist {
   std::vector<std::size_t> views;                ///< candidate views, ascending
   std::vector<double> between;   ///< [i * m + j]: the travel between views i and j [m]
   std::vector<ViewCells> lists;  ///< per view its per-cell visibilities; empty at horizon 1
+  /// The surface model's: per list entry the chance r(x) that the cell holds a surface, which
+  /// its credit v(x) r(x) shares with every view's (empty for the others, whose lists hold v).
+  /// J(S) = sum_x r(x) [1 - prod_{k in S} (1 - v_k(x))].
+  std::vector<std::vector<double>> chance;
 };
 
 /// Every view's single-view value into `gains`: bit for bit the exact evaluation's
@@ -199,8 +141,17 @@ Shortlist shortlist_of(std::span<const Frustum> views, const Values& values, con
   } else {
     std::vector<Frustum> frusta;
     for (const std::size_t v : s.views) frusta.push_back(views[v]);
-    s.lists = values.metric != nullptr ? values.metric->cells(frusta, values.metric->creditable())
-                                       : exact_view_cells(*values.classes, frusta, gain);
+    if (values.metric == nullptr) {
+      s.lists = exact_view_cells(*values.classes, frusta, gain);
+      return s;
+    }
+    s.lists = values.metric->cells(frusta, values.metric->creditable());
+    for (const ViewCells& list : s.lists) {
+      std::vector<double>& r = s.chance.emplace_back();
+      for (const std::uint32_t c : list.cells) {
+        r.push_back(gain.surface_rates[surface_class(values.near[c])]);
+      }
+    }
   }
   return s;
 }
@@ -291,7 +242,12 @@ void select_views(const Shortlist& s, std::span<const double> travel, double cos
     if (!best_tour.order.empty()) sel.tour = std::move(best_tour);
     if (step + 1 < config.horizon) {
       const std::vector<std::uint32_t>& at = compact.at[best];
-      for (std::size_t k = 0; k < at.size(); ++k) sel.missed[at[k]] *= 1.0 - s.lists[best].seen[k];
+      const std::vector<double>& seen = s.lists[best].seen;
+      for (std::size_t k = 0; k < at.size(); ++k) {
+        // NOTE: a surface credit v r is missed with the chance 1 - v, r being the cell's own.
+        const double v = s.chance.empty() ? seen[k] : seen[k] / s.chance[best][k];
+        sel.missed[at[k]] *= 1.0 - v;
+      }
     }
   }
   // With no travel weight the tours above were skipped until the last step; order them now.
@@ -329,8 +285,14 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
   }
   const ClassMap classes(grid);  // what the per-cell lists read
   std::optional<MetricEvaluator> metric;
-  if (quantity == GainQuantity::kMetric) metric.emplace(grid, gain);
-  const Values values{quantity, &classes, metric ? &*metric : nullptr};
+  Values values{quantity, &classes, nullptr, {}};
+  if (quantity == GainQuantity::kMetric) {
+    values.metric = &metric.emplace(grid, gain);
+    if (config.horizon > 1) {
+      values.near =
+          occupied_distance(GainMap(grid, gain.num_threads), kProximityCells, gain.num_threads);
+    }
+  }
   SequencePlan plan;
   std::vector<ViewCells> sampled = single_values(grid, values, views, gain, config, plan.gains);
   double best_value = 0.0;
