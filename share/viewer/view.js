@@ -219,7 +219,8 @@ async function main() {
     const apex = new THREE.Vector3(...s.position);
     part.add(label(THREE, String(s.scan), apex.clone().add(new THREE.Vector3(0, 0, depth * 0.3)),
                    Math.max(depth * 0.25, 0.03 * Math.max(...extent))));
-    let path = s.path.map(([x, y]) => new THREE.Vector3(x, y, grid.origin[2] + 0.02));
+    // The sensor's path as its carrier travelled it ([x, y]: an office's floor path of older files).
+    let path = s.path.map(([x, y, z]) => new THREE.Vector3(x, y, z ?? grid.origin[2] + 0.02));
     if (path.length === 0 && i > 0) path = [new THREE.Vector3(...data.scans[i - 1].position), apex];
     if (path.length > 1) {
       const segments = path.slice(1).flatMap((p, j) => [path[j], p]);

@@ -219,6 +219,20 @@ TEST(Exploration, TheSurfaceModelDecidesWithTheRatesItsScansFit) {
     EXPECT_EQ(runs[0].scans[k].predicted_gain, runs[1].scans[k].predicted_gain);
     EXPECT_EQ(runs[0].scans[k].surface_rates, runs[1].scans[k].surface_rates);
   }
+  // The registry's row says which models a run fits rates for and reports in cells: another
+  // metric is fitted none, and its value is its own.
+  ExplorationConfig other;
+  other.planner.method = PlannerMethod{GainMethod::kUnobservedVoxel};
+  other.scans = 2;
+  other.seed = 7;
+  other.mapper = default_mapper_config(scene);
+  Mapper mapper(scene.grid, other.mapper);
+  const ExplorationResult run = explore(scene, other, mapper);
+  ASSERT_EQ(run.scans.size(), 2u);
+  EXPECT_FALSE(run.scans[1].surface_rates.has_value());
+  EXPECT_EQ(gain_units(other.planner).predicted_gain, "metric");
+  other.planner.method = PlannerMethod{GainMethod::kSurface};
+  EXPECT_EQ(gain_units(other.planner).predicted_gain, "cells");
 }
 
 TEST(Exploration, RejectsBadSettings) {

@@ -45,6 +45,16 @@ TEST(Objects, TheGreedyOracleCoversTheBunnyOnItsSphereInAFewViews) {
       EXPECT_NEAR(
           r.travel,
           arc(run.scans[k - 1].T_world_sensor.translation(), r.T_world_sensor.translation()), 1e-9);
+      // The path the page draws is that arc: on the sphere, as long as the travel.
+      ASSERT_GE(r.path.size(), 2u);
+      double drawn = 0.0;
+      for (std::size_t i = 0; i < r.path.size(); ++i) {
+        EXPECT_NEAR((r.path[i] - arc.center).norm(), arc.radius, 1e-9);
+        if (i > 0) drawn += (r.path[i] - r.path[i - 1]).norm();
+      }
+      EXPECT_NEAR(drawn, r.travel, 1e-3 * r.travel);
+    } else {
+      EXPECT_TRUE(r.path.empty());
     }
   }
   EXPECT_GT(last, 0.95);

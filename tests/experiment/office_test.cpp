@@ -79,9 +79,14 @@ TEST(Office, TwoStopsMeetTheTableTopInvariants) {
   EXPECT_EQ(scans[0].travel, 0.0);
   EXPECT_GT(scans[1].travel, 0.0);
   ASSERT_GE(scans[1].path.size(), 2u);
-  EXPECT_TRUE(scans[1].path.front().isApprox(scans[0].T_world_sensor.translation().head<2>(), 0.1));
-  EXPECT_LE((scans[1].path.back() - scans[1].T_world_sensor.translation().head<2>()).norm(),
-            0.1 * std::sqrt(0.5) + 1e-9);  // the stop lies in the path's last cell
+  EXPECT_TRUE(scans[1].path.front().head<2>().isApprox(
+      scans[0].T_world_sensor.translation().head<2>(), 0.1));
+  EXPECT_LE(
+      (scans[1].path.back().head<2>() - scans[1].T_world_sensor.translation().head<2>()).norm(),
+      0.1 * std::sqrt(0.5) + 1e-9);  // the stop lies in the path's last cell
+  for (const Eigen::Vector3d& p : scans[1].path) {  // the sensor's path, at its height
+    EXPECT_NEAR(p.z(), scans[1].T_world_sensor.translation().z(), 1e-9);
+  }
   EXPECT_GE((scans[1].T_world_sensor.translation() - scans[0].T_world_sensor.translation())
                 .head<2>()
                 .norm(),

@@ -18,7 +18,10 @@
 
 #include "vantage/gain/class_map.hpp"
 #include "vantage/gain/evaluators/exact.hpp"
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/evaluators/view_cells.hpp"
+#include "vantage/gain/methods.hpp"
+#include "vantage/gain/models/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/views/ring.hpp"
@@ -292,7 +295,9 @@ TEST(RingWalk, IsTheArcBetweenBearingsPlusTheChangeInRadius) {
 TEST(Sequence, HorizonOneWithoutTravelWeightIsTodaysDecision) {
   for (std::uint64_t seed : {3u, 7u, 11u}) {
     const Clutter s(seed);
-    for (const PlannerMethod method : {PlannerMethod::kSurvival, PlannerMethod::kGreedy}) {
+    for (const PlannerMethod method :
+         {PlannerMethod::kSurvival, PlannerMethod::kGreedy, PlannerMethod{GainMethod::kSurface}}) {
+      const GainQuantity quantity = method_traits(method.gain).quantity(GainObjective::kCells);
       PlannerConfig today;
       today.method = method;
       today.objective = GainObjective::kCells;
@@ -306,10 +311,12 @@ TEST(Sequence, HorizonOneWithoutTravelWeightIsTodaysDecision) {
       EXPECT_EQ(sequence.first, plan.best) << to_string(method) << " seed " << seed;
       EXPECT_EQ(sequence.tour, std::vector<std::size_t>{plan.best});
       for (std::size_t c = 0; c < s.candidates.size(); ++c) {
-        EXPECT_EQ(sequence.gains[c].cells, plan.gains[c].cells) << "candidate " << c;
+        EXPECT_EQ(sequence.gains[c].value(quantity), plan.gains[c].value(quantity))
+            << to_string(method) << " candidate " << c;
       }
-      // ... and the pruned search, which proves its choice, agrees.
-      today.search = DecisionSearch::kPruned;
+      // ... and the pruned search, which proves its choice, agrees (the swept for a metric).
+      today.search =
+          quantity == GainQuantity::kMetric ? DecisionSearch::kSwept : DecisionSearch::kPruned;
       EXPECT_EQ(plan_next_view(s.grid, s.candidates, today).best, sequence.first);
     }
   }
@@ -335,6 +342,50 @@ TEST(Sequence, PlansKViewsThatJointlySeeMoreThanTheBestViewTwice) {
   std::set<std::size_t> a(plan.tour.begin(), plan.tour.end()),
       b(plan.chosen.begin(), plan.chosen.end());
   EXPECT_EQ(a, b);
+}
+
+// The surface model's sequence: a cell's credit is v(x) r(x), the chance that the view's ray
+// reaches it times the chance that it holds a surface, which all views share; so the joint value
+// is sum_x r(x) [1 - prod_k (1 - v_k(x))], and a cell two views would both reach counts once.
+double surface_joint(const std::vector<ViewCells>& lists, const std::vector<std::size_t>& set,
+                     const std::vector<float>& near, const SurfaceRates& rates) {
+  std::map<std::uint32_t, double> missed;
+  for (const std::size_t v : set) {
+    for (std::size_t k = 0; k < lists[v].cells.size(); ++k) {
+      const std::uint32_t c = lists[v].cells[k];
+      const double r = rates[surface_class(near[c])];
+      missed.try_emplace(c, 1.0).first->second *= 1.0 - lists[v].seen[k] / r;
+    }
+  }
+  double total = 0.0;
+  for (const auto& [c, m] : missed) total += rates[surface_class(near[c])] * (1.0 - m);
+  return total;
+}
+
+TEST(Sequence, TheSurfaceModelsSequenceCountsACellsSurfaceOnce) {
+  const Clutter s;
+  std::vector<double> travel(s.views.size(), 0.0);
+  SequenceConfig config;
+  config.horizon = 3;
+  GainConfig gain = s.gain(GainMethod::kSurface);
+  gain.surface_rates = {0.3, 0.2, 0.1, 0.05, 0.01};
+  const SequencePlan plan = plan_sequence(s.grid, s.views, travel, gain, config);
+  ASSERT_EQ(plan.chosen.size(), 3u);
+  const MetricEvaluator evaluator(s.grid, gain);
+  const std::vector<ViewCells> lists = evaluator.cells(s.views, evaluator.creditable());
+  const std::vector<float> near = occupied_distance(GainMap(s.grid), kProximityCells);
+  const auto joint = [&](const std::vector<std::size_t>& set) {
+    return surface_joint(lists, set, near, gain.surface_rates);
+  };
+  EXPECT_NEAR(plan.value, joint(plan.chosen), 1e-9 * plan.value);
+  double singles = 0.0;
+  for (const std::size_t v : plan.chosen) singles += plan.gains[v].gain;
+  EXPECT_LT(plan.value, singles);  // the views overlap: some cells are not counted twice
+  EXPECT_GT(plan.value, plan.gains[plan.chosen[0]].gain);
+  for (std::size_t v = 0; v < s.views.size(); ++v) {  // no swap of the last view does better
+    if (std::count(plan.chosen.begin(), plan.chosen.end(), v) > 0) continue;
+    EXPECT_LE(joint({plan.chosen[0], plan.chosen[1], v}), plan.value * (1 + 1e-12));
+  }
 }
 
 TEST(Sequence, ATravelWeightTradesValueForAShorterTour) {

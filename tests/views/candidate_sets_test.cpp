@@ -199,5 +199,59 @@ TEST(Travel, TheSphereArcIsAMetricAboveTheChordAndAtMostHalfAGreatCircle) {
   EXPECT_NEAR(arc(top, top), 0.0, 1e-12);
 }
 
+/// The length of a polyline [m].
+double length_of(const std::vector<Eigen::Vector3d>& points) {
+  double length = 0.0;
+  for (std::size_t i = 1; i < points.size(); ++i) length += (points[i] - points[i - 1]).norm();
+  return length;
+}
+
+TEST(Travel, ThePathGoesAroundTheCentreAndIsAsLongAsTheTravel) {
+  const Eigen::Vector3d center(0.5, -1, 2);
+  const double radius = 0.7, step = 0.02;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n;
+  for (const TravelRule::Kind kind : {TravelRule::Kind::kStraightLine, TravelRule::Kind::kRingWalk,
+                                      TravelRule::Kind::kSphereArc}) {
+    const TravelRule rule{kind, center, radius};
+    const bool ring = kind == TravelRule::Kind::kRingWalk;
+    auto point = [&] {
+      if (!ring)
+        return Eigen::Vector3d(center +
+                               radius * Eigen::Vector3d(n(rng), n(rng), n(rng)).normalized());
+      const Eigen::Vector2d d = Eigen::Vector2d(n(rng), n(rng)).normalized() * radius;
+      return Eigen::Vector3d(center.x() + d.x(), center.y() + d.y(), center.z() + 0.25);
+    };
+    for (int k = 0; k < 500; ++k) {
+      const Eigen::Vector3d a = point(), b = point();
+      const std::vector<Eigen::Vector3d> path = rule.path(a, b, step);
+      ASSERT_GE(path.size(), 2u);
+      EXPECT_EQ(path.front(), a);
+      EXPECT_EQ(path.back(), b);
+      for (std::size_t i = 1; i < path.size(); ++i) {
+        EXPECT_LE((path[i] - path[i - 1]).norm(), step + 1e-9);
+        const Eigen::Vector3d d = path[i] - center;
+        // Around the object, never through it: the sphere's and the ring's points stay at the
+        // radius (the ring's horizontally).
+        if (kind == TravelRule::Kind::kSphereArc) {
+          EXPECT_NEAR(d.norm(), radius, 1e-9);
+        } else if (ring) {
+          EXPECT_NEAR(d.head<2>().norm(), radius, 1e-9);
+        }
+      }
+      // The chords fall short of the arc by about (step / radius)^2 / 24 of it.
+      const double travel = rule(a, b), drawn = length_of(path);
+      EXPECT_LE(drawn, travel + 1e-9);
+      EXPECT_GE(drawn, travel * (1.0 - 1e-3));
+    }
+  }
+  const TravelRule sphere{TravelRule::Kind::kSphereArc, center, radius};
+  const Eigen::Vector3d top = center + Eigen::Vector3d(0, 0, radius);
+  const std::vector<Eigen::Vector3d> around =
+      sphere.path(top, center - Eigen::Vector3d(0, 0, radius));
+  EXPECT_NEAR(length_of(around), std::numbers::pi * radius, 1e-3);  // opposite: half a circle
+  EXPECT_THROW(sphere.path(top, top, 0.0), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace vantage

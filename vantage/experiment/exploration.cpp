@@ -6,6 +6,7 @@
 
 #include "vantage/experiment/decision_cost.hpp"
 #include "vantage/experiment/detail/explorer.hpp"
+#include "vantage/gain/methods.hpp"
 #include "vantage/gain/view_gain.hpp"
 #include "vantage/util/text.hpp"
 
@@ -27,7 +28,7 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
     fit_.emplace(config.observability);
     planner_.gain.alpha = fit_->alpha();
   }
-  if (planner_.method.gain == GainMethod::kSurface) surface_fit_.emplace();
+  if (method_traits(planner_.method.gain).surface_cells) surface_fit_.emplace();
   if (office_) {
     navigation_.footprint = scene.robot.footprint;
     navigation_.max_height = scene.robot.height;

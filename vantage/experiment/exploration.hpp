@@ -18,13 +18,13 @@
 #include <string_view>
 #include <vector>
 
+#include "vantage/experiment/yardstick.hpp"
 #include "vantage/map/navigation.hpp"
 #include "vantage/perception/mapper.hpp"
 #include "vantage/planner/observability.hpp"
 #include "vantage/planner/planner.hpp"
 #include "vantage/sim/scene.hpp"
 #include "vantage/util/work.hpp"
-#include "vantage/experiment/yardstick.hpp"
 #include "vantage/views/candidate_set.hpp"
 #include "vantage/views/hemisphere.hpp"
 
@@ -199,14 +199,17 @@ struct ScanRecord {
   std::vector<int> reregistered;
   std::size_t points = 0;
   std::size_t object_points = 0;  ///< points integrated (office: thinned to one per cell)
-  /// Distance travelled to this view from the previous one [m]: on the table top the walk along
-  /// the ring (the arc between the two bearings); in an office the path driven on the floor.
+  /// Distance travelled to this view from the previous one [m], by the candidate set's travel
+  /// rule (TravelRule: the arm's straight line, the walk around the table, the arc on an
+  /// object's view sphere); in an office the path driven on the floor.
   double travel = 0.0;
   /// The planned goal was not reachable, and the robot scanned where it got closest (§5.3.1).
   bool fallback = false;
   std::optional<Eigen::Vector3d> goal;  ///< office: where the planner sent the robot [m]
-  std::vector<Eigen::Vector2d> path;    ///< office: the floor path driven to this stop [m]
-  int candidates = 0;                   ///< candidates the decision chose among
+  /// The sensor's path from the previous view as its carrier travels it (TravelRule::path; an
+  /// office: the floor path driven, at the sensor's height), empty for the first scan [m].
+  std::vector<Eigen::Vector3d> path;
+  int candidates = 0;  ///< candidates the decision chose among
   /// Every candidate of the decision that chose this view, in the decision's order (none for
   /// the first scan).
   std::vector<CandidateRecord> considered;

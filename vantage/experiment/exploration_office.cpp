@@ -91,7 +91,9 @@ Decision Explorer::plan_stop(int k, std::uint64_t seed) {
       find_path(NavigationGrid::combine(true_navigation_, nav), true_position_, chosen.arrival);
   d.fallback = !chosen.reachable || !path.reached;
   d.travel = path.length;
-  d.path = path.points;
+  for (const Eigen::Vector2d& p : path.points) {
+    d.path.emplace_back(p.x(), p.y(), scene_.mount.height);
+  }
   d.goal = Eigen::Vector3d(chosen.goal.x(), chosen.goal.y(), 0.0);
   const Eigen::Vector2d way = path.end - true_position_;
   const double yaw = way.norm() > 1e-9 ? std::atan2(way.y(), way.x()) : yaw_;

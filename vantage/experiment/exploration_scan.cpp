@@ -28,6 +28,10 @@ const ScanRecord& Explorer::take(Decision next) {
   record.fallback = next.fallback;
   record.goal = next.goal;
   record.path = std::move(next.path);
+  if (!office_ && !result_.scans.empty()) {  // an office's decision drove its own path
+    record.path = planner_.sequence.travel.path(result_.scans.back().T_world_sensor.translation(),
+                                                record.T_world_sensor.translation());
+  }
   record.candidates = next.candidates;
   record.considered = std::move(next.considered);
   record.search = std::move(next.search);

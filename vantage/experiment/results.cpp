@@ -63,7 +63,7 @@ void write_floor_map(const std::filesystem::path& path, const sim::Scene& scene,
 
 GainUnits gain_units(const PlannerConfig& planner) {
   // NOTE: the surface model's value is a number of cells, the surface a scan is expected to add.
-  if (planner.method.gain == GainMethod::kSurface) return {"cells", "cells", "cells"};
+  if (method_traits(planner.method.gain).surface_cells) return {"cells", "cells", "cells"};
   if (is_volumetric_metric(planner.method.gain)) return {"metric", "metric", "metric"};
   if (has_observability(planner.method)) {
     const std::string_view objective = to_string(planner.objective);

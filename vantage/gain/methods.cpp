@@ -56,7 +56,8 @@ constexpr MethodTraits metric(GainMethod method, std::string_view name, MetricRo
           detail::quiet_cells<Metric>() == detail::QuietCells::kFar,
           detail::rear_side_rays<Metric>(),
           row.race_rounds,
-          detail::cell_sum<Metric>() && detail::far_alike<Metric>()};
+          detail::cell_sum<Metric>() && detail::far_alike<Metric>(),
+          detail::surface_cells<Metric>()};
 }
 
 // NOTE: the rounds of the metrics' races (MethodTraits::race_rounds): the worst rank of the exact

@@ -85,6 +85,9 @@ struct MethodTraits {
   /// A metric raced cell by cell whose walk by codes crosses cubes of unobserved cells far from
   /// every occupied cell (MetricContext::far_unobserved).
   bool crosses_far_unobserved = false;
+  /// A metric whose value is the surface a scan is expected to add [cells], by chances per cell
+  /// (GainConfig::surface_rates) that a run fits from its own scans (SurfaceRateFit).
+  bool surface_cells = false;
 
   /// What it computes when it ranks by `objective`: the one answer to "which quantity".
   constexpr GainQuantity quantity(GainObjective objective) const {

@@ -8,12 +8,15 @@
 #include <limits>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
 #include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/evaluators/hierarchy.hpp"
+#include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/models/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/util/clock.hpp"
 #include "vantage/util/parallel.hpp"
@@ -23,11 +26,13 @@ namespace vantage {
 namespace {
 
 /// The shortlist: the `m` views of highest value (ties: the lower index), in ascending index.
-std::vector<std::size_t> best_views(const std::vector<ViewGain>& gains, std::size_t m) {
+std::vector<std::size_t> best_views(const std::vector<ViewGain>& gains, GainQuantity quantity,
+                                    std::size_t m) {
   std::vector<std::size_t> order(gains.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(),
-                   [&](std::size_t a, std::size_t b) { return gains[a].cells > gains[b].cells; });
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return gains[a].value(quantity) > gains[b].value(quantity);
+  });
   order.resize(std::min(m, order.size()));
   std::sort(order.begin(), order.end());
   return order;
@@ -59,90 +64,44 @@ struct CompactCells {
 
 }  // namespace
 
-void SequenceConfig::validate() const {
-  if (horizon < 1 || horizon > kMaxHorizon) {
-    throw std::invalid_argument(
-        cat("planner.sequence.horizon must lie in [1, ", kMaxHorizon, "], got ", horizon));
-  }
-  if (!(travel_weight >= 0.0 && std::isfinite(travel_weight))) {
-    throw std::invalid_argument(
-        cat("planner.sequence.travel_weight must be >= 0 [1/m], got ", travel_weight));
-  }
-  if (shortlist < 1) {
-    throw std::invalid_argument(cat("planner.sequence.shortlist must be >= 1, got ", shortlist));
-  }
-  if (sample_bits < 0 || sample_bits > 16) {
-    throw std::invalid_argument(
-        cat("planner.sequence.sample_bits must lie in [0, 16], got ", sample_bits));
-  }
-}
-
-OpenTour shortest_open_tour(std::span<const double> from_start, std::span<const double> between) {
-  const std::size_t n = from_start.size();
-  if (between.size() != n * n) {
-    throw std::invalid_argument(cat("shortest_open_tour: ", n, " views but ", between.size(),
-                                    " distances between them (expected ", n * n, ")"));
-  }
-  if (n > static_cast<std::size_t>(SequenceConfig::kMaxHorizon) + 2) {
-    throw std::invalid_argument(cat("shortest_open_tour: ", n,
-                                    " views are too many to order by "
-                                    "brute force (at most ",
-                                    SequenceConfig::kMaxHorizon + 2, ")"));
-  }
-  OpenTour best;
-  if (n == 0) return best;
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  best.length = std::numeric_limits<double>::infinity();
-  do {
-    double length = from_start[order[0]];
-    for (std::size_t i = 1; i < n && length < best.length; ++i) {
-      length += between[order[i - 1] * n + order[i]];
-    }
-    if (length < best.length) {
-      best.length = length;
-      best.order = order;
-    }
-  } while (std::next_permutation(order.begin(), order.end()));
-  return best;
-}
-
-double joint_cells(std::span<const ViewCells* const> views) {
-  std::vector<std::pair<std::uint32_t, double>> all;
-  for (const ViewCells* v : views) {
-    for (std::size_t i = 0; i < v->cells.size(); ++i) all.emplace_back(v->cells[i], v->seen[i]);
-  }
-  std::stable_sort(all.begin(), all.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  double total = 0.0;
-  for (std::size_t i = 0; i < all.size();) {
-    double missed = 1.0;  // prod (1 - v): no view of the set sees the cell
-    std::size_t j = i;
-    for (; j < all.size() && all[j].first == all[i].first; ++j) missed *= 1.0 - all[j].second;
-    total += 1.0 - missed;
-    i = j;
-  }
-  return total;
-}
-
 namespace {
+
+/// What the sequence's values are read from: the cells' classes (the survival reading's cells,
+/// greedy's count), or a metric listed cell by cell (the surface model: each cell's credit, the
+/// surface it is expected to add).
+struct Values {
+  GainQuantity quantity;
+  const ClassMap* classes = nullptr;        ///< for a quantity of the classes
+  const MetricEvaluator* metric = nullptr;  ///< for a metric
+  /// For the surface model, every cell's distance to the nearest occupied cell [cells], whose
+  /// class gives the chance r(x) that it holds a surface (surface_class, GainConfig's rates).
+  std::vector<float> near;
+};
 
 /// The views the selection considers (shortlist positions 0 .. m-1) and what it reads of them.
 struct Shortlist {
-  std::vector<std::size_t> views;  ///< candidate views, ascending
-  std::vector<double> between;     ///< [i * m + j]: the travel between views i and j [m]
-  std::vector<ViewCells> lists;    ///< per view its per-cell visibilities; empty at horizon 1
+  GainQuantity quantity = GainQuantity::kCount;  ///< what a view's value is (ViewGain::value)
+  std::vector<std::size_t> views;                ///< candidate views, ascending
+  std::vector<double> between;   ///< [i * m + j]: the travel between views i and j [m]
+  std::vector<ViewCells> lists;  ///< per view its per-cell visibilities; empty at horizon 1
+  /// The surface model's: per list entry the chance r(x) that the cell holds a surface, which
+  /// its credit v(x) r(x) shares with every view's (empty for the others, whose lists hold v).
+  /// J(S) = sum_x r(x) [1 - prod_{k in S} (1 - v_k(x))].
+  std::vector<std::vector<double>> chance;
 };
 
 /// Every view's single-view value into `gains`: bit for bit the exact evaluation's
 /// (hierarchy.hpp), or its estimate from the sample's per-cell lists, which it returns so that
 /// the joint values share them (empty when not sampled).
-std::vector<ViewCells> single_values(const OccupancyGrid& grid, const ClassMap& classes,
+std::vector<ViewCells> single_values(const OccupancyGrid& grid, const Values& values,
                                      std::span<const Frustum> views, const GainConfig& gain,
-                                     const SequenceConfig& config, GainQuantity quantity,
-                                     std::vector<ViewGain>& gains) {
+                                     const SequenceConfig& config, std::vector<ViewGain>& gains) {
+  const GainQuantity quantity = values.quantity;
+  const ClassMap& classes = *values.classes;
   std::vector<ViewCells> sampled;
-  if (config.sample_bits > 0) {
+  if (values.metric != nullptr) {
+    gains = values.metric->gains(views);
+  } else if (config.sample_bits > 0) {
     const double rate = std::ldexp(1.0, config.sample_bits);
     sampled = exact_view_cells(classes, views, gain, config.sample_bits);
     for (const ViewCells& list : sampled) {
@@ -161,11 +120,12 @@ std::vector<ViewCells> single_values(const OccupancyGrid& grid, const ClassMap& 
 
 /// The shortlist of the views of highest value, with the travel between them and their
 /// per-cell visibilities where a later step needs them (a horizon past 1).
-Shortlist shortlist_of(std::span<const Frustum> views, const ClassMap& classes,
-                       const GainConfig& gain, const SequenceConfig& config,
-                       const std::vector<ViewGain>& gains, std::vector<ViewCells> sampled) {
+Shortlist shortlist_of(std::span<const Frustum> views, const Values& values, const GainConfig& gain,
+                       const SequenceConfig& config, const std::vector<ViewGain>& gains,
+                       std::vector<ViewCells> sampled) {
   Shortlist s;
-  s.views = best_views(gains, static_cast<std::size_t>(config.shortlist));
+  s.quantity = values.quantity;
+  s.views = best_views(gains, values.quantity, static_cast<std::size_t>(config.shortlist));
   const std::size_t m = s.views.size();
   s.between.assign(m * m, 0.0);
   if (config.horizon == 1) return s;
@@ -181,7 +141,17 @@ Shortlist shortlist_of(std::span<const Frustum> views, const ClassMap& classes,
   } else {
     std::vector<Frustum> frusta;
     for (const std::size_t v : s.views) frusta.push_back(views[v]);
-    s.lists = exact_view_cells(classes, frusta, gain);
+    if (values.metric == nullptr) {
+      s.lists = exact_view_cells(*values.classes, frusta, gain);
+      return s;
+    }
+    s.lists = values.metric->cells(frusta, values.metric->creditable());
+    for (const ViewCells& list : s.lists) {
+      std::vector<double>& r = s.chance.emplace_back();
+      for (const std::uint32_t c : list.cells) {
+        r.push_back(gain.surface_rates[surface_class(values.near[c])]);
+      }
+    }
   }
   return s;
 }
@@ -216,7 +186,7 @@ void marginal_values(const Shortlist& s, const CompactCells& compact, const Sele
                      std::vector<double>& marginal) {
   const std::size_t m = s.views.size();
   if (sel.chosen.empty()) {
-    for (std::size_t i = 0; i < m; ++i) marginal[i] = gains[s.views[i]].cells;
+    for (std::size_t i = 0; i < m; ++i) marginal[i] = gains[s.views[i]].value(s.quantity);
     return;
   }
   run_with_threads(num_threads, [&] {
@@ -272,7 +242,12 @@ void select_views(const Shortlist& s, std::span<const double> travel, double cos
     if (!best_tour.order.empty()) sel.tour = std::move(best_tour);
     if (step + 1 < config.horizon) {
       const std::vector<std::uint32_t>& at = compact.at[best];
-      for (std::size_t k = 0; k < at.size(); ++k) sel.missed[at[k]] *= 1.0 - s.lists[best].seen[k];
+      const std::vector<double>& seen = s.lists[best].seen;
+      for (std::size_t k = 0; k < at.size(); ++k) {
+        // NOTE: a surface credit v r is missed with the chance 1 - v, r being the cell's own.
+        const double v = s.chance.empty() ? seen[k] : seen[k] / s.chance[best][k];
+        sel.missed[at[k]] *= 1.0 - v;
+      }
     }
   }
   // With no travel weight the tours above were skipped until the last step; order them now.
@@ -290,12 +265,18 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
                            const SequenceConfig& config) {
   gain.validate();
   config.validate();
-  // NOTE: a sequence ranks by cells, on the cells' classes alone (the survival reading's cells,
-  // greedy's count): what count_view_gains and exact_view_cells compute.
+  // NOTE: a sequence ranks by cells: on the cells' classes alone (the survival reading's cells,
+  // greedy's count), what count_view_gains and exact_view_cells compute; or by a metric listed
+  // cell by cell (the surface model), what MetricEvaluator's gains and cells compute.
   const GainQuantity quantity = method_traits(gain.method).quantity(GainObjective::kCells);
-  if (!counts_classes(quantity)) {
+  if (!plans_sequences(gain.method)) {
+    throw std::invalid_argument(cat("plan_sequence: gain.method must be survival, greedy or ",
+                                    "surface, got ", to_string(gain.method)));
+  }
+  if (quantity == GainQuantity::kMetric && config.sample_bits > 0) {
     throw std::invalid_argument(
-        cat("plan_sequence: gain.method must be survival or greedy, got ", to_string(gain.method)));
+        cat("plan_sequence: ", to_string(gain.method),
+            " is evaluated in full; planner.sequence.sample_bits must be 0"));
   }
   if (views.empty()) throw std::invalid_argument("no candidate views to choose from");
   if (travel.size() != views.size()) {
@@ -303,19 +284,27 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
         cat("plan_sequence: ", views.size(), " views but ", travel.size(), " travel distances"));
   }
   const ClassMap classes(grid);  // what the per-cell lists read
+  std::optional<MetricEvaluator> metric;
+  Values values{quantity, &classes, nullptr, {}};
+  if (quantity == GainQuantity::kMetric) {
+    values.metric = &metric.emplace(grid, gain);
+    if (config.horizon > 1) {
+      values.near =
+          occupied_distance(GainMap(grid, gain.num_threads), kProximityCells, gain.num_threads);
+    }
+  }
   SequencePlan plan;
-  std::vector<ViewCells> sampled =
-      single_values(grid, classes, views, gain, config, quantity, plan.gains);
+  std::vector<ViewCells> sampled = single_values(grid, values, views, gain, config, plan.gains);
   double best_value = 0.0;
-  for (const ViewGain& g : plan.gains) best_value = std::max(best_value, g.cells);
+  for (const ViewGain& g : plan.gains) best_value = std::max(best_value, g.value(quantity));
   // NOTE: relative to the best view, so the weight's meaning does not shrink with the map's
   // unobserved cells.
   const double cost = config.travel_weight * best_value;  // [cells/m]
   for (std::size_t v = 0; v < views.size(); ++v) {
-    plan.scores.push_back(plan.gains[v].cells - cost * travel[v]);
+    plan.scores.push_back(plan.gains[v].value(quantity) - cost * travel[v]);
   }
   const Shortlist shortlist =
-      shortlist_of(views, classes, gain, config, plan.gains, std::move(sampled));
+      shortlist_of(views, values, gain, config, plan.gains, std::move(sampled));
   if (config.horizon > 1) plan.shortlisted = shortlist.views.size();
   select_views(shortlist, travel, cost, gain, config, plan);
   return plan;
@@ -354,7 +343,8 @@ Plan decide_by_sequence(const OccupancyGrid& grid, std::span<const Candidate> ca
     for (const ViewGain& g : plan.gains) plan.greedy_gains.push_back(g.gain);
   }
   plan.seconds = seconds_since(start);
-  if (!counts || sampled) {
+  const bool metric = decision_quantity(config) == GainQuantity::kMetric;  // evaluated exactly
+  if ((!counts && !metric) || sampled) {
     // NOTE: the cells decided; the bits of eq. (4) are the chosen view's report (as pruned).
     const auto predict_start = std::chrono::steady_clock::now();
     plan.gains[plan.best] = exact_view_gain(grid, views[plan.best], gain);

@@ -58,7 +58,9 @@ struct SequencePlan {
 };
 
 /// Plans a sequence over `views` (one frustum per candidate; `travel[i]` from the current pose
-/// to view i [m]) under `gain.method`, survival or greedy, in cells. With horizon 1 and travel
+/// to view i [m]) under `gain.method` (plans_sequences: survival or greedy in cells, or the surface
+/// model, whose cells' credits, each the chance that the view adds the surface there, stand in for
+/// the visibilities of J(S)). With horizon 1 and travel
 /// weight 0 the choice is the exact evaluation's argmax (ties: the lower index), the one-view
 /// decision's. Deterministic for any `gain.num_threads`. Throws std::invalid_argument for
 /// another method, no views or sizes that do not match.

@@ -98,6 +98,12 @@ bool uses_travel(PlannerMethod method) {
   return method.ranking == Ranking::kTravel || method.ranking == Ranking::kNearest;
 }
 
+bool plans_sequences(GainMethod gain) {
+  const MethodTraits& traits = method_traits(gain);
+  const GainQuantity by_cells = traits.quantity(GainObjective::kCells);
+  return counts_classes(by_cells) || (traits.surface_cells && traits.cells != nullptr);
+}
+
 bool has_observability(PlannerMethod method) { return method_traits(method.gain).has_objective(); }
 
 void PlannerConfig::validate() const {
@@ -110,12 +116,14 @@ void PlannerConfig::validate() const {
   }
   sequence.validate();
   if (sequence.active() || method.ranking == Ranking::kSequence) {
-    // NOTE: a sequence plans on the cells' classes alone (counts_classes), by cells.
+    // NOTE: a sequence plans by cells, what the model sees cell by cell (plans_sequences).
     const GainQuantity by_cells = method_traits(method.gain).quantity(GainObjective::kCells);
-    if (!counts_classes(by_cells) ||
+    if (!plans_sequences(method.gain) ||
         (method.ranking != Ranking::kBest && method.ranking != Ranking::kSequence)) {
       throw std::invalid_argument(
-          cat("planner.sequence plans with survival, sequence or greedy, not ", to_string(method)));
+          cat("planner.sequence plans with survival, greedy or surface (sequence, sequence+greedy, "
+              "sequence+surface), not ",
+              to_string(method)));
     }
     if (decision_quantity(*this) != by_cells) {
       throw std::invalid_argument("planner.sequence ranks survival's views by cells, not bits");

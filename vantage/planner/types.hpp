@@ -73,6 +73,11 @@ PlannerMethod parse_planner_method(std::string_view name);
 /// Whether the method predicts with a visibility model of parameter a (probabilistic, survival):
 /// it takes --alpha (auto too) and --objective, and reports its expected cells seen.
 bool has_observability(PlannerMethod method);
+/// Whether a sequence (sequence.hpp) plans with the gain model `gain`: one whose value in cells
+/// is read off the cells' classes (survival, greedy), or a metric credited cell by cell with the
+/// chance of the surface it adds (the surface model), so that what two views would see twice is
+/// counted once.
+bool plans_sequences(GainMethod gain);
 /// Whether the method ranks candidates by a gain (not random or Yamauchi's nearest).
 bool ranks_by_gain(PlannerMethod method);
 /// Whether the method weighs travel, so a decision needs the robot's pose (Latombe, Yamauchi).

@@ -4,6 +4,7 @@
 /// Each candidate set (candidate_sets.hpp) names the rule its views are travelled by.
 
 #include <Eigen/Core>
+#include <vector>
 
 namespace vantage {
 
@@ -25,6 +26,14 @@ struct TravelRule {
 
   /// Travel from `from` to `to` [m].
   double operator()(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+  /// Points along the path the rule measures from `from` to `to`, both included, at most `step`
+  /// apart [m]: the segment; the horizontal arc about `center` (the ring walk), its height and
+  /// distance from `center` changing evenly along it; the great-circle arc about `center` (the
+  /// view sphere), its distance from `center` changing evenly, never through the object. For
+  /// views at the rule's radius its length is operator()'s, within the chords' shortfall.
+  /// Throws std::invalid_argument for a step that is not positive.
+  std::vector<Eigen::Vector3d> path(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                                    double step = 0.02) const;
   /// What the rule measures, in words, for the result files beside the figures.
   const char* describe() const;
 };

@@ -60,7 +60,7 @@ struct Decision {
   double travel = 0.0;
   bool fallback = false;
   std::optional<Eigen::Vector3d> goal;
-  std::vector<Eigen::Vector2d> path;
+  std::vector<Eigen::Vector3d> path;  ///< ScanRecord::path
   int candidates = 0;
   std::vector<CandidateRecord> considered;
 };

@@ -160,7 +160,7 @@ json scan_json(const ScanRecord& r) {
             {"candidates", r.candidates}};
   if (r.goal) j["goal"] = {r.goal->x(), r.goal->y(), r.goal->z()};
   json path = json::array();
-  for (const Eigen::Vector2d& p : r.path) path.push_back({p.x(), p.y()});
+  for (const Eigen::Vector3d& p : r.path) path.push_back({p.x(), p.y(), p.z()});
   j["path"] = path;
   j["predicted_gain"] = r.predicted_gain ? json(*r.predicted_gain) : json(nullptr);
   j["greedy_predicted_gain"] =

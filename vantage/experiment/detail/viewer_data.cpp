@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "vantage/experiment/detail/results_reader.hpp"
+#include "vantage/gain/methods.hpp"
+#include "vantage/planner/types.hpp"
 #include "vantage/views/frustum.hpp"
 
 namespace vantage::detail {
@@ -51,15 +53,25 @@ void add_sensor(const Field& doc, const std::optional<Field>& older, std::string
 
 /// What a method ranks its candidates by, as the page colours them: a candidate's field, its
 /// unit, and what it is.
-struct Ranking {
+struct RankedBy {
   std::string key;
   std::string unit;
   std::string what;
 };
 
+/// The planner a results file names, if this build knows it (a file may come from another).
+std::optional<PlannerMethod> planner_of(std::string_view method) {
+  try {
+    return parse_planner_method(method);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
 /// The methods that predict with a visibility model: they rank by their objective.
 bool has_objective(std::string_view method) {
-  return method == "probabilistic" || method == "survival";
+  const std::optional<PlannerMethod> planner = planner_of(method);
+  return planner && has_observability(*planner);
 }
 
 /// `units.<key>` of a results file, or "" when it has none.
@@ -73,8 +85,8 @@ std::string unit_in(const Field& doc, std::string_view key) {
 /// 27 said "bits" for the survival reading's score, which is its expected cells seen). Without
 /// a score (run.json) the methods with a visibility model ranked by predicted cells for the
 /// cells objective and by predicted gain otherwise, the rest by predicted gain.
-Ranking ranking_of(const Field& doc, std::string_view method, std::string_view objective,
-                   bool scored, std::string_view gain_unit) {
+RankedBy ranking_of(const Field& doc, std::string_view method, std::string_view objective,
+                    bool scored, std::string_view gain_unit) {
   if (has_objective(method)) {
     if (objective == "cells") {
       return {scored ? "score" : "predicted_cells", "cells", "expected cells seen"};
@@ -82,16 +94,19 @@ Ranking ranking_of(const Field& doc, std::string_view method, std::string_view o
     return {scored ? "score" : "predicted_gain", "bits", "expected information gain"};
   }
   if (!scored) return {"predicted_gain", std::string(gain_unit), "predicted gain"};
-  Ranking r{"score", unit_in(doc, "score"), "score"};
+  RankedBy r{"score", unit_in(doc, "score"), "score"};
   if (r.unit.empty()) r.unit = gain_unit;
-  if (method == "latombe") r.what = "greedy gain × exp(−λ travel)";
-  if (method == "yamauchi") r.what = "minus the travel";
+  const std::optional<PlannerMethod> planner = planner_of(method);
+  if (planner && planner->ranking == Ranking::kTravel) {
+    r.what = fmt::format("{} gain × exp(−λ travel)", method_traits(planner->gain).name);
+  }
+  if (planner && planner->ranking == Ranking::kNearest) r.what = "minus the travel";
   return r;
 }
 
 /// A candidate for the page: its pose (under `pose_key`), index, ranking score and predictions.
 json candidate_of(const Field& c, std::string_view pose_key, std::string_view index_key,
-                  std::string_view greedy_key, const Ranking& ranking) {
+                  std::string_view greedy_key, const RankedBy& ranking) {
   json candidate = pose_of(c[pose_key]);
   candidate["view"] = c[index_key].integer();
   candidate["score"] = c[ranking.key].number();
@@ -206,7 +221,10 @@ void note_candidates(const json& decisions, std::size_t cap, json& data) {
 json scan_of(const Field& s) {
   json path = json::array();
   const Field p = s["path"];
-  for (std::size_t j = 0; j < p.size_of_array(); ++j) path.push_back(p[j].numbers(2));
+  // NOTE: run.json before the sensor's path (2026-12) held an office's floor path, [x, y].
+  for (std::size_t j = 0; j < p.size_of_array(); ++j) {
+    path.push_back(p[j].numbers(p[j].size_of_array() == 2 ? 2 : 3));
+  }
   json scan = pose_of(s["pose"]);
   scan["scan"] = s["scan"].integer();
   scan["view"] = s["view"].integer();
@@ -260,7 +278,7 @@ json explore_data(const fs::path& dir, const ViewerConfig& config) {
   for (std::size_t i = 0; i < scans.size_of_array(); ++i) {
     taken.push_back(scans[i]["view"].integer());
   }
-  std::optional<Ranking> ranking;
+  std::optional<RankedBy> ranking;
   CandidatePicker picker(config.max_candidates, [&](std::size_t list, const json& c) {
     return list < taken.size() && c["view"] == taken[list];
   });
@@ -337,7 +355,7 @@ json plan_data(const fs::path& dir, const ViewerConfig& config) {
   CandidatePicker picker(config.max_candidates,
                          [&](std::size_t, const json& c) { return c["view"] == best; });
   // NOTE: plan.json of format 1 had no scores: its first candidate says which it is.
-  std::optional<Ranking> ranking;
+  std::optional<RankedBy> ranking;
   parse_results(text, file, true, [&](std::size_t, std::size_t j, json& c) {
     const Field candidate(file, c, fmt::format("candidates[{}]", j));
     if (!ranking) ranking = ranking_of(plan, method, objective, candidate.has("score"), gain_unit);

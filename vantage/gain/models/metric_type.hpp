@@ -31,6 +31,10 @@
 ///   static constexpr bool kRearSideRays;
 /// Either way, when the walk need not count the unobserved cells, a ray that passes no occupied
 /// cell within that reach (reach_cells) is not walked (MetricContext::occupied).
+/// A metric whose value is the surface a scan is expected to add [cells], by chances per cell that
+/// a run fits from its own scans (MetricContext::surface_rates, SurfaceRateFit), says so
+/// (optional; false by default): the run then fits them, and reports its value in cells:
+///   static constexpr bool kSurfaceCells;
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -180,6 +184,16 @@ template <typename Metric>
 constexpr bool rear_side_rays() {
   if constexpr (requires { Metric::kRearSideRays; }) {
     return Metric::kRearSideRays;
+  } else {
+    return false;
+  }
+}
+
+/// Whether `Metric`'s value is the surface a scan adds, by fitted chances (the file's note).
+template <typename Metric>
+constexpr bool surface_cells() {
+  if constexpr (requires { Metric::kSurfaceCells; }) {
+    return Metric::kSurfaceCells;
   } else {
     return false;
   }

@@ -27,6 +27,7 @@ struct Surface {
   static constexpr bool kNearRays = true;  // the far class dims, but a ray of it alone credits 0
   static constexpr bool kCellSum = true;   // models/metric_cells.hpp
   static constexpr bool kFarAlike = true;  // a far cell dims by its class's rate, credits nothing
+  static constexpr bool kSurfaceCells = true;  // its value in cells, its rates fitted by a run
   explicit Surface(const detail::MetricContext& ctx) : rates(ctx.surface_rates) {}
   SurfaceRates rates;
   double sum = 0.0;
