@@ -156,20 +156,26 @@ def max_coverage(set_cover):
     return max_coverage
 
 
-@pytest.mark.parametrize("seed", range(10))
-def test_the_search_answers_as_every_subset_does(max_coverage, seed):
-    # Do k views hit `need` new cells? At the most cells some k views hit, yes (and the views it
-    # gives do); one cell more, no: the branch and bound against every subset, k = 1..4.
-    rng = random.Random(200 + seed)
-    truth, views, start = random_truth(rng, 60, 12, 5, 20)
+def answers_as_every_subset(max_coverage, views, start, ks):
+    """For each k of `ks`: at the most new cells some k views hit (brute force), the search says
+    yes with views that do; one cell more, no."""
     cells = max_coverage.Cells(views, start)
-    for k in range(1, 5):
+    for k in ks:
         most = brute_most(views, start, k)
         found = max_coverage.Search(cells, most, math.inf).reach(k)
         assert found is not None and len(found) <= k, (k, most)
         chosen = [int(cells.views[j]) for j in found]
         assert len(set().union(*(views[v] for v in chosen)) - start) >= most
         assert max_coverage.Search(cells, most + 1, math.inf).reach(k) is None, (k, most)
+
+
+@pytest.mark.parametrize("seed", range(10))
+def test_the_search_answers_as_every_subset_does(max_coverage, seed):
+    # Do k views hit `need` new cells? At the most cells some k views hit, yes (and the views it
+    # gives do); one cell more, no: the branch and bound against every subset, k = 1..4.
+    rng = random.Random(200 + seed)
+    truth, views, start = random_truth(rng, 60, 12, 5, 20)
+    answers_as_every_subset(max_coverage, views, start, range(1, 5))
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -178,14 +184,7 @@ def test_the_search_answers_as_every_subset_does_deeper(max_coverage, seed):
     # views whose leaving out refutes and tries two views left exactly.
     rng = random.Random(500 + seed)
     truth, views, start = random_truth(rng, 70, 14, 4, 14)
-    cells = max_coverage.Cells(views, start)
-    for k in (5, 6):
-        most = brute_most(views, start, k)
-        found = max_coverage.Search(cells, most, math.inf).reach(k)
-        assert found is not None and len(found) <= k, (k, most)
-        chosen = [int(cells.views[j]) for j in found]
-        assert len(set().union(*(views[v] for v in chosen)) - start) >= most
-        assert max_coverage.Search(cells, most + 1, math.inf).reach(k) is None, (k, most)
+    answers_as_every_subset(max_coverage, views, start, (5, 6))
 
 
 @pytest.mark.parametrize("seed", range(6))
