@@ -172,13 +172,7 @@ RayEnd walk_codes(const MetricContext& ctx, const RayImage& image, const std::ui
   const int octant = walk.octant();
   bool previous_unknown = false;
   for (;;) {
-    if (target != nullptr) {
-      for (int a = 0; a < 3; ++a) {
-        const int ahead =
-            ((octant >> a) & 1) ? walk.cell()[a] - (*target)[a] : (*target)[a] - walk.cell()[a];
-        if (ahead > 0) return {};  // passed it
-      }
-    }
+    if (target != nullptr && walked_past(walk, octant, *target)) return {};
     const std::size_t linear = walk.linear();
     const std::uint8_t code = reach[linear];
     const CellState state = code_state(code);

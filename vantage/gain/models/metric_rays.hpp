@@ -68,6 +68,15 @@ struct RayEnd {
   bool reached = false;    ///< it reached the target cell it was walked to
 };
 
+/// Whether a walk moving in `octant` has passed `target` on an axis: it never comes back.
+inline bool walked_past(const GridWalk& walk, int octant, const Index3& target) {
+  for (int a = 0; a < 3; ++a) {
+    const int ahead = ((octant >> a) & 1) ? walk.cell()[a] - target[a] : target[a] - walk.cell()[a];
+    if (ahead > 0) return true;
+  }
+  return false;
+}
+
 /// Walks one ray of `image` from the walk's first cell, handing every cell to `metric` in order
 /// (metric_type.hpp), crossing the cubes the metric allows; counts the unobserved cells reached
 /// into `result` when the context asks. With a `target` cell, stops in it (RayEnd::reached) or
@@ -84,13 +93,7 @@ RayEnd walk_ray(const MetricContext& ctx, const RayImage& image, const Code* cod
   double visibility = 1.0;
   bool previous_unknown = false;
   for (;;) {
-    if (target != nullptr) {
-      for (int a = 0; a < 3; ++a) {
-        const int ahead =
-            ((octant >> a) & 1) ? walk.cell()[a] - (*target)[a] : (*target)[a] - walk.cell()[a];
-        if (ahead > 0) return {};  // passed it
-      }
-    }
+    if (target != nullptr && walked_past(walk, octant, *target)) return {};
     const std::size_t linear = walk.linear();
     const GainMap::Value& v = values[codes[linear]];
     double r2 = 0.0;
