@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "vantage/sim/detail/scene_values.hpp"
 #include "vantage/sim/object_scene.hpp"
-#include "vantage/sim/scene_values.hpp"
 #include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 

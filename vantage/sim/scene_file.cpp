@@ -11,16 +11,16 @@
 #include <vector>
 
 #include "vantage/io/yaml_reader.hpp"
+#include "vantage/sim/detail/scene_shapes.hpp"
+#include "vantage/sim/detail/scene_values.hpp"
 #include "vantage/sim/scene.hpp"
-#include "vantage/sim/scene_shapes.hpp"
-#include "vantage/sim/scene_values.hpp"
 #include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 
 namespace vantage::sim {
 namespace {
 
-using namespace detail;  // the scene file's value readers (scene_values.hpp)
+using namespace detail;  // the scene file's value readers (detail/scene_values.hpp)
 
 struct Parser {
   const std::string& source;

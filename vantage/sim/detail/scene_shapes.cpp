@@ -1,15 +1,15 @@
 // The scene file's shapes (scene_shapes.hpp): the floor, the table, walls and rooms with their
 // doors, and the objects, each placed and repeated.
 
-#include "vantage/sim/scene_shapes.hpp"
+#include "vantage/sim/detail/scene_shapes.hpp"
 
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "vantage/sim/detail/scene_values.hpp"
 #include "vantage/sim/furniture.hpp"
-#include "vantage/sim/scene_values.hpp"
 #include "vantage/util/limits.hpp"
 #include "vantage/util/text.hpp"
 

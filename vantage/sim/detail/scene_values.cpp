@@ -1,4 +1,4 @@
-#include "vantage/sim/scene_values.hpp"
+#include "vantage/sim/detail/scene_values.hpp"
 
 #include <algorithm>
 #include <cmath>
