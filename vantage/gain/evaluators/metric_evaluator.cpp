@@ -120,12 +120,11 @@ FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
                   }));
 }
 
-/// From the census, the cubes of blocks of unobserved cells beyond D of every occupied cell
-/// (detail::MetricContext::far_unobserved): blocks of unobserved cells only whose 26 neighbours
-/// hold no occupied cell. NOTE: a cell two blocks off on an axis lies at least 2 * 4 - 3 = 5 > D
-/// cells away, so every cell of such a block is beyond D; a pass over the blocks (1/64 of the
-/// cells), where labelling every cell by its code took 2 ms of a ring decision's 25.
-FreeSpace far_unobserved_space(const BlockCensus& census) {
+/// Per block of `census`, whether it or one of its 26 neighbours holds an occupied cell. NOTE: a
+/// cell two blocks off on an axis lies at least 2 * 4 - 3 = 5 > D cells away, so every cell
+/// within D of an occupied cell lies in such a block: a pass over the blocks (1/64 of the cells)
+/// tells where to look.
+std::vector<std::uint8_t> near_occupied_blocks(const BlockCensus& census) {
   static_assert(BlockCensus::kBlock == FreeSpace::kBlock &&
                 2 * FreeSpace::kBlock - 3 > kProximityCells);
   const Index3 d = census.dims();
@@ -134,10 +133,7 @@ FreeSpace far_unobserved_space(const BlockCensus& census) {
            static_cast<std::size_t>(d.x()) *
                (static_cast<std::size_t>(y) + static_cast<std::size_t>(d.y()) * z);
   };
-  std::vector<std::int64_t> label(static_cast<std::size_t>(d.prod()), -1);
-  for (std::size_t b = 0; b < label.size(); ++b) {
-    if (census.classes(b) == class_bit(CellState::kUnobserved)) label[b] = 0;
-  }
+  std::vector<std::uint8_t> near(static_cast<std::size_t>(d.prod()), 0);
   Index3 c;
   for (c.z() = 0; c.z() < d.z(); ++c.z()) {
     for (c.y() = 0; c.y() < d.y(); ++c.y()) {
@@ -148,55 +144,88 @@ FreeSpace far_unobserved_space(const BlockCensus& census) {
         const Index3 lo = (c.array() - 1).max(0), hi = (c.array() + 1).min(d.array() - 1);
         for (int z = lo.z(); z <= hi.z(); ++z) {
           for (int y = lo.y(); y <= hi.y(); ++y) {
-            for (int x = lo.x(); x <= hi.x(); ++x) label[block(x, y, z)] = -1;
+            for (int x = lo.x(); x <= hi.x(); ++x) near[block(x, y, z)] = 1;
           }
         }
       }
     }
   }
-  return cubes_of(d, label);
+  return near;
 }
 
-/// The occupied cells' box and cubes that `method` needs (detail::OccupiedCells).
-detail::OccupiedCells occupied_cells(const GainMap& map, GainMethod method) {
+/// From the census, the cubes of blocks of unobserved cells beyond D of every occupied cell
+/// (detail::MetricContext::far_unobserved): blocks of unobserved cells only, not near an occupied
+/// one (near_occupied_blocks), where labelling every cell by its code took 2 ms of a ring
+/// decision's 25.
+FreeSpace far_unobserved_space(const BlockCensus& census) {
+  const std::vector<std::uint8_t> near = near_occupied_blocks(census);
+  std::vector<std::int64_t> label(near.size(), -1);
+  for (std::size_t b = 0; b < label.size(); ++b) {
+    if (census.classes(b) == class_bit(CellState::kUnobserved) && !near[b]) label[b] = 0;
+  }
+  return cubes_of(census.dims(), label);
+}
+
+/// Calls `visit(i)` with every cell of `spec`'s grid in the blocks `keep` marks (per block of
+/// FreeSpace::kBlock cells a side), in ascending linear index.
+template <typename Keep, typename Visit>
+void for_cells_in_blocks(const GridSpec& spec, Keep&& keep, Visit&& visit) {
+  const Index3 d = block_dims(spec);
+  for (int z = 0; z < spec.dims.z(); ++z) {
+    for (int y = 0; y < spec.dims.y(); ++y) {
+      const std::size_t row = static_cast<std::size_t>(d.x()) *
+                              (static_cast<std::size_t>(y >> FreeSpace::kShift) +
+                               static_cast<std::size_t>(d.y()) * (z >> FreeSpace::kShift));
+      for (int bx = 0; bx < d.x(); ++bx) {
+        if (!keep(row + static_cast<std::size_t>(bx))) continue;
+        const int x0 = bx << FreeSpace::kShift;
+        const int x1 = std::min(x0 + FreeSpace::kBlock, spec.dims.x());
+        for (int x = x0; x < x1; ++x) visit(spec.linear(Index3(x, y, z)));
+      }
+    }
+  }
+}
+
+/// The occupied cells' box and cubes that `method` needs (detail::OccupiedCells), read from the
+/// blocks the census says hold one.
+detail::OccupiedCells occupied_cells(const GainMap& map, const BlockCensus& census,
+                                     GainMethod method) {
   const MethodTraits& traits = method_traits(method);
   const bool rear_side = traits.rear_side_rays;
   detail::OccupiedCells out;
   if (!rear_side && !traits.needs_distances) return out;
   const GridSpec& spec = map.spec();
-  const Index3 d = block_dims(spec);
-  std::vector<std::int64_t> label(rear_side ? static_cast<std::size_t>(d.prod()) : 0, 0);
+  const auto holds = [&](std::size_t b) {
+    return (census.classes(b) & class_bit(CellState::kOccupied)) != 0;
+  };
   Eigen::AlignedBox3d box;
   box.setEmpty();
-  Index3 c;
-  for (c.z() = 0; c.z() < spec.dims.z(); ++c.z()) {
-    for (c.y() = 0; c.y() < spec.dims.y(); ++c.y()) {
-      for (c.x() = 0; c.x() < spec.dims.x(); ++c.x()) {
-        if (map.value(spec.linear(c)).state != CellState::kOccupied) continue;
-        box.extend(spec.center(c));
-        if (!rear_side) continue;
-        label[static_cast<std::size_t>(
-            (c.x() >> FreeSpace::kShift) +
-            d.x() * ((c.y() >> FreeSpace::kShift) + d.y() * (c.z() >> FreeSpace::kShift)))] = -1;
-      }
-    }
-  }
+  for_cells_in_blocks(spec, holds, [&](std::size_t i) {
+    if (map.value(i).state == CellState::kOccupied) box.extend(spec.center(spec.unravel(i)));
+  });
   out.box = box;
-  if (rear_side) out.open = cubes_of(d, label);
+  if (rear_side) {
+    std::vector<std::int64_t> label(static_cast<std::size_t>(census.dims().prod()), 0);
+    for (std::size_t b = 0; b < label.size(); ++b) label[b] = holds(b) ? -1 : 0;
+    out.open = cubes_of(census.dims(), label);
+  }
   return out;
 }
 
 /// The cells a metric whose value is a sum of cell credits may credit (MetricEvaluator::
-/// creditable); none for another metric.
+/// creditable), read from the blocks near an occupied cell; none for another metric.
 std::vector<std::uint32_t> creditable_cells(const GainMap& map, const std::vector<float>& near,
-                                            GainMethod method) {
+                                            const BlockCensus& census, GainMethod method) {
   std::vector<std::uint32_t> out;
-  if (method_traits(method).cells == nullptr) return out;
-  for (std::size_t i = 0; i < near.size(); ++i) {
-    if (near[i] <= kProximityCells && map.value(i).state == CellState::kUnobserved) {
-      out.push_back(static_cast<std::uint32_t>(i));
-    }
-  }
+  if (method_traits(method).cells == nullptr || near.empty()) return out;
+  const std::vector<std::uint8_t> blocks = near_occupied_blocks(census);
+  for_cells_in_blocks(
+      map.spec(), [&](std::size_t b) { return blocks[b] != 0; },
+      [&](std::size_t i) {
+        if (near[i] <= kProximityCells && map.value(i).state == CellState::kUnobserved) {
+          out.push_back(static_cast<std::uint32_t>(i));
+        }
+      });
   return out;
 }
 
@@ -289,8 +318,8 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
                                                             : FreeSpace{}),
       near_(distances_for(map_, config)),
       far_(method_traits(config.method).crosses_far ? far_space(map_, near_) : FreeSpace{}),
-      occupied_(occupied_cells(map_, config.method)),
-      creditable_(creditable_cells(map_, near_, config.method)),
+      occupied_(occupied_cells(map_, grid.census(), config.method)),
+      creditable_(creditable_cells(map_, near_, grid.census(), config.method)),
       shadows_(lists_cells()
                    ? OctantShadows(grid.spec(), grid.classes(), grid.census(), config.num_threads)
                    : OctantShadows{}),
