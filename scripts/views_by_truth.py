@@ -10,7 +10,7 @@ Reads DIR/scans.csv and DIR/yardstick/*.json; prints a Markdown table per method
 area above the true coverage curve over scans 1..N [scans] and its ratio to greedy's (pooled over
 the same trials), the mean scans to 80, 90 and 95 % of V (N + 1 where not reached), and the cases
 (trial, level) where the greedy oracle's order on the truth needs more scans than the method's
-views.
+views; then each method's mean true coverage after each scan.
 """
 
 import csv
@@ -75,7 +75,7 @@ def measures(out):
         for label, order in ((name, views), ("truth-greedy", oracle)):
             cov = curve(truth, start, order)[:budget]
             cov += [cov[-1]] * (budget - len(cov))
-            rows.append({"label": label, "scene": scene, "trial": trial,
+            rows.append({"label": label, "scene": scene, "trial": trial, "curve": cov,
                          "aac": sum(1 - c for c in cov),
                          **{lv: scans_to(cov, lv, budget) for lv in LEVELS}})
     return rows, budget
@@ -107,6 +107,21 @@ def table(rows, budget):
     return lines
 
 
+def curves(rows, budget):
+    """Per method, the mean true coverage (share of V) after each scan: where a method falls
+    behind the oracle, scan by scan."""
+    lines = ["| method | " + " | ".join(f"scan {k}" for k in range(1, budget + 1)) + " |",
+             "|---|" + "---|" * budget]
+    oracle = {(r["scene"], r["trial"]): r for r in rows if r["label"] == "truth-greedy"}
+    labels = sorted({r["label"] for r in rows if r["label"] != "truth-greedy"})
+    for label in ["truth-greedy"] + labels:
+        mine = (list(oracle.values()) if label == "truth-greedy"
+                else [r for r in rows if r["label"] == label])
+        lines.append(f"| {label} | " + " | ".join(
+            f"{sum(r['curve'][k] for r in mine) / len(mine):.3f}" for k in range(budget)) + " |")
+    return lines
+
+
 def main(argv):
     if len(argv) != 2:
         sys.exit("usage: views_by_truth.py DIR")
@@ -119,6 +134,8 @@ def main(argv):
     print(f"Scans 1..{budget} (the start's included); truth-greedy = the greedy oracle's order on"
           " the noise-free hit sets from the same start.\n")
     print("\n".join(table(rows, budget)))
+    print("\nThe mean true coverage after each scan:\n")
+    print("\n".join(curves(rows, budget)))
 
 
 if __name__ == "__main__":

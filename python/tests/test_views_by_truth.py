@@ -28,13 +28,18 @@ def test_a_better_order_than_the_greedy_oracles_is_found_out(tmp_path, views_by_
         "scene,method,alpha,objective,trial,scan,view\n"
         "toy,cover,,,0,1,-1\ntoy,cover,,,0,2,1\ntoy,cover,,,0,3,2\n")
     views_by_truth.main(["views_by_truth.py", str(tmp_path)])
-    rows = {}
+    rows, curves = {}, {}
     for line in capsys.readouterr().out.splitlines():
         cells = [c.strip() for c in line.strip("|").split("|")]
         if len(cells) == 8 and cells[1].isdigit():
             rows[cells[0]] = cells[1:]
+        if len(cells) == 4 and cells[1].startswith("0."):
+            curves[cells[0]] = cells[1:]
     assert rows["truth-greedy"] == ["1", "1.375", "-", "3.00", "4.00", "4.00", "0 of 3"]
     assert rows["cover"] == ["1", "1.375", "-", "3.00", "3.00", "3.00", "2 of 3"]
+    # The curves after scans 1, 2, 3: the oracle's 1/8, 5/8, 7/8; the trial's 1/8, 4/8, 8/8.
+    assert curves["truth-greedy"] == ["0.125", "0.625", "0.875"]
+    assert curves["cover"] == ["0.125", "0.500", "1.000"]
 
 
 def test_no_scans_csv_is_an_error(tmp_path, views_by_truth):
