@@ -71,11 +71,11 @@ namespace {
 /// surface it is expected to add).
 struct Values {
   GainQuantity quantity;
-  const ClassMap* classes = nullptr;        ///< for a quantity of the classes
-  const MetricEvaluator* metric = nullptr;  ///< for a metric
-  /// For the surface model, every cell's distance to the nearest occupied cell [cells], whose
-  /// class gives the chance r(x) that it holds a surface (surface_class, GainConfig's rates).
-  std::vector<float> near;
+  const ClassMap* classes = nullptr;  ///< for a quantity of the classes
+  /// For a metric; the surface model's evaluator also gives every cell's distance to the
+  /// nearest occupied cell, whose class gives the chance r(x) that it holds a surface
+  /// (surface_class, GainConfig's rates).
+  const MetricEvaluator* metric = nullptr;
 };
 
 /// The views the selection considers (shortlist positions 0 .. m-1) and what it reads of them.
@@ -149,7 +149,7 @@ Shortlist shortlist_of(std::span<const Frustum> views, const Values& values, con
     for (const ViewCells& list : s.lists) {
       std::vector<double>& r = s.chance.emplace_back();
       for (const std::uint32_t c : list.cells) {
-        r.push_back(gain.surface_rates[surface_class(values.near[c])]);
+        r.push_back(gain.surface_rates[surface_class(values.metric->distances()[c])]);
       }
     }
   }
@@ -285,14 +285,8 @@ SequencePlan plan_sequence(const OccupancyGrid& grid, std::span<const Frustum> v
   }
   const ClassMap classes(grid);  // what the per-cell lists read
   std::optional<MetricEvaluator> metric;
-  Values values{quantity, &classes, nullptr, {}};
-  if (quantity == GainQuantity::kMetric) {
-    values.metric = &metric.emplace(grid, gain);
-    if (config.horizon > 1) {
-      values.near =
-          occupied_distance(GainMap(grid, gain.num_threads), kProximityCells, gain.num_threads);
-    }
-  }
+  Values values{quantity, &classes, nullptr};
+  if (quantity == GainQuantity::kMetric) values.metric = &metric.emplace(grid, gain);
   SequencePlan plan;
   std::vector<ViewCells> sampled = single_values(grid, values, views, gain, config, plan.gains);
   double best_value = 0.0;

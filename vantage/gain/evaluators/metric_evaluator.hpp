@@ -88,6 +88,9 @@ class MetricEvaluator {
   /// The cells such a metric may credit, ascending: the unobserved cells within D of an occupied
   /// cell; empty for another metric.
   const std::vector<std::uint32_t>& creditable() const { return creditable_; }
+  /// Per cell, its distance to the nearest occupied cell [cells] (occupied_distance, within D),
+  /// for a metric that reads distances; empty for another.
+  const std::vector<float>& distances() const { return near_; }
   /// For such a metric, the occupied cells' shadows (OctantShadows), which its lists read; empty
   /// for another.
   const OctantShadows& shadows() const { return shadows_; }
