@@ -8,7 +8,8 @@
 set -euo pipefail
 vantage=$1
 # In sweep.json or in the trial's key.
-shaping=(--scenes --methods --alphas --objectives --trials --scans --seed --revisit --generated
+shaping=(--scenes --methods --alphas --objectives --trials --scans --seed --revisit --greedy-reference
+         --generated
          --objects --generated-seed --candidates --arm-base --reach --view-spacing
          --hemisphere-radii --coverage-tolerance --no-stop-projection --evaluation --search
          --epsilon --lambda --horizon --travel-weight --sample --swept-rays --shortlist

@@ -126,6 +126,7 @@ void add_sweep_command(CLI::App& bench, const std::string& name, const std::stri
       ->capture_default_str();
   cmd->add_option("--out,-o", o->out, "sweep folder; rerunning resumes it")->capture_default_str();
   cmd->add_flag("!--no-plots", o->plots, "skip plots and summary");
+  cmd->add_flag("--greedy-reference", o->greedy_reference, kGreedyReferenceHelp);
   add_memory_option(*cmd, o->max_memory);
   add_work_option(*cmd, o->max_work);
   cmd->add_option("--max-setup", o->max_setup,

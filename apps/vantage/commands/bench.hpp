@@ -30,6 +30,7 @@ struct BenchOptions {
   std::string kind = "tabletop";  ///< which experiment: tabletop or office
   bool plots = true;
   bool revisit = false;
+  bool greedy_reference = false;
   bool project_stops = true;  ///< office: unreachable frontier centroids move into their region
   PlanningOptions planning;
   MappingOptions mapping;

@@ -38,6 +38,7 @@ struct ExploreOptions {
   int scans = 10;
   double min_gain = 0.0;
   bool revisit = false;
+  bool greedy_reference = false;
   bool project_stops = true;
   int start = 0;
   std::uint64_t seed = 1;
@@ -62,9 +63,10 @@ void print_scan(const ScanRecord& r, int total, bool ranks_by_bits) {
       ranks_by_bits ? fmt::format("{:7.0f} bits ", r.predicted_gain.value_or(0.0)) : "";
   const std::string predicted =
       r.predicted_cells
-          ? fmt::format("{}{:7.0f} cells (greedy {:>7})", bits, *r.predicted_cells,
-                        r.greedy_predicted_gain ? fmt::format("{:.0f}", *r.greedy_predicted_gain)
-                                                : std::string("-"))
+          ? fmt::format("{}{:7.0f} cells {:<16}", bits, *r.predicted_cells,
+                        r.greedy_predicted_gain
+                            ? fmt::format("(greedy {:>7.0f})", *r.greedy_predicted_gain)
+                            : std::string())
           : fmt::format("{:>7} {:>{}}", "-", "", 21 + bits.size());
   const double seconds = r.seconds.scan + r.seconds.register_scan + r.seconds.segment +
                          r.seconds.integrate + r.seconds.plan;
@@ -121,6 +123,7 @@ ExploreSettings explore_settings(const ExploreOptions& o, const sim::Scene& scen
   config.scans = o.scans;
   config.min_gain = o.min_gain;
   config.revisit = o.revisit;
+  config.greedy_reference = o.greedy_reference;
   config.office.project_stops = o.project_stops;
   config.start = o.start;
   config.seed = o.seed;
@@ -240,6 +243,7 @@ void add_explore_command(CLI::App& app) {
   cmd->add_flag(
       "--revisit", o->revisit,
       "table top: views already taken stay candidates (the paper's loop taken literally)");
+  cmd->add_flag("--greedy-reference", o->greedy_reference, kGreedyReferenceHelp);
   cmd->add_flag("!--no-stop-projection", o->project_stops,
                 fmt::format("office: {}", kNoStopProjectionHelp));
   cmd->add_option("--start", o->start, "start pose index of the scene")

@@ -19,6 +19,11 @@
 namespace vantage::cli {
 
 /// Help of --no-stop-projection (explore and bench office).
+/// --greedy-reference, explore's and bench's.
+inline constexpr const char* kGreedyReferenceHelp =
+    "also predict greedy's count for each view taken, beside the method's prediction "
+    "(greedy_predicted_gain, the paper's Fig. 11); on the early scans it costs more than the "
+    "decision";
 inline constexpr const char* kNoStopProjectionHelp =
     "keep the paper's fallback for a frontier centroid the robot cannot reach (drive as close "
     "as possible, section 5.3.1) instead of moving it to its region's nearest reachable cell";
