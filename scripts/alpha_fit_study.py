@@ -2,7 +2,7 @@
 """How well would each way of choosing a have predicted the cells seen, on the same poses?
 
 Usage: alpha_fit_study.py RUN_DIR [RUN_DIR ...]
-Reads explore folders run with --alpha auto (run.json keeps, per scan, the view's expected cells
+Reads explore folders run with --alpha auto and --greedy-reference (run.json keeps, per scan, the view's expected cells
 seen under every candidate a, taken before the scan: calibration_cells). For every scan from the
 second on it scores, against the cells the scan really turned known:
 - each fixed a of the fit's grid;
@@ -104,7 +104,9 @@ def main(dirs):
                 x = best_x(cal, actual, xs)
                 rows[scene]["hindsight a (bound, not a rule)"].append(
                     abs(predicted(cal, xs, x) - actual))
-                rows[scene]["greedy count"].append(abs(float(s["greedy_predicted_gain"]) - actual))
+                if s["greedy_predicted_gain"] is not None:  # run without --greedy-reference
+                    rows[scene]["greedy count"].append(
+                        abs(float(s["greedy_predicted_gain"]) - actual))
                 rows[scene]["run's own prediction"].append(abs(float(s["predicted_cells"]) - actual))
             history.append((cal, actual))
     rules = sorted({r for v in rows.values() for r in v})

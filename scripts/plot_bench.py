@@ -637,7 +637,7 @@ def pooled_surface_table(trials, budget, ref="greedy"):
 def new_coverage_prediction(rows, visible_cells):
     """How each prediction recorded for the view a run took foretells the new covered cells of
     its scan (scans 2 on, the runs of the surface model, whose rows carry all three on the same
-    poses): predicted_gain (the surface gain), greedy_predicted_gain (greedy's count) and
+    poses; greedy's count only in a sweep run with --greedy-reference): predicted_gain (the surface gain), greedy_predicted_gain (greedy's count) and
     predicted_cells (the unobserved-voxel count). Per prediction: the one scale that fits it best
     (the median of actual / predicted) and the median error factor after it,
     exp(median |log(actual / (scale predicted))|)."""
@@ -664,6 +664,8 @@ def new_coverage_prediction(rows, visible_cells):
     names = {"predicted_gain": "the surface gain", "greedy_predicted_gain": "greedy's count",
              "predicted_cells": "the unobserved-voxel count"}
     for column, values in logs.items():
+        if not values:  # greedy's count: the sweep ran without --greedy-reference
+            continue
         mid = median(values)
         spread = median([abs(x - mid) for x in values])
         lines.append(f"| {names[column]} | {len(values)} | {math.exp(mid):.3g} |"
