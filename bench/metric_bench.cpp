@@ -106,5 +106,28 @@ BENCHMARK(BM_MetricDecision187)
     ->MeasureProcessCPUTime()
     ->UseRealTime();
 
+/// The set-up of the surface model's decision alone (docs/decision.md, "The set-up of a metric
+/// decision"): `MetricEvaluator`'s constructor on tabletop-4 after 1, 3 or 6 scans, on 1 or 2
+/// threads.
+void BM_MetricSetUp(benchmark::State& bench) {
+  const HemisphereState& s = hemisphere_state(static_cast<int>(bench.range(0)));
+  GainConfig config;
+  config.method = GainMethod::kSurface;
+  config.num_threads = static_cast<int>(bench.range(1));
+  config.surface_rates = {0.634, 0.157, 0.064, 0.035, 0.0038};
+  std::size_t creditable = 0;
+  for (auto _ : bench) {
+    const MetricEvaluator evaluator(s.grid, config);
+    creditable = evaluator.creditable().size();
+  }
+  bench.counters["creditable"] = static_cast<double>(creditable);
+}
+BENCHMARK(BM_MetricSetUp)
+    ->ArgsProduct({{1, 3, 6}, {1, 2}})
+    ->ArgNames({"scans", "threads"})
+    ->Unit(benchmark::kMillisecond)
+    ->MeasureProcessCPUTime()
+    ->UseRealTime();
+
 }  // namespace
 }  // namespace vantage::bench
