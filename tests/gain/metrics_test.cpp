@@ -458,6 +458,40 @@ TEST(Metrics, ACellSumListedCellByCellSumsToTheValue) {
   EXPECT_THROW(other.cells(s.views, std::vector<std::uint32_t>{0}), std::invalid_argument);
 }
 
+// The rays a view's walks saw stopped by a surface, kept from one call to the next (StoppedRays,
+// as a race keeps them across its rounds), are not walked again to cells past their stop: the
+// lists are those of the calls without them, bit for bit, the sets fill, and a set per view is
+// required.
+TEST(Metrics, RaysSeenStoppedAreNotWalkedAgainAndChangeNoCredit) {
+  const SceneLike s;
+  GainConfig config;
+  config.method = GainMethod::kSurface;
+  config.surface_rates = {0.6, 0.2, 0.08, 0.04, 0.004};
+  config.num_threads = 2;
+  const MetricEvaluator evaluator(s.grid, config);
+  const std::vector<std::uint32_t> all = evaluator.creditable();
+  std::vector<std::uint32_t> odd, even;
+  for (const std::uint32_t i : all) (i % 2 == 0 ? even : odd).push_back(i);
+  std::vector<StoppedRays> stopped(s.views.size());
+  std::vector<StoppedRays*> each;
+  for (StoppedRays& r : stopped) each.push_back(&r);
+  const std::vector<ViewCells> first = evaluator.cells(s.views, odd, each);
+  std::size_t kept = 0;
+  for (const StoppedRays& r : stopped) kept += r.at.size();
+  EXPECT_GT(kept, 0u);  // the rays stopped on the way to the odd cells
+  const std::vector<ViewCells> second = evaluator.cells(s.views, even, each);
+  const std::vector<ViewCells> alone = evaluator.cells(s.views, even);
+  const std::vector<ViewCells> first_alone = evaluator.cells(s.views, odd);
+  for (std::size_t v = 0; v < s.views.size(); ++v) {
+    EXPECT_EQ(second[v].cells, alone[v].cells) << "view " << v;
+    EXPECT_EQ(second[v].seen, alone[v].seen) << "view " << v;
+    EXPECT_EQ(second[v].targets, alone[v].targets) << "view " << v;
+    EXPECT_EQ(first[v].seen, first_alone[v].seen) << "view " << v;
+  }
+  EXPECT_THROW(evaluator.cells(s.views, even, std::span<StoppedRays* const>(each).first(1)),
+               std::invalid_argument);
+}
+
 // The proof that a ray does not reach a listed cell (detail::blocked_before, which spares the
 // cell-by-cell listing its walks) against the reference walk that hands the metric every cell: on
 // every ray through every third cell within D of the scene's surfaces, from each of its views,

@@ -159,6 +159,7 @@ TEST(Race, RulesBoostStopAndUnseen) {
     if (grid.spec().center(grid.spec().unravel(i)).x() > 0.0) boost[i] = 3;
   }
   const detail::TargetLister list = [&](std::span<const Frustum> raced,
+                                        std::span<const std::size_t>,
                                         std::span<const std::uint32_t> cells) {
     return exact_view_cells(classes, raced, gain, cells);
   };
@@ -201,11 +202,12 @@ TEST(Race, ThePaperModelsRaceOnTheFullListsIsTheExactArgmax) {
   const std::vector<ViewGain> exact = exact_view_gains(map, views, gain);
   const std::vector<double> scores{exact[0].cells, exact[1].cells, exact[2].cells};
   ASSERT_GT(scores[choose_best(scores)], 0.0);
-  const detail::Race race = detail::race_candidates(
-      unobserved_by_sample(ClassMap(grid), kAll), views, first, factor,
-      [&](std::span<const Frustum> raced, std::span<const std::uint32_t> cells) {
-        return paper_view_cells(map, raced, gain, cells);
-      });
+  const detail::Race race =
+      detail::race_candidates(unobserved_by_sample(ClassMap(grid), kAll), views, first, factor,
+                              [&](std::span<const Frustum> raced, std::span<const std::size_t>,
+                                  std::span<const std::uint32_t> cells) {
+                                return paper_view_cells(map, raced, gain, cells);
+                              });
   EXPECT_TRUE(race.exact);
   EXPECT_EQ(race.winner, choose_best(scores));
   for (std::size_t k = 0; k < scores.size(); ++k)

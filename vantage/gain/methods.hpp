@@ -42,11 +42,13 @@ enum class TargetRay {
 using MetricFn = std::vector<ViewGain> (*)(const detail::MetricContext&, std::span<const Frustum>,
                                            int num_threads);
 
-/// A metric's credits cell by cell on a list of cells (models/metric_cells.hpp).
+/// A metric's credits cell by cell on a list of cells, with the rays each view saw stopped so far
+/// (models/metric_cells.hpp, all_view_cells).
 using MetricCellsFn = std::vector<ViewCells> (*)(const detail::MetricContext&,
                                                  std::span<const Frustum>,
                                                  std::span<const std::uint32_t> cells,
-                                                 int num_threads);
+                                                 int num_threads,
+                                                 std::span<StoppedRays* const> stopped);
 
 /// A round of a metric's race (the swept search, docs/decision.md "The swept search"): the views
 /// still in the race estimated by every `coarseness`-th of the metric's rays along each image axis

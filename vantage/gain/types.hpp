@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include "vantage/gain/ray_model.hpp"
@@ -167,6 +168,16 @@ struct ViewCells {
   /// The sum of `seen` in ascending cell order [cells]; equal to ViewGain::cells of the exact
   /// evaluation up to the order of the additions.
   double sum() const;
+};
+
+/// The rays of one view's image that its cell-by-cell credits (models/metric_cells.hpp) walked
+/// and saw stopped by an occupied cell: per ray (row * cols + col of the view's RayImage), the
+/// segment's parameter where it enters that cell. A cell the ray enters only past it is not
+/// reached by that ray. What a race keeps across its rounds, so that a ray to the cells of one
+/// surface is walked to its stop once, not once a cell (docs/decision.md, "A metric raced cell
+/// by cell").
+struct StoppedRays {
+  std::unordered_map<std::uint32_t, double> at;
 };
 
 }  // namespace vantage

@@ -370,14 +370,19 @@ std::vector<std::uint8_t> MetricEvaluator::sample_boost() const {
 }
 
 std::vector<ViewCells> MetricEvaluator::cells(std::span<const Frustum> views,
-                                              std::span<const std::uint32_t> cells) const {
+                                              std::span<const std::uint32_t> cells,
+                                              std::span<StoppedRays* const> stopped) const {
   const MethodTraits& traits = method_traits(config_.method);
   if (traits.cells == nullptr) {
     throw std::invalid_argument(
         cat("MetricEvaluator: ", traits.name, "'s value is not a sum of cell credits"));
   }
+  if (!stopped.empty() && stopped.size() != views.size()) {
+    throw std::invalid_argument(
+        cat("MetricEvaluator: ", stopped.size(), " stopped-ray sets for ", views.size(), " views"));
+  }
   return traits.cells(context(map_, near_, spaces(), config_, 1, /*count_cells=*/false), views,
-                      cells, config_.num_threads);
+                      cells, config_.num_threads, stopped);
 }
 
 std::vector<ViewGain> metric_view_gains_reference(const GainMap& map,

@@ -232,6 +232,13 @@ struct CodeWalk {
   }
 };
 
+/// Whether `stopped` (or null) holds `ray` stopped before the parameter `s_in`.
+inline bool stopped_before(const StoppedRays* stopped, std::uint32_t ray, double s_in) {
+  if (stopped == nullptr) return false;
+  const auto it = stopped->at.find(ray);
+  return it != stopped->at.end() && s_in > it->second;
+}
+
 /// One view's credits under `Metric` (cell_sum) on `cells`, linear indices ascending: each cell's
 /// credit by the first of the view's rays (view_rays' order: rows, then columns) that reaches it,
 /// the cells credited more than 0 listed (ViewCells::seen: the credits; ViewCells::targets: the
@@ -242,10 +249,17 @@ struct CodeWalk {
 /// (OctantShadows::hides) is credited 0 without a look at its rays, and a ray that blocked_before
 /// proves not to reach the cell is not walked: the same credits, bit for bit. ViewCells::targets
 /// counts the cells some ray of the view's image may pass through, the hidden ones left out.
+///
+/// Nor is a ray walked to a cell it enters only past where an occupied cell stopped it, in
+/// `known` (the view's rays stopped in earlier calls, or null) or in `found`, where each walk that
+/// an occupied cell stops adds its ray: the cell's cube, widened by kCellSpare, is entered after
+/// that cell's, by a margin no rounding of the walk's boundaries reaches, so the walk would have
+/// ended before it. The same credits, bit for bit, whatever the two hold.
 template <typename Metric>
 ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
                             std::span<const std::uint32_t> cells, std::span<const Index3> at,
-                            std::vector<std::uint64_t>& taken) {
+                            std::vector<std::uint64_t>& taken, const StoppedRays* known,
+                            StoppedRays& found) {
   static_assert(cell_sum<Metric>(), "the metric's value is not a sum of cell credits");
   const GridSpec& spec = ctx.map.spec();
   const RayImage image(spec, ctx.spacing, ctx.subsample, 1, view);
@@ -275,6 +289,9 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
         // NOTE: the walk visits the cells the segment passes through (kCellSpare).
         const auto [s_in, s_out] = clip_to_box(lo, hi, o, d);
         if (std::max(s_in, 0.0) > std::min(s_out, 1.0)) continue;
+        const auto ray = static_cast<std::uint32_t>(row) * static_cast<std::uint32_t>(image.cols) +
+                         static_cast<std::uint32_t>(col);
+        if (stopped_before(known, ray, s_in) || stopped_before(&found, ray, s_in)) continue;
         // NOTE: most rays to a listed cell end on the surface it lies next to.
         if (blocked_before(spec, reach, o, d, c)) continue;
         GridWalk walk(spec, o, to);
@@ -282,6 +299,11 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
         metric.begin_ray();
         ViewGain unused;
         reached = walk_codes(ctx, image, reach, walk, metric, credit, credit, unused, &c).reached;
+        // NOTE: a walk that passed the cell on an axis may rest on an occupied cell it has not
+        // read yet: it entered it all the same, so the ray stops there.
+        if (!reached && spec.contains(walk.cell()) && reach[walk.linear()] == kOccupiedCode) {
+          found.at.emplace(ray, walk.t());
+        }
       }
     }
     taken[i >> 6] |= std::uint64_t{1} << (i & 63);
@@ -297,10 +319,12 @@ ViewCells view_cell_credits(const MetricContext& ctx, const Frustum& view,
 
 /// Every view's credits under `Metric` on `cells` (view_cell_credits); views, and runs of the cells
 /// when the views are few, in parallel, each view's list joined in cell order, so the same for any
-/// thread count.
+/// thread count. `stopped`, empty or one per view: the rays each view's earlier calls saw stopped,
+/// read by every run and joined by this call's (what they hold changes no credit).
 template <typename Metric>
 std::vector<ViewCells> all_view_cells(const MetricContext& given, std::span<const Frustum> views,
-                                      std::span<const std::uint32_t> cells, int num_threads) {
+                                      std::span<const std::uint32_t> cells, int num_threads,
+                                      std::span<StoppedRays* const> stopped) {
   // NOTE: the codes the walks read, built here when the context has none; no cell counts.
   MetricContext ctx = given;
   ctx.count_cells = false;
@@ -324,13 +348,14 @@ std::vector<ViewCells> all_view_cells(const MetricContext& given, std::span<cons
                               std::max<std::size_t>(1, cells.size() / kLeastRun));
   const std::size_t run_cells = (cells.size() + runs - 1) / runs;
   std::vector<ViewCells> parts(views.size() * runs);
+  std::vector<StoppedRays> found(parts.size());
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t task) {
       const std::size_t v = task / runs, from = std::min(cells.size(), task % runs * run_cells);
       const std::size_t n = std::min(cells.size() - from, run_cells);
-      parts[task] =
-          view_cell_credits<Metric>(ctx, views[v], cells.subspan(from, n),
-                                    std::span<const Index3>(at).subspan(from, n), taken.local());
+      parts[task] = view_cell_credits<Metric>(
+          ctx, views[v], cells.subspan(from, n), std::span<const Index3>(at).subspan(from, n),
+          taken.local(), stopped.empty() ? nullptr : stopped[v], found[task]);
     });
   });
   for (std::size_t v = 0; v < views.size(); ++v) {
@@ -339,6 +364,7 @@ std::vector<ViewCells> all_view_cells(const MetricContext& given, std::span<cons
       out[v].cells.insert(out[v].cells.end(), part.cells.begin(), part.cells.end());
       out[v].seen.insert(out[v].seen.end(), part.seen.begin(), part.seen.end());
       out[v].targets += part.targets;
+      if (!stopped.empty()) stopped[v]->at.merge(found[v * runs + r].at);
     }
   }
   return out;

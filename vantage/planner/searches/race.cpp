@@ -146,14 +146,16 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
   // NOTE: each sample doubles the last and holds it: only the new cells are cast.
   for (int bits = static_cast<int>(levels.size()) - 1;; --bits) {
     std::vector<Frustum> views;
-    std::vector<std::size_t> starts;
+    std::vector<std::size_t> which, starts;
     for (const std::size_t k : alive) {
       starts.push_back(views.size());
-      views.insert(views.end(), frusta.begin() + static_cast<std::ptrdiff_t>(first[k]),
-                   frusta.begin() + static_cast<std::ptrdiff_t>(first[k + 1]));
+      for (std::size_t v = first[k]; v < first[k + 1]; ++v) {
+        views.push_back(frusta[v]);
+        which.push_back(v);
+      }
     }
     starts.push_back(views.size());
-    const std::vector<ViewCells> lists = list(views, levels[static_cast<std::size_t>(bits)]);
+    const std::vector<ViewCells> lists = list(views, which, levels[static_cast<std::size_t>(bits)]);
     for (const ViewCells& l : lists) {
       for (std::size_t k = 0; k < l.cells.size(); ++k) {
         double& m = largest[boost_of(boost, l.cells[k])];
@@ -200,7 +202,8 @@ Race race_candidates(const ClassMap& map, std::span<const Frustum> frusta,
                      const GainConfig& config, std::size_t max_sample, double tolerance) {
   return race_candidates(
       unobserved_by_sample(map, max_sample), frusta, first, factor,
-      [&](std::span<const Frustum> views, std::span<const std::uint32_t> cells) {
+      [&](std::span<const Frustum> views, std::span<const std::size_t>,
+          std::span<const std::uint32_t> cells) {
         return exact_view_cells(map, views, config, cells);
       },
       RaceRules{.tolerance = tolerance});

@@ -34,8 +34,11 @@ struct Race {
 };
 
 /// Lists the targets of `views` among `cells` (unobserved, ascending) with their values, as
-/// exact_view_cells and paper_view_cells do: the same lists for any thread count.
+/// exact_view_cells and paper_view_cells do: the same lists for any thread count. `which` holds
+/// each view's index among the race's frusta, so that a lister may keep what it learnt of a view
+/// across the rounds.
 using TargetLister = std::function<std::vector<ViewCells>(std::span<const Frustum> views,
+                                                          std::span<const std::size_t> which,
                                                           std::span<const std::uint32_t> cells)>;
 
 /// How a race decides (race_candidates).

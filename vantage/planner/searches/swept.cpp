@@ -137,7 +137,8 @@ Plan run_paper(const SearchInput& in) {
   const detail::Race race = detail::race_candidates(
       unobserved_by_sample(ClassMap(in.grid), first_sample), in.views.frusta, in.views.first,
       factor,
-      [&](std::span<const Frustum> raced, std::span<const std::uint32_t> cells) {
+      [&](std::span<const Frustum> raced, std::span<const std::size_t>,
+          std::span<const std::uint32_t> cells) {
         return paper_view_cells(map, raced, in.gain, cells);
       },
       detail::RaceRules{.tolerance = kSweptTolerance});
@@ -178,10 +179,16 @@ Plan run_cell_sum(const SearchInput& in, const MetricEvaluator& metric) {
   const std::vector<std::uint32_t> reachable =
       metric.shadows().empty() ? metric.creditable()
                                : metric.shadows().reachable(origins, metric.creditable());
+  // NOTE: each view's rays stopped by a surface, kept across the rounds: a ray is walked to its
+  // stop once, not once for each cell of the surface it passes (the same lists).
+  std::vector<StoppedRays> stopped(in.views.frusta.size());
   const detail::Race race = detail::race_candidates(
       cells_by_sample(reachable, first_sample, boost), in.views.frusta, in.views.first, factor,
-      [&](std::span<const Frustum> raced, std::span<const std::uint32_t> cells) {
-        return metric.cells(raced, cells);
+      [&](std::span<const Frustum> raced, std::span<const std::size_t> which,
+          std::span<const std::uint32_t> cells) {
+        std::vector<StoppedRays*> mine;
+        for (const std::size_t v : which) mine.push_back(&stopped[v]);
+        return metric.cells(raced, cells, mine);
       },
       detail::RaceRules{.tolerance = kSweptTolerance,
                         .unseen = true,
