@@ -231,9 +231,10 @@ TEST(Metrics, OccupiedDistanceIsTheEuclideanDistanceWithinTheRadius) {
 // The distances from the occupied cells, stamped slab by slab in parallel, each cell only on the
 // side of it where no occupied face neighbour lies, against every pair of cells measured
 // directly, on a grid of six slabs with occupied cells at its edges and corners: one cell in 60
-// occupied, and one in 3 (most with occupied neighbours).
+// occupied, one in 3 (most with occupied neighbours), and one in 600 (most blocks without one,
+// which the census lets the occupied cells be looked for without).
 TEST(Metrics, OccupiedDistanceIsTheNearestOccupiedCellWithinTheRadiusEverywhere) {
-  for (const int one_in : {60, 3}) {
+  for (const int one_in : {60, 3, 600}) {
     OccupancyGrid grid = grid_at_origin({13, 11, 44}, 0.1);
     const GridSpec& spec = grid.spec();
     std::mt19937 rng(5);
@@ -252,6 +253,7 @@ TEST(Metrics, OccupiedDistanceIsTheNearestOccupiedCellWithinTheRadiusEverywhere)
       const std::vector<float> one = occupied_distance(map, radius, 1);
       const std::vector<float> two = occupied_distance(map, radius, 2);
       EXPECT_EQ(one, two) << radius;
+      EXPECT_EQ(occupied_distance(map, radius, 2, &grid.census()), one) << radius;
       std::size_t within = 0;
       for (std::size_t i = 0; i < spec.num_cells(); ++i) {
         const Index3 c = spec.unravel(i);
@@ -264,7 +266,7 @@ TEST(Metrics, OccupiedDistanceIsTheNearestOccupiedCellWithinTheRadiusEverywhere)
           ASSERT_TRUE(std::isinf(one[i])) << radius << ", cell " << c.transpose();
         }
       }
-      EXPECT_GT(within, spec.num_cells() / 4) << radius;
+      EXPECT_GT(within, one_in < 100 ? spec.num_cells() / 4 : 100) << radius;
     }
   }
 }
@@ -490,6 +492,32 @@ TEST(Metrics, RaysSeenStoppedAreNotWalkedAgainAndChangeNoCredit) {
   }
   EXPECT_THROW(evaluator.cells(s.views, even, std::span<StoppedRays* const>(each).first(1)),
                std::invalid_argument);
+}
+
+// The codes of whole blocks read from the census (detail::uniform_block_codes: a block of free
+// cells, a block of unobserved cells beyond D of every occupied one) are the codes cell by cell,
+// on a grid with all three kinds of block, whose edge blocks the grid cuts.
+TEST(Metrics, BlockCodesFromTheCensusAreTheCodesCellByCell) {
+  OccupancyGrid grid(GridSpec::centered({0.0, 0.0, 0.4}, 0.025, {62, 57, 31}));
+  const GridSpec& spec = grid.spec();
+  for (std::size_t i = 0; i < spec.num_cells(); ++i) {
+    const Index3 c = spec.unravel(i);
+    if (c.x() < 30) grid.set_probability(i, grid.params().p_min);  // seen free
+    if (c.x() >= 33 && c.x() < 37 && c.y() > 20 && c.y() < 30 && c.z() < 12) {
+      grid.set_probability(i, grid.params().p_max);  // a box
+    }
+    if (c.x() == 5 && c.y() == 5 && c.z() == 5) grid.set_probability(i, 0.5);  // a hole
+  }
+  const GainMap map(grid, 1);
+  const std::vector<float> near = occupied_distance(map, kProximityCells, 1);
+  const FreeSpace free = free_space(grid.census());
+  const std::vector<std::uint8_t> blocks =
+      detail::uniform_block_codes(grid.census(), detail::near_occupied_blocks(grid.census()));
+  for (const std::uint8_t code : {detail::kFreeBlockCode, detail::kFarCode, detail::kMixedBlock}) {
+    EXPECT_NE(std::count(blocks.begin(), blocks.end(), code), 0) << int{code};
+  }
+  EXPECT_EQ(detail::reach_codes(map, near, free, 2, blocks),
+            detail::reach_codes(map, near, free, 1));
 }
 
 // The proof that a ray does not reach a listed cell (detail::blocked_before, which spares the

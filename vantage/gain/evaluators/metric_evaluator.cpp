@@ -120,45 +120,11 @@ FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
                   }));
 }
 
-/// Per block of `census`, whether it or one of its 26 neighbours holds an occupied cell. NOTE: a
-/// cell two blocks off on an axis lies at least 2 * 4 - 3 = 5 > D cells away, so every cell
-/// within D of an occupied cell lies in such a block: a pass over the blocks (1/64 of the cells)
-/// tells where to look.
-std::vector<std::uint8_t> near_occupied_blocks(const BlockCensus& census) {
-  static_assert(BlockCensus::kBlock == FreeSpace::kBlock &&
-                2 * FreeSpace::kBlock - 3 > kProximityCells);
-  const Index3 d = census.dims();
-  const auto block = [&](int x, int y, int z) {
-    return static_cast<std::size_t>(x) +
-           static_cast<std::size_t>(d.x()) *
-               (static_cast<std::size_t>(y) + static_cast<std::size_t>(d.y()) * z);
-  };
-  std::vector<std::uint8_t> near(static_cast<std::size_t>(d.prod()), 0);
-  Index3 c;
-  for (c.z() = 0; c.z() < d.z(); ++c.z()) {
-    for (c.y() = 0; c.y() < d.y(); ++c.y()) {
-      for (c.x() = 0; c.x() < d.x(); ++c.x()) {
-        if (!(census.classes(block(c.x(), c.y(), c.z())) & class_bit(CellState::kOccupied))) {
-          continue;
-        }
-        const Index3 lo = (c.array() - 1).max(0), hi = (c.array() + 1).min(d.array() - 1);
-        for (int z = lo.z(); z <= hi.z(); ++z) {
-          for (int y = lo.y(); y <= hi.y(); ++y) {
-            for (int x = lo.x(); x <= hi.x(); ++x) near[block(x, y, z)] = 1;
-          }
-        }
-      }
-    }
-  }
-  return near;
-}
-
 /// From the census, the cubes of blocks of unobserved cells beyond D of every occupied cell
 /// (detail::MetricContext::far_unobserved): blocks of unobserved cells only, not near an occupied
 /// one (near_occupied_blocks), where labelling every cell by its code took 2 ms of a ring
 /// decision's 25.
-FreeSpace far_unobserved_space(const BlockCensus& census) {
-  const std::vector<std::uint8_t> near = near_occupied_blocks(census);
+FreeSpace far_unobserved_space(const BlockCensus& census, const std::vector<std::uint8_t>& near) {
   std::vector<std::int64_t> label(near.size(), -1);
   for (std::size_t b = 0; b < label.size(); ++b) {
     if (census.classes(b) == class_bit(CellState::kUnobserved) && !near[b]) label[b] = 0;
@@ -215,10 +181,10 @@ detail::OccupiedCells occupied_cells(const GainMap& map, const BlockCensus& cens
 /// The cells a metric whose value is a sum of cell credits may credit (MetricEvaluator::
 /// creditable), read from the blocks near an occupied cell; none for another metric.
 std::vector<std::uint32_t> creditable_cells(const GainMap& map, const std::vector<float>& near,
-                                            const BlockCensus& census, GainMethod method) {
+                                            const std::vector<std::uint8_t>& blocks,
+                                            GainMethod method) {
   std::vector<std::uint32_t> out;
   if (method_traits(method).cells == nullptr || near.empty()) return out;
-  const std::vector<std::uint8_t> blocks = near_occupied_blocks(census);
   for_cells_in_blocks(
       map.spec(), [&](std::size_t b) { return blocks[b] != 0; },
       [&](std::size_t i) {
@@ -239,9 +205,10 @@ void require_metric(const GainConfig& config) {
 }
 
 /// The distances the metric reads, none when it reads none.
-std::vector<float> distances_for(const GainMap& map, const GainConfig& config) {
+std::vector<float> distances_for(const GainMap& map, const GainConfig& config,
+                                 const BlockCensus* census = nullptr) {
   return method_traits(config.method).needs_distances
-             ? occupied_distance(map, kProximityCells, config.num_threads)
+             ? occupied_distance(map, kProximityCells, config.num_threads, census)
              : std::vector<float>{};
 }
 
@@ -316,17 +283,20 @@ MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& co
       free_(free_space(grid.census())),
       uniform_(method_traits(config.method).crosses_uniform ? uniform_free_space(map_)
                                                             : FreeSpace{}),
-      near_(distances_for(map_, config)),
+      near_blocks_(detail::near_occupied_blocks(grid.census())),
+      near_(distances_for(map_, config, &grid.census())),
       far_(method_traits(config.method).crosses_far ? far_space(map_, near_) : FreeSpace{}),
       occupied_(occupied_cells(map_, grid.census(), config.method)),
-      creditable_(creditable_cells(map_, near_, grid.census(), config.method)),
+      creditable_(creditable_cells(map_, near_, near_blocks_, config.method)),
       shadows_(lists_cells()
                    ? OctantShadows(grid.spec(), grid.classes(), grid.census(), config.num_threads)
                    : OctantShadows{}),
-      reach_(lists_cells() ? detail::reach_codes(map_, near_, free_, config.num_threads)
-                           : std::vector<std::uint8_t>{}),
+      reach_(lists_cells()
+                 ? detail::reach_codes(map_, near_, free_, config.num_threads,
+                                       detail::uniform_block_codes(grid.census(), near_blocks_))
+                 : std::vector<std::uint8_t>{}),
       far_unobserved_(method_traits(config.method).crosses_far_unobserved
-                          ? far_unobserved_space(grid.census())
+                          ? far_unobserved_space(grid.census(), near_blocks_)
                           : FreeSpace{}) {}
 
 Spaces MetricEvaluator::spaces() const {

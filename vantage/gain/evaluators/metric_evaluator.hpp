@@ -116,6 +116,8 @@ class MetricEvaluator {
   GainConfig config_;
   GainMap map_;
   FreeSpace free_, uniform_;  // uniform_ empty when the metric crosses none
+  // Per block of the census: it holds or touches an occupied cell's block (within D of one).
+  std::vector<std::uint8_t> near_blocks_;
   std::vector<float> near_;
   FreeSpace far_;  // empty when the metric crosses none
   detail::OccupiedCells occupied_;

@@ -17,6 +17,7 @@
 #include "vantage/gain/free_space.hpp"
 #include "vantage/gain/models/metrics/shared.hpp"
 #include "vantage/gain/snapshot.hpp"
+#include "vantage/map/block_census.hpp"
 #include "vantage/util/parallel.hpp"
 
 namespace vantage::detail {
@@ -45,19 +46,54 @@ inline CellState code_state(std::uint8_t code) {
                           : (code < kOccupiedCode ? CellState::kFree : CellState::kOccupied);
 }
 
+/// A block of reach_codes' `block_codes` whose cells do not all take one code.
+inline constexpr std::uint8_t kMixedBlock = 0xFF;
+
+/// Per block of `census`, whether it or one of its 26 neighbours holds an occupied cell. A
+/// cell two blocks off on an axis lies at least 2 * 4 - 3 = 5 > D cells away, so every cell
+/// within D of an occupied cell lies in such a block: a pass over the blocks (1/64 of the cells)
+/// tells where to look.
+std::vector<std::uint8_t> near_occupied_blocks(const BlockCensus& census);
+
+/// Per block of the census, the code every cell of it takes in reach_codes when the census
+/// tells it without a look at the cells: a block of free cells only (which lies in a free cube of
+/// every octant), or of unobserved cells only, not near an occupied one (`near`,
+/// near_occupied_blocks: beyond D of every occupied cell); else kMixedBlock.
+std::vector<std::uint8_t> uniform_block_codes(const BlockCensus& census,
+                                              const std::vector<std::uint8_t>& near);
+
 /// Every cell's code (kFarCode's note) from the snapshot, the distances (occupied_distance,
 /// within D) and the free space's blocks, on `num_threads` threads; the same for any number.
+/// `block_codes`, empty or one per block of FreeSpace::kBlock cells a side (FreeSpace's blocks):
+/// the code every cell of the block takes, read from the census without a look at its cells (a
+/// block of free cells only, or of unobserved cells beyond D of every occupied one), or
+/// kMixedBlock; the codes are the same with it as without.
 inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const float> near,
-                                             const FreeSpace& free, int num_threads) {
+                                             const FreeSpace& free, int num_threads,
+                                             std::span<const std::uint8_t> block_codes = {}) {
   const GridSpec& spec = map.spec();
   std::vector<std::uint8_t> out(map.size());
   const std::size_t nx = static_cast<std::size_t>(spec.dims.x());
+  const Index3 blocks = (spec.dims.array() + FreeSpace::kBlock - 1) / FreeSpace::kBlock;
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(0, spec.dims.z(), [&](int z) {
       for (int y = 0; y < spec.dims.y(); ++y) {
         const std::size_t row = spec.linear(Index3(0, y, z));
+        const std::size_t block_row = static_cast<std::size_t>(blocks.x()) *
+                                      (static_cast<std::size_t>(y >> FreeSpace::kShift) +
+                                       static_cast<std::size_t>(blocks.y()) *
+                                           static_cast<std::size_t>(z >> FreeSpace::kShift));
         for (std::size_t x = 0; x < nx; ++x) {
           const std::size_t i = row + x;
+          if (!block_codes.empty() && (x & (FreeSpace::kBlock - 1)) == 0) {
+            const std::uint8_t code = block_codes[block_row + (x >> FreeSpace::kShift)];
+            if (code != kMixedBlock) {
+              const std::size_t n = std::min<std::size_t>(FreeSpace::kBlock, nx - x);
+              std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(i), n, code);
+              x += n - 1;
+              continue;
+            }
+          }
           const CellState state = map.value(i).state;
           if (state == CellState::kFree) {
             // NOTE: a block of free cells only lies in a free cube of every octant.

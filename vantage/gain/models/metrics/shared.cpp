@@ -67,36 +67,55 @@ BallParts ball_parts(const GridSpec& spec, double radius, int r) {
   return parts;
 }
 
-/// The occupied cells of the slices [from, to) of cells, each with its occupied face neighbours
-/// (BallParts' bits).
-void list_occupied(const GainMap& map, std::size_t from, std::size_t to,
+/// Adds cell i to `mine` when it is occupied, with its occupied face neighbours (BallParts' bits).
+template <typename IsOccupied>
+void add_occupied(const GainMap& map, std::size_t i, const IsOccupied& is_occupied,
+                  std::vector<std::pair<std::uint32_t, std::uint8_t>>& mine) {
+  if (map.value(i).state != CellState::kOccupied) return;
+  const Index3 c = map.spec().unravel(i);
+  int sides = 0;
+  for (int a = 0; a < 3; ++a) {
+    Index3 n = c;
+    n[a] += 1;
+    if (is_occupied(n)) sides |= 1 << (2 * a);
+    n[a] -= 2;
+    if (is_occupied(n)) sides |= 1 << (2 * a + 1);
+  }
+  mine.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint8_t>(sides));
+}
+
+/// The occupied cells of the slices [z0, z1) of cells, in ascending linear index, each with its
+/// occupied face neighbours (BallParts' bits); with a census, only in the blocks it says hold one.
+void list_occupied(const GainMap& map, const BlockCensus* census, int z0, int z1,
                    std::vector<std::pair<std::uint32_t, std::uint8_t>>& mine) {
   const GridSpec& spec = map.spec();
   const auto is_occupied = [&](const Index3& c) {
     return spec.contains(c) && map.value(spec.linear(c)).state == CellState::kOccupied;
   };
-  for (std::size_t i = from; i < to; ++i) {
-    if (map.value(i).state != CellState::kOccupied) continue;
-    const Index3 c = spec.unravel(i);
-    int sides = 0;
-    for (int a = 0; a < 3; ++a) {
-      Index3 n = c;
-      n[a] += 1;
-      if (is_occupied(n)) sides |= 1 << (2 * a);
-      n[a] -= 2;
-      if (is_occupied(n)) sides |= 1 << (2 * a + 1);
+  const std::size_t nx = static_cast<std::size_t>(spec.dims.x());
+  for (int z = z0; z < z1; ++z) {
+    for (int y = 0; y < spec.dims.y(); ++y) {
+      const std::size_t row = spec.linear(Index3(0, y, z));
+      for (std::size_t x = 0; x < nx; x += BlockCensus::kBlock) {
+        const std::size_t end = std::min(nx, x + BlockCensus::kBlock);
+        if (census != nullptr &&
+            !(census->classes(census->block_of(Index3(static_cast<int>(x), y, z))) &
+              class_bit(CellState::kOccupied))) {
+          continue;
+        }
+        for (std::size_t i = row + x; i < row + end; ++i) add_occupied(map, i, is_occupied, mine);
+      }
     }
-    mine.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint8_t>(sides));
   }
 }
 
 }  // namespace
 
-std::vector<float> occupied_distance(const GainMap& map, double radius, int num_threads) {
+std::vector<float> occupied_distance(const GainMap& map, double radius, int num_threads,
+                                     const BlockCensus* census) {
   const GridSpec& spec = map.spec();
   std::vector<float> near(map.size(), std::numeric_limits<float>::infinity());
   const int r = static_cast<int>(std::floor(radius));
-  const std::size_t sz = static_cast<std::size_t>(spec.dims.x()) * spec.dims.y();
   // NOTE: a cell whose nearest occupied cell is c never lies on the side of an occupied face
   // neighbour of c (that neighbour would lie nearer), so c stamps only the part of its ball on
   // no such side (BallParts). A wall's cell stamps a line.
@@ -112,9 +131,8 @@ std::vector<float> occupied_distance(const GainMap& map, double radius, int num_
       static_cast<std::size_t>(slabs));
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(0, slabs, [&](int slab) {
-      const std::size_t from = static_cast<std::size_t>(slab * kSlab) * sz;
-      const std::size_t to = std::min(map.size(), from + kSlab * sz);
-      list_occupied(map, from, to, occupied[static_cast<std::size_t>(slab)]);
+      list_occupied(map, census, slab * kSlab, std::min(spec.dims.z(), (slab + 1) * kSlab),
+                    occupied[static_cast<std::size_t>(slab)]);
     });
     tbb::parallel_for(0, slabs, [&](int slab) {
       const int z0 = slab * kSlab, z1 = std::min(spec.dims.z(), z0 + kSlab);

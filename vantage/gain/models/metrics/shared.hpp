@@ -9,6 +9,7 @@
 
 #include "vantage/gain/snapshot.hpp"
 #include "vantage/gain/types.hpp"
+#include "vantage/map/block_census.hpp"
 
 namespace vantage {
 
@@ -36,7 +37,9 @@ double area_factor(double x, double alpha);
 
 /// Per cell, the Euclidean distance [cells] between its centre and the nearest occupied cell's,
 /// where it is at most `radius`; +infinity elsewhere (0 in occupied cells). On `num_threads`
-/// threads (0: all cores); the same for any number.
-std::vector<float> occupied_distance(const GainMap& map, double radius, int num_threads = 0);
+/// threads (0: all cores); the same for any number. With the census of the map's grid, the
+/// occupied cells are looked for only in the blocks it says hold one: the same distances.
+std::vector<float> occupied_distance(const GainMap& map, double radius, int num_threads = 0,
+                                     const BlockCensus* census = nullptr);
 
 }  // namespace vantage
