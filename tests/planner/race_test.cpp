@@ -135,7 +135,8 @@ TEST(Race, BoostedSamplesHoldACellOfBoostOBitsEarly) {
 
 // The survival reading raced on samples boosted by cell, the far side of the slab's shadow sampled
 // 8 times as often: on the full lists the exact sums; from a sample the same winner; stopped before
-// a sample that adds more than 5 000 cells, it leaves the two near-tied views to the caller.
+// a sample expected to add more than 5 000 targets to each view's lists, it leaves the two
+// near-tied views to the caller.
 TEST(Race, RulesBoostStopAndUnseen) {
   constexpr std::size_t kAll = std::numeric_limits<std::size_t>::max();
   const OccupancyGrid grid = slab_grid();
@@ -173,7 +174,7 @@ TEST(Race, RulesBoostStopAndUnseen) {
       detail::race_candidates(levels, views, first, factor, list, {.boost = boost});
   EXPECT_EQ(sampled.winner, choose_best(scores));
   const detail::Race stopped = detail::race_candidates(levels, views, first, factor, list,
-                                                       {.most_new_cells = 5000, .boost = boost});
+                                                       {.most_new_targets = 5000, .boost = boost});
   EXPECT_FALSE(stopped.exact);
   EXPECT_EQ(stopped.alive, (std::vector<std::size_t>{1, 2}));
   EXPECT_TRUE(stopped.winner == 1 || stopped.winner == 2);

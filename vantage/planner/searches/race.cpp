@@ -129,6 +129,16 @@ std::vector<std::size_t> still_racing(const std::vector<std::size_t>& alive, std
   return next;
 }
 
+/// The targets a view's list is expected to hold among `next` new cells, from `lists`, the views'
+/// lists among the `last` cells of the last sample.
+double new_targets(const std::vector<ViewCells>& lists, std::size_t last, std::size_t next) {
+  double targets = 0.0;
+  for (const ViewCells& l : lists) targets += static_cast<double>(l.targets);
+  return targets * static_cast<double>(next) /
+         (static_cast<double>(std::max<std::size_t>(lists.size(), 1)) *
+          static_cast<double>(std::max<std::size_t>(last, 1)));
+}
+
 }  // namespace
 
 Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
@@ -188,8 +198,9 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
       race.winner = alive.front();
       return race;
     }
-    if (rules.most_new_cells > 0 &&
-        levels[static_cast<std::size_t>(bits - 1)].size() > rules.most_new_cells) {
+    if (rules.most_new_targets > 0.0 &&
+        new_targets(lists, levels[static_cast<std::size_t>(bits)].size(),
+                    levels[static_cast<std::size_t>(bits - 1)].size()) > rules.most_new_targets) {
       race.winner = leader;
       race.alive = std::move(alive);
       return race;

@@ -27,7 +27,7 @@ struct Race {
   std::vector<double> scores;
   int bits = 0;        ///< the last sample: one unobserved cell in 2^bits
   bool exact = false;  ///< the race reached the full lists: `winner` is the exact argmax
-  /// When it stopped short of the full lists with more than one finalist left (`most_new_cells`),
+  /// When it stopped short of the full lists with more than one finalist left (`most_new_targets`),
   /// those (indices among the finalists, ascending); `winner` is then the leader on the last
   /// sample. Else empty.
   std::vector<std::size_t> alive;
@@ -54,9 +54,11 @@ struct RaceRules {
   /// largest factor. For values that sit on few targets, where a sample that misses the large ones
   /// gives an estimate and an error both too small.
   bool unseen = false;
-  /// > 0: the race stops before a sample that adds more targets than this, leaving the finalists
-  /// still in it to the caller (Race::alive).
-  std::size_t most_new_cells = 0;
+  /// > 0: the race stops before a sample whose new cells are expected to put more targets than
+  /// this in each finalist's lists (ViewCells::targets of the last sample, a view, times the next
+  /// sample's new cells over the last's), leaving the finalists still in it to the caller
+  /// (Race::alive).
+  double most_new_targets = 0.0;
   /// Per cell of the map, the boost of the samples (cells_by_sample, at most kMostBoost): a cell
   /// of boost o is in the sample of b bits with chance 2^-max(0, b - o), and weighed by its
   /// inverse; empty: none.

@@ -55,12 +55,14 @@ constexpr double kNearTie = 0.05;
 /// The most unobserved cells the race's first sample is expected to hold, whatever the map holds,
 /// so that its cost does not grow with the cells.
 constexpr std::size_t kSample = std::size_t{1} << 13;
-/// A race of cell credits stops before a sample that adds more than kCellSumMostNew cells
-/// (detail::race_candidates' most_new_cells) and evaluates the finalists left by the metric's own
-/// rays: past it, listing a finalist's credits costs more than its rays do. On tabletop-4's 187
-/// hemisphere views after 7 scans, a view's rays took about 3.6 ms of CPU time and a listed cell
-/// about 0.6 us (BENCHMARK.md, "The surface model raced").
-constexpr std::size_t kCellSumMostNew = 6000;
+/// A race of cell credits stops before a sample expected to add more than kCellSumMostTargets
+/// targets to each finalist's lists (detail::RaceRules::most_new_targets) and evaluates the
+/// finalists left by the metric's own rays: past it, listing a finalist's credits costs about as
+/// much as its rays do. In the default run's ring decisions on tabletop-4 (issue 52) a target
+/// listed cost 0.16-0.26 us of wall time on 2 threads and a finalist's rays 1.5-2.1 ms. Counted by
+/// a view's targets, not the sample's cells, since a narrow view meets a small share of them
+/// (docs/decision.md, "A metric raced cell by cell").
+constexpr double kCellSumMostTargets = 6000.0;
 /// A race of cell credits counts in the error of each difference a cell its sample may have
 /// missed (RaceRules::unseen): the credits sit on few cells (a cell face to face with a surface is
 /// credited up to its class's rate, 0.6, one 4 cells off 0.03), and a sample that misses the large
@@ -192,7 +194,7 @@ Plan run_cell_sum(const SearchInput& in, const MetricEvaluator& metric) {
       },
       detail::RaceRules{.tolerance = kSweptTolerance,
                         .unseen = true,
-                        .most_new_cells = kCellSumMostNew,
+                        .most_new_targets = kCellSumMostTargets,
                         .boost = boost});
   Plan plan = estimates(in);
   for (std::size_t c = 0; c < all.size(); ++c) {
