@@ -103,8 +103,9 @@ class MetricEvaluator {
   /// Every view's credits on `cells` (linear indices, ascending) at the metric's own pitch: the
   /// cells credited more than 0 with their credits, summing over creditable() to gains()' value
   /// up to the order of the additions. The same for any thread count. `stopped`, empty or one per
-  /// view, keeps the rays each view's walks saw stopped across calls, so that a race's later
-  /// rounds walk fewer (StoppedRays; the same credits whatever it holds). Throws
+  /// view, keeps the rays each view's walks saw stopped across calls of this evaluator for the
+  /// same views, so that a race's later rounds walk fewer (StoppedRays; the same credits whatever
+  /// such calls left in it). Throws
   /// std::invalid_argument when the metric's value is not such a sum.
   std::vector<ViewCells> cells(std::span<const Frustum> views, std::span<const std::uint32_t> cells,
                                std::span<StoppedRays* const> stopped = {}) const;
