@@ -8,6 +8,8 @@
 
 #include <array>
 #include <random>
+#include <utility>
+#include <vector>
 
 #include "vantage/map/occupancy_grid.hpp"
 
@@ -89,6 +91,30 @@ TEST(BlockCensus, KeepsEveryBlocksCountsThroughRandomUpdates) {
   grid.reset();
   expect_census(grid);
   EXPECT_EQ(grid.counts().unobserved, grid.size());
+}
+
+// The walk block by block (for_block_runs) visits every cell of the slices asked for once, in
+// ascending linear index, each run inside the census's block of its cells, on a grid whose sides
+// are not multiples of a block.
+TEST(BlockCensus, BlockRunsVisitEveryCellOnceInOrderWithinItsBlock) {
+  const GridSpec spec = GridSpec::centered({0.0, 0.0, 0.0}, 0.1, {11, 6, 9});
+  const BlockCensus census(spec.dims);
+  for (const auto& [z0, z1] : {std::pair{0, 9}, std::pair{3, 7}}) {
+    std::vector<std::size_t> visited;
+    for_block_runs(spec, z0, z1, [&](std::size_t block, std::size_t first, int n) {
+      ASSERT_GE(n, 1);
+      ASSERT_LE(n, BlockCensus::kBlock);
+      for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i) {
+        ASSERT_EQ(census.block_of(spec.unravel(i)), block) << i;
+        visited.push_back(i);
+      }
+    });
+    const std::size_t slice = static_cast<std::size_t>(spec.dims.x() * spec.dims.y());
+    std::vector<std::size_t> want(slice * static_cast<std::size_t>(z1 - z0));
+    for (std::size_t k = 0; k < want.size(); ++k)
+      want[k] = static_cast<std::size_t>(z0) * slice + k;
+    EXPECT_EQ(visited, want) << z0;
+  }
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 /// search", item 6), kept by OccupancyGrid as its cells change class: what a ray needs to cross
 /// whole blocks of free space, read without a pass over the grid.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -76,5 +77,28 @@ class BlockCensus {
   Index3 dims_ = Index3::Zero();
   std::vector<std::array<std::uint8_t, 3>> counts_;  ///< per block: unobserved, free, occupied
 };
+
+/// Calls `run(block, first, n)` for each run of a row's cells that lie in one block of
+/// BlockCensus::kBlock cells a side, over the rows of the slices [z0, z1) of `spec`'s grid in
+/// ascending linear index: `block` the block's index (BlockCensus::block_of, FreeSpace's too),
+/// `first` the linear index of the run's first cell, `n` its cells (kBlock; fewer at the grid's
+/// far face). What reads a grid block by block, skipping the blocks a census tells it to.
+template <typename Run>
+void for_block_runs(const GridSpec& spec, int z0, int z1, Run&& run) {
+  constexpr int kShift = BlockCensus::kShift, kBlock = BlockCensus::kBlock;
+  const auto blocks_x = static_cast<std::size_t>((spec.dims.x() + kBlock - 1) >> kShift);
+  const auto blocks_y = static_cast<std::size_t>((spec.dims.y() + kBlock - 1) >> kShift);
+  for (int z = z0; z < z1; ++z) {
+    for (int y = 0; y < spec.dims.y(); ++y) {
+      const std::size_t row = spec.linear(Index3(0, y, z));
+      const std::size_t block_row = blocks_x * (static_cast<std::size_t>(y >> kShift) +
+                                                blocks_y * static_cast<std::size_t>(z >> kShift));
+      for (int x = 0; x < spec.dims.x(); x += kBlock) {
+        run(block_row + static_cast<std::size_t>(x >> kShift), row + static_cast<std::size_t>(x),
+            std::min(kBlock, spec.dims.x() - x));
+      }
+    }
+  }
+}
 
 }  // namespace vantage

@@ -41,20 +41,14 @@ Index3 block_dims(const GridSpec& spec) {
 /// same one, -1 when they differ or one has -1.
 template <typename Label>
 std::vector<std::int64_t> block_labels(const GridSpec& spec, Label&& label) {
-  const Index3 d = block_dims(spec);
-  std::vector<std::int64_t> out(static_cast<std::size_t>(d.prod()), -2);
-  Index3 c;
-  for (c.z() = 0; c.z() < spec.dims.z(); ++c.z()) {
-    for (c.y() = 0; c.y() < spec.dims.y(); ++c.y()) {
-      for (c.x() = 0; c.x() < spec.dims.x(); ++c.x()) {
-        const std::int64_t l = label(spec.linear(c));
-        std::int64_t& b = out[static_cast<std::size_t>(
-            (c.x() >> FreeSpace::kShift) +
-            d.x() * ((c.y() >> FreeSpace::kShift) + d.y() * (c.z() >> FreeSpace::kShift)))];
-        b = (b == -2 || b == l) && l >= 0 ? l : -1;
-      }
+  std::vector<std::int64_t> out(static_cast<std::size_t>(block_dims(spec).prod()), -2);
+  for_block_runs(spec, 0, spec.dims.z(), [&](std::size_t block, std::size_t first, int n) {
+    std::int64_t& b = out[block];
+    for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i) {
+      const std::int64_t l = label(i);
+      b = (b == -2 || b == l) && l >= 0 ? l : -1;
     }
-  }
+  });
   return out;
 }
 
@@ -127,7 +121,7 @@ FreeSpace far_space(const GainMap& map, const std::vector<float>& near) {
 FreeSpace far_unobserved_space(const BlockCensus& census, const std::vector<std::uint8_t>& near) {
   std::vector<std::int64_t> label(near.size(), -1);
   for (std::size_t b = 0; b < label.size(); ++b) {
-    if (census.classes(b) == class_bit(CellState::kUnobserved) && !near[b]) label[b] = 0;
+    if (detail::far_unobserved_block(census.classes(b), near[b] != 0)) label[b] = 0;
   }
   return cubes_of(census.dims(), label);
 }
@@ -136,20 +130,10 @@ FreeSpace far_unobserved_space(const BlockCensus& census, const std::vector<std:
 /// FreeSpace::kBlock cells a side), in ascending linear index.
 template <typename Keep, typename Visit>
 void for_cells_in_blocks(const GridSpec& spec, Keep&& keep, Visit&& visit) {
-  const Index3 d = block_dims(spec);
-  for (int z = 0; z < spec.dims.z(); ++z) {
-    for (int y = 0; y < spec.dims.y(); ++y) {
-      const std::size_t row = static_cast<std::size_t>(d.x()) *
-                              (static_cast<std::size_t>(y >> FreeSpace::kShift) +
-                               static_cast<std::size_t>(d.y()) * (z >> FreeSpace::kShift));
-      for (int bx = 0; bx < d.x(); ++bx) {
-        if (!keep(row + static_cast<std::size_t>(bx))) continue;
-        const int x0 = bx << FreeSpace::kShift;
-        const int x1 = std::min(x0 + FreeSpace::kBlock, spec.dims.x());
-        for (int x = x0; x < x1; ++x) visit(spec.linear(Index3(x, y, z)));
-      }
-    }
-  }
+  for_block_runs(spec, 0, spec.dims.z(), [&](std::size_t block, std::size_t first, int n) {
+    if (!keep(block)) return;
+    for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i) visit(i);
+  });
 }
 
 /// The occupied cells' box and cubes that `method` needs (detail::OccupiedCells), read from the

@@ -38,7 +38,7 @@ std::vector<std::uint8_t> uniform_block_codes(const BlockCensus& census,
     const std::uint8_t classes = census.classes(b);
     if (classes == class_bit(CellState::kFree)) {
       codes[b] = kFreeBlockCode;
-    } else if (classes == class_bit(CellState::kUnobserved) && !near[b]) {
+    } else if (far_unobserved_block(classes, near[b] != 0)) {
       codes[b] = kFarCode;
     }
   }

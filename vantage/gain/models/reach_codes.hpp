@@ -49,6 +49,13 @@ inline CellState code_state(std::uint8_t code) {
 /// A block of reach_codes' `block_codes` whose cells do not all take one code.
 inline constexpr std::uint8_t kMixedBlock = 0xFF;
 
+/// Whether a block whose cells are of `classes` (class_bit()s) holds only unobserved cells beyond
+/// D of every occupied one, given whether it is `near` an occupied cell's block
+/// (near_occupied_blocks).
+inline bool far_unobserved_block(std::uint8_t classes, bool near) {
+  return classes == class_bit(CellState::kUnobserved) && !near;
+}
+
 /// Per block of `census`, whether it or one of its 26 neighbours holds an occupied cell. A
 /// cell two blocks off on an axis lies at least 2 * 4 - 3 = 5 > D cells away, so every cell
 /// within D of an occupied cell lies in such a block: a pass over the blocks (1/64 of the cells)
@@ -71,34 +78,22 @@ std::vector<std::uint8_t> uniform_block_codes(const BlockCensus& census,
 inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const float> near,
                                              const FreeSpace& free, int num_threads,
                                              std::span<const std::uint8_t> block_codes = {}) {
+  static_assert(BlockCensus::kBlock == FreeSpace::kBlock);
   const GridSpec& spec = map.spec();
   std::vector<std::uint8_t> out(map.size());
-  const std::size_t nx = static_cast<std::size_t>(spec.dims.x());
-  const Index3 blocks = (spec.dims.array() + FreeSpace::kBlock - 1) / FreeSpace::kBlock;
   run_with_threads(num_threads, [&] {
     tbb::parallel_for(0, spec.dims.z(), [&](int z) {
-      for (int y = 0; y < spec.dims.y(); ++y) {
-        const std::size_t row = spec.linear(Index3(0, y, z));
-        const std::size_t block_row = static_cast<std::size_t>(blocks.x()) *
-                                      (static_cast<std::size_t>(y >> FreeSpace::kShift) +
-                                       static_cast<std::size_t>(blocks.y()) *
-                                           static_cast<std::size_t>(z >> FreeSpace::kShift));
-        for (std::size_t x = 0; x < nx; ++x) {
-          const std::size_t i = row + x;
-          if (!block_codes.empty() && (x & (FreeSpace::kBlock - 1)) == 0) {
-            const std::uint8_t code = block_codes[block_row + (x >> FreeSpace::kShift)];
-            if (code != kMixedBlock) {
-              const std::size_t n = std::min<std::size_t>(FreeSpace::kBlock, nx - x);
-              std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(i), n, code);
-              x += n - 1;
-              continue;
-            }
-          }
+      for_block_runs(spec, z, z + 1, [&](std::size_t block, std::size_t first, int n) {
+        const std::uint8_t whole = block_codes.empty() ? kMixedBlock : block_codes[block];
+        if (whole != kMixedBlock) {
+          std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(first), n, whole);
+          return;
+        }
+        for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i) {
           const CellState state = map.value(i).state;
           if (state == CellState::kFree) {
             // NOTE: a block of free cells only lies in a free cube of every octant.
-            const bool cube =
-                !free.empty() && free.extent_at(0, Index3(static_cast<int>(x), y, z)) > 0;
+            const bool cube = !free.empty() && free.extent[0][block] > 0;
             out[i] = cube ? kFreeBlockCode : kFreeCode;
           } else if (state == CellState::kOccupied) {
             out[i] = kOccupiedCode;
@@ -109,7 +104,7 @@ inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const
             out[i] = static_cast<std::uint8_t>(std::lround(d * d));
           }
         }
-      }
+      });
     });
   });
   return out;

@@ -92,21 +92,12 @@ void list_occupied(const GainMap& map, const BlockCensus* census, int z0, int z1
   const auto is_occupied = [&](const Index3& c) {
     return spec.contains(c) && map.value(spec.linear(c)).state == CellState::kOccupied;
   };
-  const std::size_t nx = static_cast<std::size_t>(spec.dims.x());
-  for (int z = z0; z < z1; ++z) {
-    for (int y = 0; y < spec.dims.y(); ++y) {
-      const std::size_t row = spec.linear(Index3(0, y, z));
-      for (std::size_t x = 0; x < nx; x += BlockCensus::kBlock) {
-        const std::size_t end = std::min(nx, x + BlockCensus::kBlock);
-        if (census != nullptr &&
-            !(census->classes(census->block_of(Index3(static_cast<int>(x), y, z))) &
-              class_bit(CellState::kOccupied))) {
-          continue;
-        }
-        for (std::size_t i = row + x; i < row + end; ++i) add_occupied(map, i, is_occupied, mine);
-      }
+  for_block_runs(spec, z0, z1, [&](std::size_t block, std::size_t first, int n) {
+    if (census != nullptr && !(census->classes(block) & class_bit(CellState::kOccupied))) return;
+    for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i) {
+      add_occupied(map, i, is_occupied, mine);
     }
-  }
+  });
 }
 
 }  // namespace
