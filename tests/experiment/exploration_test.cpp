@@ -33,7 +33,7 @@ ShortRun short_run(int threads, const std::filesystem::path* dir = nullptr,
   ExplorationConfig config;
   config.scans = 2;
   config.seed = 7;
-  config.greedy_reference = greedy_reference;
+  config.planner.greedy_reference = greedy_reference;
   config.planner.gain.num_threads = threads;
   config.mapper = default_mapper_config(scene);
   config.mapper.integration.num_threads = threads;

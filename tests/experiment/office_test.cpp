@@ -37,7 +37,7 @@ OfficeRun office_run(PlannerMethod method, int threads, int stops = 2,
   config.planner.method = method;
   config.planner.gain.alpha = 0.9999;
   config.planner.gain.num_threads = threads;
-  config.greedy_reference = true;  // TwoStopsMeetTheTableTopInvariants compares it
+  config.planner.greedy_reference = true;  // TwoStopsMeetTheTableTopInvariants compares it
   config.mapper = default_mapper_config(scene);
   config.mapper.integration.num_threads = threads;
   Mapper mapper(scene.grid, config.mapper);

@@ -458,7 +458,7 @@ TEST_F(ViewerTest, ARunRecordsEveryDecisionsCandidatesForThePage) {
     ExplorationConfig config;
     config.scans = 2;
     config.seed = 3;
-    config.greedy_reference = true;  // the chosen candidate's record carries it too
+    config.planner.greedy_reference = true;  // the chosen candidate's record carries it too
     config.mapper = default_mapper_config(scene);
     Mapper mapper(scene.grid, config.mapper);
     const ExplorationResult result = explore(scene, config, mapper);

@@ -22,7 +22,8 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
       world_(noisy(scene, config), sim::WorldConfig{config.planner.gain.num_threads}) {
   planner_ = config.planner;
   // NOTE: Fig. 11 compares greedy's prediction with the method's on the view taken; greedy's
-  // is made for that view alone, after the decision (greedy_of), not for every candidate.
+  // is made for that view alone, after the decision (greedy_of), when the run's planner asks for
+  // it, not for every candidate.
   planner_.greedy_reference = false;
   if (config.auto_alpha && has_observability(planner_.method)) {
     fit_.emplace(config.observability);

@@ -62,8 +62,9 @@ inline const sim::PoseNoise kDefaultPoseNoise{0.02, 0.02, deg2rad(2.0)};
 /// Settings of one exploration run.
 struct ExplorationConfig {
   /// Method, alpha, evaluation, search (none: the fastest that serves the method). Its
-  /// greedy_reference is not read: greedy's prediction is made for the chosen view only, after the
-  /// decision, when ExplorationConfig::greedy_reference asks for it.
+  /// greedy_reference asks for greedy's count of each view taken (ScanRecord::
+  /// greedy_predicted_gain), made after the decision; off unless asked for. The methods that
+  /// score by greedy's count give it for free, always.
   PlannerConfig planner;
   /// What each decision may cost (decision_cost.hpp): estimated on the map it is made on and
   /// refused (WorkBudgetError) before it is computed.
@@ -76,11 +77,6 @@ struct ExplorationConfig {
   /// sight known, and the literal model's small remaining prediction there (gain behind the
   /// surfaces it saw) would otherwise bring the robot back to scan the same view again.
   bool revisit = false;
-  /// Greedy's count for each chosen view beside the method's prediction (scans.csv's
-  /// greedy_predicted_gain, the paper's Fig. 11), evaluated after the decision. Off unless asked
-  /// for: on the early scans it costs more than the decision itself (docs/decision.md, "Greedy's
-  /// reference prediction"). The methods that score by greedy's count give it for free, always.
-  bool greedy_reference = false;
   int start = 0;           ///< index into the scene's start poses
   std::uint64_t seed = 1;  ///< sensor noise, pose noise and random choice
   /// Error of the robot's belief after each move (x, y, yaw), replacing the scene's; the first
@@ -137,8 +133,8 @@ struct CandidateRecord {
   Eigen::Isometry3d T_world_sensor = Eigen::Isometry3d::Identity();
   double predicted_gain = 0.0;  ///< under the method (office: summed over the sweep)
   /// Under greedy, same view [cells]: every candidate's for the methods that score by greedy's
-  /// count; otherwise only the chosen candidate's, when ExplorationConfig::greedy_reference asks
-  /// for it (greedy's reference prediction is made for the view taken, after the decision), none
+  /// count; otherwise only the chosen candidate's, when PlannerConfig::greedy_reference asks for
+  /// it (greedy's reference prediction is made for the view taken, after the decision), none
   /// for the rest.
   std::optional<double> greedy_predicted_gain;
   double predicted_cells = 0.0;  ///< the method's expected cells seen [cells]

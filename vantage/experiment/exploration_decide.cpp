@@ -16,7 +16,7 @@ namespace vantage::detail {
 std::optional<double> Explorer::greedy_of(const Plan& plan, const Candidate& chosen,
                                           std::size_t best, Decision& d) const {
   if (!plan.greedy_gains.empty()) return plan.greedy_gains[best];
-  if (!config_.greedy_reference) return std::nullopt;
+  if (!config_.planner.greedy_reference) return std::nullopt;
   const auto start = Clock::now();
   std::vector<Frustum> views{chosen.view};
   views.insert(views.end(), chosen.more_views.begin(), chosen.more_views.end());

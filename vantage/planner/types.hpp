@@ -139,8 +139,11 @@ struct PlannerConfig {
   std::optional<DecisionSearch> search;
   /// The swept search's rays across a view's image (SweptConfig::rays_across), in [1, 4096].
   int swept_rays = 32;
-  /// Also predict every candidate's greedy gain when the method uses another, so predictions can
-  /// be compared on the same poses (the paper's Fig. 11).
+  /// Also predict greedy's gain when the method uses another, so predictions can be compared on
+  /// the same poses (the paper's Fig. 11): every candidate's in plan_next_view; in an exploration
+  /// (ExplorationConfig::planner), the view taken's only, after the decision, since on the early
+  /// scans even that costs more than the decision (docs/decision.md, "Greedy's reference
+  /// prediction").
   bool greedy_reference = false;
   /// After a decision on estimates, bounds or cells, evaluate the chosen candidate in full: its
   /// gain in bits beside its exact cells (Plan::prediction_seconds). That walks every target of

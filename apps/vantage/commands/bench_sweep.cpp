@@ -107,7 +107,7 @@ BenchConfig bench_config(const BenchOptions& o) {
   config.exploration.scans = o.scans;
   config.exploration.seed = o.seed;
   config.exploration.revisit = o.revisit;
-  config.exploration.greedy_reference = o.greedy_reference;
+  config.exploration.planner.greedy_reference = o.greedy_reference;
   config.exploration.office.project_stops = o.project_stops;
   config.objects = o.candidates.object_protocol();
   // NOTE: a sweep's scenes share one kind: objects, or table tops (generated piles included).

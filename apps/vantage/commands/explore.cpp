@@ -123,7 +123,7 @@ ExploreSettings explore_settings(const ExploreOptions& o, const sim::Scene& scen
   config.scans = o.scans;
   config.min_gain = o.min_gain;
   config.revisit = o.revisit;
-  config.greedy_reference = o.greedy_reference;
+  config.planner.greedy_reference = o.greedy_reference;
   config.office.project_stops = o.project_stops;
   config.start = o.start;
   config.seed = o.seed;

@@ -118,7 +118,7 @@ class Explorer {
   std::vector<Frustum> views_at(const Eigen::Isometry3d& pose) const;
 
   /// Greedy's prediction for the chosen candidate (Fig. 11's reference): the plan's own when the
-  /// method scored by greedy's count, else, when ExplorationConfig::greedy_reference asks for it,
+  /// method scored by greedy's count, else, when the run's PlannerConfig::greedy_reference asks,
   /// evaluated now for that candidate's views only (adding the time it took to
   /// `d.reference_seconds`); else none.
   std::optional<double> greedy_of(const Plan& plan, const Candidate& chosen, std::size_t best,

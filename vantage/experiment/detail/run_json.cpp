@@ -97,7 +97,7 @@ json config_json(const ExplorationConfig& config, const sim::Scene& scene) {
       {"scans", config.scans},
       {"min_gain", config.min_gain},
       {"revisit", config.revisit},
-      {"greedy_reference", config.greedy_reference},
+      {"greedy_reference", config.planner.greedy_reference},
       {"start", config.start},
       {"seed", config.seed},
       {"num_threads", gain.num_threads},

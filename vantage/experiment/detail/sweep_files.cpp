@@ -79,7 +79,7 @@ nlohmann::json trial_settings(const BenchConfig& config) {
       {"seed", e.seed},
       {"min_gain", e.min_gain},
       {"revisit", e.revisit},
-      {"greedy_reference", e.greedy_reference},
+      {"greedy_reference", e.planner.greedy_reference},
       {"evaluation", to_string(e.planner.gain.evaluation)},
       {"search", e.planner.search ? to_string(*e.planner.search) : "default"},
       {"sample", 1 << e.planner.sequence.sample_bits},
