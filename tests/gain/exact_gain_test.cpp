@@ -43,6 +43,36 @@ TEST(GainMap, HoldsTheGridsProbabilitiesAndClasses) {
                              [](const auto& a, const auto& b) { return a.p < b.p; }));
 }
 
+// The snapshot of the classes alone (for the metrics that read a cell's class only): every cell's
+// class as the grid's, on a grid of 4 301 cells (the last packed byte holds one cell), on one
+// thread and two; its values ascending, each its class's nominal one.
+TEST(GainMap, OfClassesHoldsEveryCellsClass) {
+  OccupancyGrid grid(GridSpec::centered({0, 0, 0}, 0.05, {23, 17, 11}));
+  std::mt19937_64 rng(5);
+  std::uniform_int_distribution<int> op(0, 3);
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const int k = op(rng);
+    if (k == 0) grid.hit(i);
+    if (k == 1) grid.miss(i);
+  }
+  for (const int threads : {1, 2}) {
+    const GainMap map = GainMap::of_classes(grid, threads);
+    ASSERT_EQ(map.size(), grid.size());
+    EXPECT_EQ(map.code_width(), 1);
+    ASSERT_EQ(map.values().size(), 3u);
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      ASSERT_EQ(map.value(i).state, grid.state(i)) << "cell " << i;
+      const double nominal = grid.state(i) == CellState::kUnobserved ? 0.5
+                             : grid.state(i) == CellState::kFree     ? 0.0
+                                                                     : 1.0;
+      ASSERT_EQ(map.value(i).p, nominal) << "cell " << i;
+      ASSERT_EQ(map.value(i).entropy, entropy_bits(nominal)) << "cell " << i;
+    }
+    EXPECT_TRUE(std::is_sorted(map.values().begin(), map.values().end(),
+                               [](const auto& a, const auto& b) { return a.p < b.p; }));
+  }
+}
+
 TEST(GainMap, WidensItsCodesForManyDistinctValues) {
   OccupancyGrid grid(GridSpec::centered({0, 0, 0}, 0.05, {40, 40, 4}));
   for (std::size_t i = 0; i < grid.size(); ++i) {

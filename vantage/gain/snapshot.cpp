@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 
 #include "vantage/gain/ray_model.hpp"
@@ -44,6 +45,33 @@ void write_codes(std::span<const float> log_odds, std::span<const std::uint32_t>
 }
 
 }  // namespace
+
+GainMap GainMap::of_classes(const OccupancyGrid& grid, int num_threads) {
+  GainMap map(grid.spec(), grid.params());
+  // NOTE: codes in ascending log-odds, as the full snapshot's: free 0, unobserved 1, occupied 2.
+  map.values_ = {Value{0.0, 0.0, CellState::kFree}, Value{0.5, 1.0, CellState::kUnobserved},
+                 Value{1.0, 0.0, CellState::kOccupied}};
+  std::array<std::uint8_t, 4> code_of{};
+  code_of[static_cast<std::size_t>(CellState::kFree)] = 0;
+  code_of[static_cast<std::size_t>(CellState::kUnobserved)] = 1;
+  code_of[static_cast<std::size_t>(CellState::kOccupied)] = 2;
+  const std::size_t n = map.size();
+  map.codes8_.resize(n);
+  const std::uint8_t* packed = grid.classes().packed();
+  std::uint8_t* codes = map.codes8_.data();
+  run_with_threads(num_threads, [&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, (n + 3) / 4, kSnapshotChunk / 4),
+                      [&](const auto& r) {
+                        for (std::size_t b = r.begin(); b != r.end(); ++b) {
+                          const std::size_t first = 4 * b, last = std::min(n, first + 4);
+                          for (std::size_t i = first; i < last; ++i) {
+                            codes[i] = code_of[(packed[b] >> (2 * (i - first))) & 3u];
+                          }
+                        }
+                      });
+  });
+  return map;
+}
 
 GainMap::GainMap(const OccupancyGrid& grid, int num_threads)
     : spec_(grid.spec()), params_(grid.params()) {

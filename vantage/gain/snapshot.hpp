@@ -31,6 +31,13 @@ class GainMap {
 
   /// Takes the snapshot; `num_threads` as everywhere (0 = all cores).
   explicit GainMap(const OccupancyGrid& grid, int num_threads = 0);
+  /// The snapshot of the grid's classes alone, for a model that reads a cell's class and nothing
+  /// of its probability (a metric whose value is a sum of cell credits, models/metric_cells.hpp):
+  /// three values, ascending, each its class's nominal one (free: p 0, occupied: p 1, both 0
+  /// bits; unobserved: p 0.5, 1 bit), as the walks by reach codes hand them. Unpacked from the
+  /// grid's classes (OccupancyGrid::classes) where the full snapshot sorts the grid's values:
+  /// 0.3 against 1.3-2.8 ms on tabletop-4 (issue 52).
+  static GainMap of_classes(const OccupancyGrid& grid, int num_threads = 0);
 
   const GridSpec& spec() const { return spec_; }
   const OccupancyParams& params() const { return params_; }
@@ -65,6 +72,8 @@ class GainMap {
   }
 
  private:
+  GainMap(const GridSpec& spec, const OccupancyParams& params) : spec_(spec), params_(params) {}
+
   GridSpec spec_;
   OccupancyParams params_;
   int code_width_ = 1;

@@ -179,6 +179,15 @@ std::vector<std::uint32_t> creditable_cells(const GainMap& map, const std::vecto
   return out;
 }
 
+/// The snapshot `config`'s metric reads: the classes alone for one whose value is a sum of cell
+/// credits, which reads nothing else of a cell (GainMap::of_classes); the grid's values for the
+/// others.
+GainMap snapshot(const OccupancyGrid& grid, const GainConfig& config) {
+  return method_traits(config.method).cells != nullptr
+             ? GainMap::of_classes(grid, config.num_threads)
+             : GainMap(grid, config.num_threads);
+}
+
 /// Throws when `config` names no metric.
 void require_metric(const GainConfig& config) {
   config.validate();
@@ -263,7 +272,7 @@ std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<con
 
 MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& config)
     : config_((require_metric(config), config)),
-      map_(grid, config.num_threads),
+      map_(snapshot(grid, config)),
       free_(free_space(grid.census())),
       uniform_(method_traits(config.method).crosses_uniform ? uniform_free_space(map_)
                                                             : FreeSpace{}),

@@ -115,7 +115,7 @@ class MetricEvaluator {
   detail::Spaces spaces() const;
 
   GainConfig config_;
-  GainMap map_;
+  GainMap map_;  // of the classes alone for a metric that lists cells (GainMap::of_classes)
   FreeSpace free_, uniform_;  // uniform_ empty when the metric crosses none
   // Per block of the census: it holds or touches an occupied cell's block (within D of one).
   std::vector<std::uint8_t> near_blocks_;
