@@ -148,5 +148,34 @@ TEST(OctantShadows, NoWalkReachesACellTheyHide) {
   EXPECT_GT(walks, 150000u);
 }
 
+// The cells a race samples (OctantShadows::reachable): in their order, the same on one thread
+// and two, and every cell left out hidden from every origin (hides); the cells span many runs.
+TEST(OctantShadows, ReachableLeavesOutOnlyCellsHiddenFromEveryOrigin) {
+  const OccupancyGrid grid = shells();
+  const GridSpec& spec = grid.spec();
+  const OctantShadows shadows(spec, grid.classes(), grid.census(), 2);
+  std::vector<std::uint32_t> cells;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    if (grid.state(i) != CellState::kOccupied) cells.push_back(static_cast<std::uint32_t>(i));
+  }
+  ASSERT_GT(cells.size(), 3u * 4096u);
+  const std::vector<Eigen::Vector3d> origins = {{-1.5, 0.1, 0.2}, {-1.3, -0.3, 0.4}};
+  const std::vector<std::uint32_t> kept = shadows.reachable(origins, cells, 1);
+  EXPECT_EQ(shadows.reachable(origins, cells, 2), kept);
+  ASSERT_LT(kept.size(), cells.size());  // the shells hide some from both
+  std::size_t k = 0;
+  for (const std::uint32_t i : cells) {
+    if (k < kept.size() && kept[k] == i) {
+      ++k;
+      continue;
+    }
+    for (const Eigen::Vector3d& o : origins) {
+      ASSERT_TRUE(shadows.hides(o, shadows.open_octants(o), spec.unravel(i)))
+          << "cell " << i << " left out, origin " << o.transpose();
+    }
+  }
+  EXPECT_EQ(k, kept.size());  // the kept cells in their order
+}
+
 }  // namespace
 }  // namespace vantage

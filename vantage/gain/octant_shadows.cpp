@@ -137,7 +137,8 @@ std::uint8_t OctantShadows::open_octants(const Eigen::Vector3d& origin) const {
 }
 
 std::vector<std::uint32_t> OctantShadows::reachable(std::span<const Eigen::Vector3d> origins,
-                                                    std::span<const std::uint32_t> cells) const {
+                                                    std::span<const std::uint32_t> cells,
+                                                    int num_threads) const {
   if (cells.empty()) return {};
   Index3 lo = spec_.dims, hi = Index3::Constant(-1);
   for (const std::uint32_t i : cells) {
@@ -153,11 +154,19 @@ std::vector<std::uint32_t> OctantShadows::reachable(std::span<const Eigen::Vecto
     if ((need & open_octants(origin)) != need) return {cells.begin(), cells.end()};
     used |= need;
   }
+  // NOTE: in fixed runs of cells, joined in order: the same list for any thread count.
+  constexpr std::size_t kRun = 4096;
+  std::vector<std::vector<std::uint32_t>> runs((cells.size() + kRun - 1) / kRun);
+  run_with_threads(num_threads, [&] {
+    tbb::parallel_for(std::size_t{0}, runs.size(), [&](std::size_t r) {
+      for (std::size_t k = r * kRun; k < std::min(cells.size(), (r + 1) * kRun); ++k) {
+        if ((bits(spec_.unravel(cells[k])) & used) != used) runs[r].push_back(cells[k]);
+      }
+    });
+  });
   std::vector<std::uint32_t> out;
   out.reserve(cells.size());
-  for (const std::uint32_t i : cells) {
-    if ((bits(spec_.unravel(i)) & used) != used) out.push_back(i);
-  }
+  for (const std::vector<std::uint32_t>& run : runs) out.insert(out.end(), run.begin(), run.end());
   return out;
 }
 

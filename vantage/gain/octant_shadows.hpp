@@ -50,9 +50,11 @@ class OctantShadows {
   std::uint8_t open_octants(const Eigen::Vector3d& origin) const;
   /// The cells among `cells` (linear indices, not occupied) that some walk from one of `origins`
   /// may reach: those hidden from every origin (hides) left out, in their order. All of them when
-  /// an origin's walks to them may start in a shadow.
+  /// an origin's walks to them may start in a shadow. On `num_threads` threads (0: all cores);
+  /// the same for any number.
   std::vector<std::uint32_t> reachable(std::span<const Eigen::Vector3d> origins,
-                                       std::span<const std::uint32_t> cells) const;
+                                       std::span<const std::uint32_t> cells,
+                                       int num_threads = 0) const;
   /// Whether every walk from `origin` to a point of `cell`'s cube, a cell that is not occupied,
   /// passes an occupied cell before it; `open` is open_octants(origin). False proves nothing.
   bool hides(const Eigen::Vector3d& origin, std::uint8_t open, const Index3& cell) const {

@@ -1,6 +1,7 @@
 #include "vantage/gain/evaluators/metric_evaluator.hpp"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
 #include <algorithm>
 #include <array>
@@ -273,24 +274,33 @@ std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<con
 MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& config)
     : config_((require_metric(config), config)),
       map_(snapshot(grid, config)),
-      free_(free_space(grid.census())),
-      uniform_(method_traits(config.method).crosses_uniform ? uniform_free_space(map_)
-                                                            : FreeSpace{}),
       near_blocks_(detail::near_occupied_blocks(grid.census())),
-      near_(distances_for(map_, config, &grid.census())),
-      far_(method_traits(config.method).crosses_far ? far_space(map_, near_) : FreeSpace{}),
-      occupied_(occupied_cells(map_, grid.census(), config.method)),
-      creditable_(creditable_cells(map_, near_, near_blocks_, config.method)),
-      shadows_(lists_cells()
-                   ? OctantShadows(grid.spec(), grid.classes(), grid.census(), config.num_threads)
-                   : OctantShadows{}),
-      reach_(lists_cells()
-                 ? detail::reach_codes(map_, near_, free_, config.num_threads,
-                                       detail::uniform_block_codes(grid.census(), near_blocks_))
-                 : std::vector<std::uint8_t>{}),
-      far_unobserved_(method_traits(config.method).crosses_far_unobserved
-                          ? far_unobserved_space(grid.census(), near_blocks_)
-                          : FreeSpace{}) {}
+      near_(distances_for(map_, config, &grid.census())) {
+  const MethodTraits& traits = method_traits(config.method);
+  const BlockCensus& census = grid.census();
+  // NOTE: these read the snapshot, the distances and the census, not each other, and each is one
+  // serial pass (0.3-0.7 ms on tabletop-4, 1.9 ms in turn): side by side, on both threads.
+  run_with_threads(config.num_threads, [&] {
+    tbb::parallel_invoke(
+        [&] { free_ = free_space(census); },
+        [&] {
+          if (traits.crosses_uniform) uniform_ = uniform_free_space(map_);
+          if (traits.crosses_far) far_ = far_space(map_, near_);
+        },
+        [&] { occupied_ = occupied_cells(map_, census, config.method); },
+        [&] { creditable_ = creditable_cells(map_, near_, near_blocks_, config.method); },
+        [&] {
+          if (traits.crosses_far_unobserved) {
+            far_unobserved_ = far_unobserved_space(census, near_blocks_);
+          }
+        });
+  });
+  if (lists_cells()) {
+    shadows_ = OctantShadows(grid.spec(), grid.classes(), census, config.num_threads);
+    reach_ = detail::reach_codes(map_, near_, free_, config.num_threads,
+                                 detail::uniform_block_codes(census, near_blocks_));
+  }
+}
 
 Spaces MetricEvaluator::spaces() const {
   return Spaces{&free_,

@@ -179,8 +179,9 @@ Plan run_cell_sum(const SearchInput& in, const MetricEvaluator& metric) {
   std::vector<Eigen::Vector3d> origins;
   for (const Frustum& view : in.views.frusta) origins.push_back(view.origin());
   const std::vector<std::uint32_t> reachable =
-      metric.shadows().empty() ? metric.creditable()
-                               : metric.shadows().reachable(origins, metric.creditable());
+      metric.shadows().empty()
+          ? metric.creditable()
+          : metric.shadows().reachable(origins, metric.creditable(), in.gain.num_threads);
   // NOTE: each view's rays stopped by a surface, kept across the rounds: a ray is walked to its
   // stop once, not once for each cell of the surface it passes (the same lists).
   std::vector<StoppedRays> stopped(in.views.frusta.size());
