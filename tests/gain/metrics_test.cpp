@@ -16,7 +16,9 @@
 #include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/models/metric_bands.hpp"
 #include "vantage/gain/models/metric_cells.hpp"
+#include "vantage/gain/models/metrics/proximity_count.hpp"
 #include "vantage/gain/models/metrics/surface.hpp"
 #include "vantage/gain/ray_model.hpp"
 #include "vantage/gain/view_gain.hpp"
@@ -492,6 +494,52 @@ TEST(Metrics, RaysSeenStoppedAreNotWalkedAgainAndChangeNoCredit) {
   }
   EXPECT_THROW(evaluator.cells(s.views, even, std::span<StoppedRays* const>(each).first(1)),
                std::invalid_argument);
+}
+
+// A cell-sum metric's views cast in bands of rows side by side (detail::all_views_in_bands), their
+// logs joined, against one pass over each view's rows (all_views): the same values and cell
+// counts to the last bit, with the walk by codes and with the reference walk, counting cells or
+// not, for one view (8 bands), three (6) and all twelve (2), on one thread and two.
+TEST(Metrics, ViewsCastInBandsAreTheOnePassBitForBit) {
+  const SceneLike s;
+  const GainMap map(s.grid, 1);
+  const std::vector<float> near = occupied_distance(map, kProximityCells, 1);
+  const FreeSpace free = free_space(s.grid.census());
+  const std::vector<std::uint8_t> reach = detail::reach_codes(map, near, free, 1);
+  for (const bool codes : {true, false}) {
+    for (const bool count_cells : {true, false}) {
+      detail::MetricContext ctx{.map = map, .near = near, .spacing = 0.7071, .subsample = 1};
+      ctx.count_cells = count_cells;
+      ctx.surface_rates = {0.6, 0.2, 0.08, 0.04, 0.004};
+      if (codes) {
+        ctx.free = &free;
+        ctx.reach = reach.data();
+      }
+      for (const std::size_t n : {std::size_t{1}, std::size_t{3}, s.views.size()}) {
+        const std::span<const Frustum> views = std::span<const Frustum>(s.views).first(n);
+        const auto check = [&](const auto& banded, const auto& one_pass, const char* metric) {
+          for (std::size_t v = 0; v < n; ++v) {
+            const std::string what = cat(metric, codes ? ", by codes" : ", reference walk",
+                                         count_cells ? ", counting" : "", ", ", n, " views");
+            EXPECT_EQ(banded[v].gain, one_pass[v].gain) << what << ", view " << v;
+            EXPECT_EQ(banded[v].cells, one_pass[v].cells) << what << ", view " << v;
+            EXPECT_EQ(banded[v].targets, one_pass[v].targets) << what << ", view " << v;
+          }
+        };
+        for (const int threads : {1, 2}) {
+          check(detail::all_views_in_bands<Surface>(ctx, views, threads),
+                detail::all_views<Surface, detail::CodeWalk>(ctx, views, 1), "surface");
+          check(detail::all_views_in_bands<ProximityCount>(ctx, views, threads),
+                detail::all_views<ProximityCount, detail::CodeWalk>(ctx, views, 1), "proximity");
+        }
+        const std::vector<ViewGain> one = detail::all_views<Surface, detail::CodeWalk>(ctx, views, 1);
+        EXPECT_GT(one.front().gain, 0.0);
+        if (count_cells) {
+          EXPECT_GT(one.front().cells, 0.0);
+        }
+      }
+    }
+  }
 }
 
 // The codes of whole blocks read from the census (detail::uniform_block_codes: a block of free

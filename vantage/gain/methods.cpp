@@ -4,6 +4,7 @@
 #include <array>
 #include <stdexcept>
 
+#include "vantage/gain/models/metric_bands.hpp"
 #include "vantage/gain/models/metric_cells.hpp"
 #include "vantage/gain/models/metric_rays.hpp"
 #include "vantage/gain/models/metrics/area_factor.hpp"
@@ -41,7 +42,7 @@ constexpr MethodTraits metric(GainMethod method, std::string_view name, MetricRo
   MetricFn rays = &all_views<Metric>;
   if constexpr (detail::cell_sum<Metric>()) {
     cells = &all_view_cells<Metric>;
-    rays = &all_views<Metric, detail::CodeWalk>;
+    rays = &detail::all_views_in_bands<Metric>;
   }
   return {method,
           name,

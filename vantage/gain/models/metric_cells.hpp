@@ -10,6 +10,7 @@
 ///   static constexpr bool kCellSum;  // value() is the sum of the credits cell() gives, and a
 ///                                    // cell's credit depends on the cells before it on its ray
 ///                                    // through their states and distances only
+///   double sum;  // the credits so far, each added by Stamp::add (all_views_in_bands joins them)
 /// Only the unobserved cells within D of an occupied cell (kNearRays) are credited.
 
 #include <Eigen/Geometry>
@@ -184,7 +185,7 @@ RayEnd walk_codes(const MetricContext& ctx, const RayImage& image, const std::ui
     if (target != nullptr && walk.cell() == *target) return {false, true};
     if (state == CellState::kOccupied) return {previous_unknown, false};
     previous_unknown = state == CellState::kUnobserved;
-    if (ctx.count_cells && previous_unknown && in_range && seen.take(linear)) result.cells += 1.0;
+    if (ctx.count_cells && previous_unknown && in_range) seen.add(linear, 1.0, result.cells);
     if constexpr (quiet_cells<Metric>() == QuietCells::kFar) {
       if (!ctx.count_cells && ctx.far != nullptr && code >= kFarCode &&
           ctx.far->cross(walk, spec)) {

@@ -114,9 +114,7 @@ RayEnd walk_ray(const MetricContext& ctx, const RayImage& image, const Code* cod
     if (target != nullptr && walk.cell() == *target) return {false, true};
     if (v.state == CellState::kOccupied) return {previous_unknown, false};
     previous_unknown = unobserved;
-    if (ctx.count_cells && previous_unknown && in_range && seen.take(linear)) {
-      result.cells += weight;
-    }
+    if (ctx.count_cells && previous_unknown && in_range) seen.add(linear, weight, result.cells);
     visibility *= 1.0 - v.p;  // eq. M1
     if constexpr (quiet_cells<Metric>() == QuietCells::kFar) {
       const bool quiet =
@@ -183,15 +181,25 @@ struct SnapshotWalk {
 /// meet the grid, and a free-inert metric's rays cross free cubes in one step (GridWalk::leave_box,
 /// which lands where stepping lands), the reference's values to the last bit (docs/model.md, "The
 /// metrics at speed"). Without, the reference: every ray, cell by cell. Each ray is walked by
-/// `walk_one` (SnapshotWalk's signature), which must hand the metric what walk_ray hands it.
+/// `walk_one` (SnapshotWalk's signature), which must hand the metric what walk_ray hands it. Of
+/// the image's rows, only band `band` of `bands` bands of consecutive rows, as even as they come.
 template <typename Metric, typename Walk = SnapshotWalk>
 ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
-                   Stamp& seen, const Walk& walk_one = {}) {
+                   Stamp& seen, const Walk& walk_one = {}, int band = 0, int bands = 1) {
   const GridSpec& spec = ctx.map.spec();
   const RayImage image(ctx.map.spec(), ctx.spacing, ctx.subsample, ctx.coarseness, view);
   const Eigen::Vector3d& o = image.origin;
   int row_lo = image.first, row_hi = image.rows, col_lo = image.first, col_hi = image.cols;
   if (ctx.free != nullptr) image.rays_on_grid(spec, row_lo, row_hi, col_lo, col_hi);
+  if (bands > 1) {
+    const long long rows = std::max(0, row_hi - row_lo + image.step - 1) / image.step;
+    const auto row_at = [&](int b) {
+      return row_lo + image.step * static_cast<int>(rows * b / bands);
+    };
+    const int first = row_at(band), last = row_at(band + 1);
+    row_lo = first;
+    row_hi = std::min(row_hi, last);
+  }
   const std::optional<Eigen::AlignedBox3d> reach = reach_box<Metric>(ctx);
   return with_codes(ctx.map, [&](const auto* codes) {
     ViewGain result;

@@ -40,6 +40,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "vantage/gain/free_space.hpp"
@@ -74,6 +75,9 @@ struct RayCell {
 /// which stays in cache where a word per cell would not), cleared for each view.
 struct Stamp {
   std::vector<std::uint64_t>& bits;
+  /// When set, what add() adds, in order: the cell and its addend (the bands of one view's rays,
+  /// detail::all_views_in_bands).
+  std::vector<std::pair<std::uint32_t, double>>* log = nullptr;
   /// True the first time a cell is taken in this view.
   bool take(std::size_t i) {
     std::uint64_t& word = bits[i >> 6];
@@ -81,6 +85,12 @@ struct Stamp {
     if (word & bit) return false;
     word |= bit;
     return true;
+  }
+  /// The first time cell `i` is taken in this view, adds `x` to `sum` (and logs both).
+  void add(std::size_t i, double x, double& sum) {
+    if (!take(i)) return;
+    sum += x;
+    if (log != nullptr) log->emplace_back(static_cast<std::uint32_t>(i), x);
   }
   void clear() { std::fill(bits.begin(), bits.end(), std::uint64_t{0}); }
 };

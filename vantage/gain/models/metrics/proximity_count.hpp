@@ -18,8 +18,8 @@ struct ProximityCount {
   double sum = 0.0;
   void begin_ray() {}
   void cell(const RayCell& c, Stamp& s) {
-    if (c.in_range && unknown(c) && c.near <= kProximityCells && s.take(c.linear)) {
-      sum += c.weight * (kProximityCells - c.near);
+    if (c.in_range && unknown(c) && c.near <= kProximityCells) {
+      s.add(c.linear, c.weight * (kProximityCells - c.near), sum);
     }
   }
   void end_ray(bool, Stamp&) {}

@@ -37,7 +37,7 @@ struct Surface {
     if (!unknown(c)) return;
     const std::size_t k = surface_class(c.near);
     const double r = rates[k];
-    if (k + 1 < kSurfaceClasses && c.in_range && s.take(c.linear)) sum += c.weight * v * r;
+    if (k + 1 < kSurfaceClasses && c.in_range) s.add(c.linear, c.weight * v * r, sum);
     v *= 1.0 - r;
   }
   void end_ray(bool, Stamp&) {}
