@@ -5,6 +5,7 @@
 
 #include "vantage/planner/search.hpp"
 #include "vantage/planner/sequence.hpp"
+#include "vantage/util/parallel.hpp"
 
 namespace vantage {
 
@@ -19,7 +20,12 @@ Plan plan_next_view(const OccupancyGrid& grid, std::span<const Candidate> candid
   const CandidateViews views(candidates);
   GainConfig gain = config.gain;
   gain.method = config.method.gain;
-  return search.run(SearchInput{grid, candidates, views, config, gain, start, seed});
+  // NOTE: the decision's steps in one arena of its threads (run_with_threads).
+  Plan plan;
+  run_with_threads(gain.num_threads, [&] {
+    plan = search.run(SearchInput{grid, candidates, views, config, gain, start, seed});
+  });
+  return plan;
 }
 
 }  // namespace vantage
