@@ -358,16 +358,18 @@ std::vector<ViewCells> all_view_cells(const MetricContext& given, std::span<cons
           ctx, views[v], cells.subspan(from, n), std::span<const Index3>(at).subspan(from, n),
           taken.local(), stopped.empty() ? nullptr : stopped[v], found[task]);
     });
+    // NOTE: each view's runs joined in order, the views side by side (the stopped rays' hash
+    // inserts were a serial millisecond of a round).
+    tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
+      for (std::size_t r = 0; r < runs; ++r) {
+        ViewCells& part = parts[v * runs + r];
+        out[v].cells.insert(out[v].cells.end(), part.cells.begin(), part.cells.end());
+        out[v].seen.insert(out[v].seen.end(), part.seen.begin(), part.seen.end());
+        out[v].targets += part.targets;
+        if (!stopped.empty()) stopped[v]->at.merge(found[v * runs + r].at);
+      }
+    });
   });
-  for (std::size_t v = 0; v < views.size(); ++v) {
-    for (std::size_t r = 0; r < runs; ++r) {
-      ViewCells& part = parts[v * runs + r];
-      out[v].cells.insert(out[v].cells.end(), part.cells.begin(), part.cells.end());
-      out[v].seen.insert(out[v].seen.end(), part.seen.begin(), part.seen.end());
-      out[v].targets += part.targets;
-      if (!stopped.empty()) stopped[v]->at.merge(found[v * runs + r].at);
-    }
-  }
   return out;
 }
 
