@@ -1,5 +1,7 @@
 #include "vantage/planner/searches/race.hpp"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -109,22 +111,25 @@ std::vector<std::size_t> still_racing(const std::vector<std::size_t>& alive, std
                                       std::span<const double> factor,
                                       const std::vector<double>& scores, double unseen, int bits,
                                       const RaceRules& rules) {
+  // NOTE: each pair's difference side by side (within the caller's arena), kept in order.
+  std::vector<std::uint8_t> stays(alive.size(), 1);
+  tbb::parallel_for(std::size_t{0}, alive.size(), [&](std::size_t a) {
+    if (a == lead) return;
+    const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]],
+                                      targets[alive[a]], factor[alive[a]], rules.boost);
+    double gap = 0.0, variance = 0.0;
+    for (int o = 0; o <= kMostBoost; ++o) {
+      const double w = weight(bits, o);
+      gap += w * sum[o];
+      variance += w * (w - 1.0) * sq[o];
+    }
+    const double error = std::sqrt(variance + unseen * unseen);
+    const double slack = rules.tolerance * scores[lead];
+    if (gap + slack > rules.standard_errors * error && gap + slack > 0.0) stays[a] = 0;
+  });
   std::vector<std::size_t> next;
   for (std::size_t a = 0; a < alive.size(); ++a) {
-    if (a != lead) {
-      const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]],
-                                        targets[alive[a]], factor[alive[a]], rules.boost);
-      double gap = 0.0, variance = 0.0;
-      for (int o = 0; o <= kMostBoost; ++o) {
-        const double w = weight(bits, o);
-        gap += w * sum[o];
-        variance += w * (w - 1.0) * sq[o];
-      }
-      const double error = std::sqrt(variance + unseen * unseen);
-      const double slack = rules.tolerance * scores[lead];
-      if (gap + slack > rules.standard_errors * error && gap + slack > 0.0) continue;
-    }
-    next.push_back(alive[a]);
+    if (stays[a]) next.push_back(alive[a]);
   }
   return next;
 }
@@ -173,8 +178,9 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
       }
     }
     const double unseen = rules.unseen ? unseen_target(largest, alive, factor, bits) : 0.0;
-    std::vector<double> scores;
-    for (std::size_t a = 0; a < alive.size(); ++a) {
+    // NOTE: each candidate's own lists and score, side by side (within the caller's arena).
+    std::vector<double> scores(alive.size());
+    tbb::parallel_for(std::size_t{0}, alive.size(), [&](std::size_t a) {
       Targets& mine = targets[alive[a]];
       mine = united(mine, merged(std::span(lists).subspan(starts[a], starts[a + 1] - starts[a])));
       ByBoost sum{};
@@ -182,9 +188,9 @@ Race race_candidates(const std::vector<std::vector<std::uint32_t>>& levels,
       // NOTE: a power of two times the sum: without boosts, 2^bits times it to the last bit.
       double score = 0.0;
       for (int o = 0; o <= kMostBoost; ++o) score += weight(bits, o) * factor[alive[a]] * sum[o];
-      scores.push_back(score);
-      race.scores[alive[a]] = scores.back();
-    }
+      scores[a] = score;
+      race.scores[alive[a]] = score;
+    });
     race.bits = bits;
     const std::size_t lead = choose_best(scores);
     if (bits == 0) {
