@@ -274,32 +274,40 @@ std::vector<ViewGain> metric_view_gains(const OccupancyGrid& grid, std::span<con
 MetricEvaluator::MetricEvaluator(const OccupancyGrid& grid, const GainConfig& config)
     : config_((require_metric(config), config)),
       map_(snapshot(grid, config)),
-      near_blocks_(detail::near_occupied_blocks(grid.census())),
-      near_(distances_for(map_, config, &grid.census())) {
+      near_blocks_(detail::near_occupied_blocks(grid.census())) {
   const MethodTraits& traits = method_traits(config.method);
   const BlockCensus& census = grid.census();
-  // NOTE: these read the snapshot, the distances and the census, not each other, and each is one
-  // serial pass (0.3-0.7 ms on tabletop-4, 1.9 ms in turn): side by side, on both threads.
+  // NOTE: the shadows read the grid's classes alone, beside the chain that reads the snapshot:
+  // the distances, then the passes that read them (each one serial pass, 0.3-0.7 ms on
+  // tabletop-4, 1.9 ms in turn) side by side, then the codes; all in the decision's arena.
   run_with_threads(config.num_threads, [&] {
     tbb::parallel_invoke(
-        [&] { free_ = free_space(census); },
         [&] {
-          if (traits.crosses_uniform) uniform_ = uniform_free_space(map_);
-          if (traits.crosses_far) far_ = far_space(map_, near_);
+          if (lists_cells()) {
+            shadows_ = OctantShadows(grid.spec(), grid.classes(), census, config.num_threads);
+          }
         },
-        [&] { occupied_ = occupied_cells(map_, census, config.method); },
-        [&] { creditable_ = creditable_cells(map_, near_, near_blocks_, config.method); },
         [&] {
-          if (traits.crosses_far_unobserved) {
-            far_unobserved_ = far_unobserved_space(census, near_blocks_);
+          near_ = distances_for(map_, config, &census);
+          tbb::parallel_invoke(
+              [&] { free_ = free_space(census); },
+              [&] {
+                if (traits.crosses_uniform) uniform_ = uniform_free_space(map_);
+                if (traits.crosses_far) far_ = far_space(map_, near_);
+              },
+              [&] { occupied_ = occupied_cells(map_, census, config.method); },
+              [&] { creditable_ = creditable_cells(map_, near_, near_blocks_, config.method); },
+              [&] {
+                if (traits.crosses_far_unobserved) {
+                  far_unobserved_ = far_unobserved_space(census, near_blocks_);
+                }
+              });
+          if (lists_cells()) {
+            reach_ = detail::reach_codes(map_, near_, free_, config.num_threads,
+                                         detail::uniform_block_codes(census, near_blocks_));
           }
         });
   });
-  if (lists_cells()) {
-    shadows_ = OctantShadows(grid.spec(), grid.classes(), census, config.num_threads);
-    reach_ = detail::reach_codes(map_, near_, free_, config.num_threads,
-                                 detail::uniform_block_codes(census, near_blocks_));
-  }
 }
 
 Spaces MetricEvaluator::spaces() const {
