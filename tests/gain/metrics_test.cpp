@@ -532,7 +532,8 @@ TEST(Metrics, ViewsCastInBandsAreTheOnePassBitForBit) {
           check(detail::all_views_in_bands<ProximityCount>(ctx, views, threads),
                 detail::all_views<ProximityCount, detail::CodeWalk>(ctx, views, 1), "proximity");
         }
-        const std::vector<ViewGain> one = detail::all_views<Surface, detail::CodeWalk>(ctx, views, 1);
+        const std::vector<ViewGain> one =
+            detail::all_views<Surface, detail::CodeWalk>(ctx, views, 1);
         EXPECT_GT(one.front().gain, 0.0);
         if (count_cells) {
           EXPECT_GT(one.front().cells, 0.0);

@@ -24,9 +24,9 @@ void run_with_threads(int num_threads, Work&& work) {
   const int threads = std::min(num_threads, tbb::info::default_concurrency());
   // NOTE: inside an arena of as many threads already (a decision's steps, in its one arena), the
   // work runs in it: a new arena each step cost its creation and its threads' wake-up.
-  if (num_threads == 0 || (tbb::this_task_arena::current_thread_index() !=
-                               tbb::task_arena::not_initialized &&
-                           tbb::this_task_arena::max_concurrency() == threads)) {
+  if (num_threads == 0 ||
+      (tbb::this_task_arena::current_thread_index() != tbb::task_arena::not_initialized &&
+       tbb::this_task_arena::max_concurrency() == threads)) {
     std::forward<Work>(work)();
     return;
   }

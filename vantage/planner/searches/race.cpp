@@ -115,8 +115,8 @@ std::vector<std::size_t> still_racing(const std::vector<std::size_t>& alive, std
   std::vector<std::uint8_t> stays(alive.size(), 1);
   tbb::parallel_for(std::size_t{0}, alive.size(), [&](std::size_t a) {
     if (a == lead) return;
-    const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]],
-                                      targets[alive[a]], factor[alive[a]], rules.boost);
+    const auto [sum, sq] = difference(targets[alive[lead]], factor[alive[lead]], targets[alive[a]],
+                                      factor[alive[a]], rules.boost);
     double gap = 0.0, variance = 0.0;
     for (int o = 0; o <= kMostBoost; ++o) {
       const double w = weight(bits, o);
