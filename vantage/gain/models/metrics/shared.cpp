@@ -67,36 +67,35 @@ BallParts ball_parts(const GridSpec& spec, double radius, int r) {
   return parts;
 }
 
-/// Adds cell i to `mine` when it is occupied, with its occupied face neighbours (BallParts' bits).
-template <typename IsOccupied>
-void add_occupied(const GainMap& map, std::size_t i, const IsOccupied& is_occupied,
-                  std::vector<std::pair<std::uint32_t, std::uint8_t>>& mine) {
-  if (map.value(i).state != CellState::kOccupied) return;
-  const Index3 c = map.spec().unravel(i);
-  int sides = 0;
-  for (int a = 0; a < 3; ++a) {
-    Index3 n = c;
-    n[a] += 1;
-    if (is_occupied(n)) sides |= 1 << (2 * a);
-    n[a] -= 2;
-    if (is_occupied(n)) sides |= 1 << (2 * a + 1);
-  }
-  mine.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint8_t>(sides));
-}
-
 /// The occupied cells of the slices [z0, z1) of cells, in ascending linear index, each with its
-/// occupied face neighbours (BallParts' bits); with a census, only in the blocks it says hold one.
+/// occupied face neighbours (BallParts' bits: +x, -x, +y, -y, +z, -z); with a census, only in the
+/// blocks it says hold one. Read from the snapshot's codes, each run's cells by their row.
 void list_occupied(const GainMap& map, const BlockCensus* census, int z0, int z1,
                    std::vector<std::pair<std::uint32_t, std::uint8_t>>& mine) {
   const GridSpec& spec = map.spec();
-  const auto is_occupied = [&](const Index3& c) {
-    return spec.contains(c) && map.value(spec.linear(c)).state == CellState::kOccupied;
-  };
-  for_block_runs(spec, z0, z1, [&](std::size_t block, std::size_t first, int n) {
-    if (census != nullptr && !(census->classes(block) & class_bit(CellState::kOccupied))) return;
-    for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i) {
-      add_occupied(map, i, is_occupied, mine);
-    }
+  std::vector<std::uint8_t> occupied_code;
+  for (const GainMap::Value& v : map.values()) {
+    occupied_code.push_back(v.state == CellState::kOccupied ? 1 : 0);
+  }
+  const auto sy = static_cast<std::size_t>(spec.dims.x());
+  const std::size_t sz = sy * static_cast<std::size_t>(spec.dims.y());
+  with_codes(map, [&](const auto* codes) {
+    const auto occupied = [&](std::size_t j) { return occupied_code[codes[j]] != 0; };
+    for_block_runs(spec, z0, z1, [&](std::size_t block, std::size_t first, int n) {
+      if (census != nullptr && !(census->classes(block) & class_bit(CellState::kOccupied))) return;
+      Index3 c = spec.unravel(first);
+      for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i, ++c.x()) {
+        if (!occupied(i)) continue;
+        int sides = 0;
+        if (c.x() + 1 < spec.dims.x() && occupied(i + 1)) sides |= 1 << 0;
+        if (c.x() > 0 && occupied(i - 1)) sides |= 1 << 1;
+        if (c.y() + 1 < spec.dims.y() && occupied(i + sy)) sides |= 1 << 2;
+        if (c.y() > 0 && occupied(i - sy)) sides |= 1 << 3;
+        if (c.z() + 1 < spec.dims.z() && occupied(i + sz)) sides |= 1 << 4;
+        if (c.z() > 0 && occupied(i - sz)) sides |= 1 << 5;
+        mine.emplace_back(static_cast<std::uint32_t>(i), static_cast<std::uint8_t>(sides));
+      }
+    });
   });
 }
 
