@@ -81,29 +81,35 @@ inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const
   static_assert(BlockCensus::kBlock == FreeSpace::kBlock);
   const GridSpec& spec = map.spec();
   std::vector<std::uint8_t> out(map.size());
-  run_with_threads(num_threads, [&] {
-    tbb::parallel_for(0, spec.dims.z(), [&](int z) {
-      for_block_runs(spec, z, z + 1, [&](std::size_t block, std::size_t first, int n) {
-        const std::uint8_t whole = block_codes.empty() ? kMixedBlock : block_codes[block];
-        if (whole != kMixedBlock) {
-          std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(first), n, whole);
-          return;
-        }
-        for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i) {
-          const CellState state = map.value(i).state;
-          if (state == CellState::kFree) {
-            // NOTE: a block of free cells only lies in a free cube of every octant.
-            const bool cube = !free.empty() && free.extent[0][block] > 0;
-            out[i] = cube ? kFreeBlockCode : kFreeCode;
-          } else if (state == CellState::kOccupied) {
-            out[i] = kOccupiedCode;
-          } else if (!(near[i] <= kProximityCells)) {
-            out[i] = kFarCode;
-          } else {
-            const double d = near[i];
-            out[i] = static_cast<std::uint8_t>(std::lround(d * d));
+  // NOTE: each cell's state by its snapshot code, from a table of the codes' states.
+  std::vector<CellState> state_of;
+  for (const GainMap::Value& v : map.values()) state_of.push_back(v.state);
+  with_codes(map, [&](const auto* codes) {
+    run_with_threads(num_threads, [&] {
+      tbb::parallel_for(0, spec.dims.z(), [&](int z) {
+        for_block_runs(spec, z, z + 1, [&](std::size_t block, std::size_t first, int n) {
+          const std::uint8_t whole = block_codes.empty() ? kMixedBlock : block_codes[block];
+          if (whole != kMixedBlock) {
+            std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(first), n, whole);
+            return;
           }
-        }
+          // NOTE: a block of free cells only lies in a free cube of every octant.
+          const std::uint8_t free_code =
+              !free.empty() && free.extent[0][block] > 0 ? kFreeBlockCode : kFreeCode;
+          for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i) {
+            const CellState state = state_of[codes[i]];
+            if (state == CellState::kFree) {
+              out[i] = free_code;
+            } else if (state == CellState::kOccupied) {
+              out[i] = kOccupiedCode;
+            } else if (!(near[i] <= kProximityCells)) {
+              out[i] = kFarCode;
+            } else {
+              const double d = near[i];
+              out[i] = static_cast<std::uint8_t>(std::lround(d * d));
+            }
+          }
+        });
       });
     });
   });
