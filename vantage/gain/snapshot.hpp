@@ -98,6 +98,32 @@ decltype(auto) with_codes(const GainMap& map, F&& f) {
   }
 }
 
+/// A cell's class bit (class_bit), read from the snapshot's codes of width `Code` by a table of
+/// the codes' classes, where GainMap::value switches on the width at each call.
+template <typename Code>
+struct ClassOf {
+  const Code* codes;
+  std::vector<std::uint8_t> bit;  ///< per code
+
+  explicit ClassOf(const GainMap& map) : codes(map.codes<Code>()) {
+    for (const GainMap::Value& v : map.values()) bit.push_back(class_bit(v.state));
+  }
+  std::uint8_t operator()(std::size_t i) const { return bit[codes[i]]; }
+};
+
+/// Runs `f(ClassOf<Code>)` with the snapshot's code width; returns what `f` returns.
+template <typename F>
+decltype(auto) with_classes(const GainMap& map, F&& f) {
+  switch (map.code_width()) {
+    case 1:
+      return f(ClassOf<std::uint8_t>(map));
+    case 2:
+      return f(ClassOf<std::uint16_t>(map));
+    default:
+      return f(ClassOf<std::uint32_t>(map));
+  }
+}
+
 /// Inclusive index box of the grid cells that may lie inside a frustum (its bounding box, cut to
 /// the grid); empty when the frustum misses the grid.
 struct CellBox {

@@ -20,31 +20,6 @@ namespace {
 constexpr int kShift = ClassBlocks::kShift;
 constexpr int kBlock = ClassBlocks::kBlock;
 
-/// A cell's class bit, read from the snapshot's codes of width `Code`.
-template <typename Code>
-struct ClassOf {
-  const Code* codes;
-  std::vector<std::uint8_t> bit;  ///< per code
-
-  explicit ClassOf(const GainMap& map) : codes(map.codes<Code>()) {
-    for (const GainMap::Value& v : map.values()) bit.push_back(class_bit(v.state));
-  }
-  std::uint8_t operator()(std::size_t i) const { return bit[codes[i]]; }
-};
-
-/// Runs `f(ClassOf<Code>)` with the snapshot's code width.
-template <typename F>
-decltype(auto) with_classes(const GainMap& map, F&& f) {
-  switch (map.code_width()) {
-    case 1:
-      return f(ClassOf<std::uint8_t>(map));
-    case 2:
-      return f(ClassOf<std::uint16_t>(map));
-    default:
-      return f(ClassOf<std::uint32_t>(map));
-  }
-}
-
 /// The octant distance transform of ClassBlocks::depth, one pass per octant: a block with a known
 /// cell is 0, one without is 1 + the least of its seven neighbours on the octant's side (0 past
 /// the grid's edge). Exact for the Chebyshev distance restricted to the octant. A block cut by the

@@ -81,10 +81,7 @@ inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const
   static_assert(BlockCensus::kBlock == FreeSpace::kBlock);
   const GridSpec& spec = map.spec();
   std::vector<std::uint8_t> out(map.size());
-  // NOTE: each cell's state by its snapshot code, from a table of the codes' states.
-  std::vector<CellState> state_of;
-  for (const GainMap::Value& v : map.values()) state_of.push_back(v.state);
-  with_codes(map, [&](const auto* codes) {
+  with_classes(map, [&](const auto& class_of) {
     run_with_threads(num_threads, [&] {
       tbb::parallel_for(0, spec.dims.z(), [&](int z) {
         for_block_runs(spec, z, z + 1, [&](std::size_t block, std::size_t first, int n) {
@@ -97,10 +94,10 @@ inline std::vector<std::uint8_t> reach_codes(const GainMap& map, std::span<const
           const std::uint8_t free_code =
               !free.empty() && free.extent[0][block] > 0 ? kFreeBlockCode : kFreeCode;
           for (std::size_t i = first; i < first + static_cast<std::size_t>(n); ++i) {
-            const CellState state = state_of[codes[i]];
-            if (state == CellState::kFree) {
+            const std::uint8_t bit = class_of(i);
+            if (bit == class_bit(CellState::kFree)) {
               out[i] = free_code;
-            } else if (state == CellState::kOccupied) {
+            } else if (bit == class_bit(CellState::kOccupied)) {
               out[i] = kOccupiedCode;
             } else if (!(near[i] <= kProximityCells)) {
               out[i] = kFarCode;

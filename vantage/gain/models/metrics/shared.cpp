@@ -69,18 +69,17 @@ BallParts ball_parts(const GridSpec& spec, double radius, int r) {
 
 /// The occupied cells of the slices [z0, z1) of cells, in ascending linear index, each with its
 /// occupied face neighbours (BallParts' bits: +x, -x, +y, -y, +z, -z); with a census, only in the
-/// blocks it says hold one. Read from the snapshot's codes, each run's cells by their row.
+/// blocks it says hold one. Read by the snapshot's codes (with_classes), each run's cells by their
+/// row.
 void list_occupied(const GainMap& map, const BlockCensus* census, int z0, int z1,
                    std::vector<std::pair<std::uint32_t, std::uint8_t>>& mine) {
   const GridSpec& spec = map.spec();
-  std::vector<std::uint8_t> occupied_code;
-  for (const GainMap::Value& v : map.values()) {
-    occupied_code.push_back(v.state == CellState::kOccupied ? 1 : 0);
-  }
   const auto sy = static_cast<std::size_t>(spec.dims.x());
   const std::size_t sz = sy * static_cast<std::size_t>(spec.dims.y());
-  with_codes(map, [&](const auto* codes) {
-    const auto occupied = [&](std::size_t j) { return occupied_code[codes[j]] != 0; };
+  with_classes(map, [&](const auto& class_of) {
+    const auto occupied = [&](std::size_t j) {
+      return class_of(j) == class_bit(CellState::kOccupied);
+    };
     for_block_runs(spec, z0, z1, [&](std::size_t block, std::size_t first, int n) {
       if (census != nullptr && !(census->classes(block) & class_bit(CellState::kOccupied))) return;
       Index3 c = spec.unravel(first);
