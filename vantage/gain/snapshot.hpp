@@ -35,8 +35,8 @@ class GainMap {
   /// of its probability (a metric whose value is a sum of cell credits, models/metric_cells.hpp):
   /// three values, ascending, each its class's nominal one (free: p 0, occupied: p 1, both 0
   /// bits; unobserved: p 0.5, 1 bit), as the walks by reach codes hand them. Unpacked from the
-  /// grid's classes (OccupancyGrid::classes) where the full snapshot sorts the grid's values:
-  /// 0.3 against 1.3-2.8 ms on tabletop-4 (issue 52).
+  /// grid's classes (OccupancyGrid::classes) where the full snapshot sorts the grid's values
+  /// (`BM_MetricSetUp`; docs/decision.md, "The set-up of a metric decision").
   static GainMap of_classes(const OccupancyGrid& grid, int num_threads = 0);
 
   const GridSpec& spec() const { return spec_; }
