@@ -2,11 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "tests/planner/views_around.hpp"
+#include "vantage/gain/evaluators/swept.hpp"
 #include "vantage/gain/methods.hpp"
 #include "vantage/planner/search.hpp"
 #include "vantage/util/text.hpp"
@@ -319,6 +322,55 @@ TEST(PlannerMethod, TheDefaultFollowsTheTaskAndThePose) {
     // NOTE: a default that weighs travel only where a pose gives one.
     EXPECT_TRUE(!uses_travel(default_planner_method(ViewTask::kObjects, pose)) || pose);
   }
+}
+
+// The swept search ranked by travel proves far candidates out by their bounds (the frustum's
+// cells at their travel's discount) before it casts their rays: those it leaves at their bounds
+// could not have been among its first round's 12 leaders, so it chooses as if it had cast them.
+TEST(Planner, TheSweptSearchProvesOutOnlyCandidatesThatCouldNotLead) {
+  OccupancyGrid grid(GridSpec::centered({0, 0, 0}, 0.05, {160, 24, 10}));
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    const Index3 cell = grid.spec().unravel(i);
+    if (cell.x() % 20 < 2 && cell.y() >= 10 && cell.y() < 14) grid.hit(i);  // posts between views
+  }
+  std::vector<Candidate> candidates;
+  for (int k = 0; k < 80; ++k) {
+    const Eigen::Vector3d eye(-3.9 + 0.1 * k, -1.0, 0.0);
+    candidates.push_back({Frustum(look_at(eye, eye + Eigen::Vector3d(0.3, 1.0, 0.0)),
+                                  SensorFov{deg2rad(57), deg2rad(43), 0.2, 1.5}),
+                          0.2 * k, true});
+  }
+  PlannerConfig config;
+  config.method = PlannerMethod::kLatombe;
+  config.search = DecisionSearch::kSwept;
+  config.gain.num_threads = 1;
+  const Plan plan = plan_next_view(grid, candidates, config);
+  // Every candidate's first-round estimate and bound, cast here.
+  std::vector<Frustum> views;
+  for (const Candidate& c : candidates) views.push_back(c.view);
+  SweptConfig swept;
+  swept.rays_across = config.swept_rays;
+  const std::vector<double> estimate =
+      swept_view_counts(ClassMap(grid), views, GainQuantity::kCount, swept);
+  const std::vector<double> bound = swept_view_bounds(views, grid.spec().resolution, swept);
+  std::vector<double> scores;
+  for (std::size_t c = 0; c < views.size(); ++c) {
+    scores.push_back(estimate[c] * std::exp(-config.lambda * candidates[c].travel));
+  }
+  std::vector<double> sorted = scores;
+  std::sort(sorted.begin(), sorted.end(), std::greater<>());
+  const double twelfth = sorted[11];
+  std::size_t proved_out = 0;
+  for (std::size_t c = 0; c < views.size(); ++c) {
+    const double factor = std::exp(-config.lambda * candidates[c].travel);
+    if (!plan.estimated[c] || plan.gains[c].cells != bound[c]) continue;
+    ++proved_out;
+    EXPECT_DOUBLE_EQ(plan.scores[c], bound[c] * factor) << c;
+    EXPECT_LT(scores[c], twelfth) << c << " was proved out but would have led";
+  }
+  EXPECT_GE(proved_out, 30u);
+  // ... and the choice is the best of the cast estimates' leaders, as without the bounds.
+  EXPECT_GE(scores[plan.best], twelfth);
 }
 
 }  // namespace

@@ -140,7 +140,8 @@ void print_estimate_note(const Plan& plan, const PlannerConfig& planner) {
                    "gain and score, listed after the views evaluated in full (its rays "
                    "weigh a cell by the part of its volume they sweep, so an estimate may "
                    "exceed the chosen view's exact score: the leaders were raced on "
-                   "their exact cells)");
+                   "their exact cells), or, for a view its travel put out of the first "
+                   "round before its rays were cast, the bound: its frustum's cells");
 }
 
 /// The table of the --top candidates in Plan::ranking's order, '~' marking an estimate, with a

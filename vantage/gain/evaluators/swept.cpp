@@ -16,6 +16,10 @@
 namespace vantage {
 namespace {
 
+/// What a bound is scaled by so that the estimate's rounding stays below it: a ray's terms are
+/// summed over at most a few thousand cells, each rounded by 2^-53 of the sum.
+constexpr double kSweptBoundSlack = 1.0 + 1e-9;
+
 /// What one ray credits: sum over the unobserved cells it crosses inside [r_min, r_max] of
 /// v * (r1^3 - r0^3), v falling by alpha past each unobserved cell (1 for greedy's alpha), the
 /// ray ending in an occupied cell. Cells outside the grid are free. `d` is a unit direction, so
@@ -59,9 +63,10 @@ Eigen::Vector2d jitter(int i, int j) {
           (static_cast<double>((bits >> 16) & 0xffffffu) + 0.5) * 0x1.0p-24};
 }
 
-/// One view's estimate [cells].
-double view_credit(const ClassMap& map, const FreeSpace& free, const Frustum& view, double alpha,
-                   const SweptConfig& config) {
+/// Calls `ray(omega, d)` for each pixel of the view's image, row by row: d the unit direction of
+/// the ray through a point jittered within the pixel, omega the pixel's solid angle around it.
+template <typename Ray>
+void for_each_pixel_ray(const Frustum& view, const SweptConfig& config, Ray&& ray) {
   const SensorFov& fov = view.fov();
   const double tan_h = std::tan(fov.h_fov / 2), tan_v = std::tan(fov.v_fov / 2);
   const double pitch = 2.0 * std::max(tan_h, tan_v) / config.rays_across;
@@ -69,25 +74,37 @@ double view_credit(const ClassMap& map, const FreeSpace& free, const Frustum& vi
   const int nw = std::max(1, static_cast<int>(std::ceil(2.0 * tan_v / pitch)));
   const double du = 2.0 * tan_h / nu, dw = 2.0 * tan_v / nw;
   const Eigen::Matrix3d R = view.T_world_sensor().linear();
-  const Eigen::Vector3d o = view.origin();
-  // The ray through image point (u, w), u and w in pixels; its credit weighted by the solid
-  // angle of a pixel around it.
-  const auto cast = [&](double u_px, double w_px) {
-    const double u = -tan_h + u_px * du, w = -tan_v + w_px * dw;
-    const double norm2 = 1.0 + u * u + w * w;
-    const double omega = du * dw / (norm2 * std::sqrt(norm2));
-    const Eigen::Vector3d d = R * (Eigen::Vector3d(1.0, u, w) / std::sqrt(norm2));
-    return omega * ray_credit(map, free, o, d, fov.min_range, fov.max_range, alpha, config.epsilon);
-  };
-  double sum = 0.0;
   for (int j = 0; j < nw; ++j) {
     for (int i = 0; i < nu; ++i) {
       const Eigen::Vector2d p = jitter(i, j);
-      sum += cast(i + p.x(), j + p.y());
+      const double u = -tan_h + (i + p.x()) * du, w = -tan_v + (j + p.y()) * dw;
+      const double norm2 = 1.0 + u * u + w * w;
+      const double omega = du * dw / (norm2 * std::sqrt(norm2));
+      ray(omega, Eigen::Vector3d(R * (Eigen::Vector3d(1.0, u, w) / std::sqrt(norm2))));
     }
   }
+}
+
+/// One view's estimate [cells].
+double view_credit(const ClassMap& map, const FreeSpace& free, const Frustum& view, double alpha,
+                   const SweptConfig& config) {
+  const SensorFov& fov = view.fov();
+  const Eigen::Vector3d o = view.origin();
+  double sum = 0.0;
+  for_each_pixel_ray(view, config, [&](double omega, const Eigen::Vector3d& d) {
+    sum += omega * ray_credit(map, free, o, d, fov.min_range, fov.max_range, alpha,
+                              config.epsilon);
+  });
   const double h = map.spec().resolution;
   return sum / (3.0 * h * h * h);
+}
+
+/// Throws std::invalid_argument for rays across outside [1, 4096].
+void check_rays_across(const SweptConfig& config) {
+  if (config.rays_across < 1 || config.rays_across > 4096) {
+    throw std::invalid_argument(
+        cat("swept.rays_across must lie in [1, 4096], got ", config.rays_across));
+  }
 }
 
 }  // namespace
@@ -98,10 +115,7 @@ std::vector<double> swept_view_counts(const ClassMap& map, std::span<const Frust
     throw std::invalid_argument(
         "swept_view_counts: counts the survival reading's cells or greedy's");
   }
-  if (config.rays_across < 1 || config.rays_across > 4096) {
-    throw std::invalid_argument(
-        cat("swept.rays_across must lie in [1, 4096], got ", config.rays_across));
-  }
+  check_rays_across(config);
   const double alpha = quantity == GainQuantity::kCount ? 1.0 : config.alpha;
   if (!(alpha > 0.0 && alpha <= 1.0)) {
     throw std::invalid_argument(cat("swept.alpha must lie in (0, 1], got ", alpha));
@@ -114,6 +128,29 @@ std::vector<double> swept_view_counts(const ClassMap& map, std::span<const Frust
       out[v] = view_credit(map, free, views[v], alpha, config);
     });
   });
+  return out;
+}
+
+
+std::vector<double> swept_view_bounds(std::span<const Frustum> views, double resolution,
+                                      const SweptConfig& config) {
+  check_rays_across(config);
+  if (!(resolution > 0.0)) {
+    throw std::invalid_argument(cat("swept_view_bounds: resolution must be > 0, got ", resolution));
+  }
+  std::vector<double> out(views.size(), 0.0);
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const SensorFov& fov = views[v].fov();
+    // NOTE: ray_credit's own terms: at most 1 - (r_min / r_max)^3 of the parameter's cube, times
+    // r_max^3.
+    const double lo_t = fov.min_range / fov.max_range;
+    const double ray = (1.0 - lo_t * lo_t * lo_t) * fov.max_range * fov.max_range * fov.max_range;
+    double sum = 0.0;
+    for_each_pixel_ray(views[v], config, [&](double omega, const Eigen::Vector3d&) {
+      sum += omega * ray;
+    });
+    out[v] = sum / (3.0 * resolution * resolution * resolution) * kSweptBoundSlack;
+  }
   return out;
 }
 
