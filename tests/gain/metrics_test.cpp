@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -16,6 +17,7 @@
 #include "vantage/gain/evaluators/exact.hpp"
 #include "vantage/gain/evaluators/metric_evaluator.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/models/credit_rays.hpp"
 #include "vantage/gain/models/metric_bands.hpp"
 #include "vantage/gain/models/metric_cells.hpp"
 #include "vantage/gain/models/metrics/proximity_count.hpp"
@@ -539,6 +541,85 @@ TEST(Metrics, ViewsCastInBandsAreTheOnePassBitForBit) {
           EXPECT_GT(one.front().cells, 0.0);
         }
       }
+    }
+  }
+}
+
+// A few views cast in bands with the cells not counted (the race's finalists) walk only the rays
+// that may pass a block of creditable cells the shadows leave open to the view's origin
+// (rays_that_may_credit): the values are those of every ray walked, bit for bit, on the scene
+// above and on one whose creditable cells lie inside a closed box but for a patch beside it, where
+// most rays are left out.
+TEST(Metrics, RaysThatCanCreditNoCellAreNotWalked) {
+  SceneLike boxed;
+  {
+    OccupancyGrid& grid = boxed.grid;
+    const GridSpec& spec = grid.spec();
+    for (std::size_t i = 0; i < spec.num_cells(); ++i) {
+      const Index3 c = spec.unravel(i);
+      const bool in = (c.array() >= Eigen::Array3i(20, 20, 4)).all() &&
+                      (c.array() <= Eigen::Array3i(40, 40, 20)).all();
+      const bool inside = (c.array() > Eigen::Array3i(20, 20, 4)).all() &&
+                          (c.array() < Eigen::Array3i(40, 40, 20)).all();
+      const bool patch = c.x() >= 41 && c.x() <= 42 && c.y() >= 28 && c.y() <= 31 && c.z() >= 8 &&
+                         c.z() <= 11;
+      grid.set_probability(i, inside || patch ? 0.5 : in ? grid.params().p_max : 0.3);
+    }
+  }
+  const SceneLike scene;
+  for (const SceneLike* s : std::array<const SceneLike*, 2>{&scene, &boxed}) {
+    const OccupancyGrid& grid = s->grid;
+    const std::vector<Frustum>& all = s->views;
+    const GridSpec& spec = grid.spec();
+    const GainMap map(grid, 1);
+    const std::vector<float> near = occupied_distance(map, kProximityCells, 1);
+    const FreeSpace free = free_space(grid.census());
+    const std::vector<std::uint8_t> reach = detail::reach_codes(map, near, free, 1);
+    const OctantShadows shadows(spec, grid.classes(), grid.census(), 1);
+    std::vector<std::uint32_t> creditable;
+    for (std::size_t i = 0; i < map.size(); ++i) {
+      if (near[i] <= kProximityCells && map.value(i).state == CellState::kUnobserved) {
+        creditable.push_back(static_cast<std::uint32_t>(i));
+      }
+    }
+    const detail::CreditBlocks blocks = detail::credit_blocks(spec, shadows, creditable);
+    detail::MetricContext ctx{.map = map, .near = near, .spacing = 0.7071, .subsample = 1};
+    ctx.free = &free;
+    ctx.reach = reach.data();
+    ctx.shadows = &shadows;
+    ctx.count_cells = false;
+    ctx.surface_rates = {0.6, 0.2, 0.08, 0.04, 0.004};
+    const std::string what = s == &scene ? "scene" : "closed box";
+    const std::span<const Frustum> views = std::span<const Frustum>(all).first(5);
+    const std::vector<ViewGain> surface = detail::all_views_in_bands<Surface>(ctx, views, 2);
+    const std::vector<ViewGain> proximity =
+        detail::all_views_in_bands<ProximityCount>(ctx, views, 2);
+    ctx.credit_blocks = &blocks;
+    for (const int threads : {1, 2}) {
+      const std::vector<ViewGain> a = detail::all_views_in_bands<Surface>(ctx, views, threads);
+      const std::vector<ViewGain> b =
+          detail::all_views_in_bands<ProximityCount>(ctx, views, threads);
+      for (std::size_t v = 0; v < views.size(); ++v) {
+        EXPECT_EQ(a[v].gain, surface[v].gain) << what << ", surface, view " << v;
+        EXPECT_EQ(b[v].gain, proximity[v].gain) << what << ", proximity, view " << v;
+      }
+    }
+    std::size_t lattice = 0, marked = 0, seeing = 0;
+    for (std::size_t v = 0; v < views.size(); ++v) {
+      const detail::RayImage image(spec, ctx.spacing, ctx.subsample, 1, views[v]);
+      const std::vector<std::uint8_t> walked =
+          detail::rays_that_may_credit(image, spec, shadows, blocks);
+      for (int row = image.first; row < image.rows; row += image.step) {
+        for (int col = image.first; col < image.cols; col += image.step, ++lattice) {
+          marked += walked[static_cast<std::size_t>(row) * image.cols + col];
+        }
+      }
+      seeing += surface[v].gain > 0.0;
+    }
+    EXPECT_GE(seeing, 2u) << what;
+    if (s == &boxed) {
+      EXPECT_GT(marked, 0u);
+      EXPECT_LT(marked, lattice / 10) << "of " << lattice << " rays";
     }
   }
 }

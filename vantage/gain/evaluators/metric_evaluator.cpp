@@ -13,6 +13,7 @@
 
 #include "vantage/gain/free_space.hpp"
 #include "vantage/gain/methods.hpp"
+#include "vantage/gain/models/credit_rays.hpp"
 #include "vantage/gain/models/metric_cells.hpp"
 #include "vantage/gain/models/metric_rays.hpp"
 #include "vantage/map/block_census.hpp"
@@ -217,6 +218,7 @@ struct Spaces {
   const OctantShadows* shadows = nullptr;         // detail::MetricContext::shadows
   const std::uint8_t* reach = nullptr;            // detail::MetricContext::reach
   const FreeSpace* far_unobserved = nullptr;      // detail::MetricContext::far_unobserved
+  const CreditBlocks* credit_blocks = nullptr;    // detail::MetricContext::credit_blocks
 };
 
 }  // namespace detail
@@ -244,7 +246,8 @@ detail::MetricContext context(const GainMap& map, const std::vector<float>& near
           .surface_rates = config.surface_rates,
           .shadows = spaces.shadows,
           .reach = spaces.reach,
-          .far_unobserved = spaces.far_unobserved};
+          .far_unobserved = spaces.far_unobserved,
+          .credit_blocks = spaces.credit_blocks};
 }
 
 /// The metric's rays at `coarseness` times the pitch `config` asks for, by the jumping walk over
@@ -326,7 +329,14 @@ std::vector<ViewGain> MetricEvaluator::gains(std::span<const Frustum> views, int
   if (coarseness < 1) {
     throw std::invalid_argument(cat("MetricEvaluator: coarseness ", coarseness, " is not >= 1"));
   }
-  return evaluate(map_, near_, spaces(), views, config_, coarseness, count_cells);
+  Spaces given = spaces();
+  // NOTE: a few views' rays (the race's finalists) walked only where they may credit a cell.
+  detail::CreditBlocks blocks;
+  if (lists_cells() && !count_cells && coarseness == 1 && !shadows_.empty()) {
+    blocks = detail::credit_blocks(map_.spec(), shadows_, creditable_);
+    given.credit_blocks = &blocks;
+  }
+  return evaluate(map_, near_, given, views, config_, coarseness, count_cells);
 }
 
 bool MetricEvaluator::lists_cells() const { return method_traits(config_.method).cells != nullptr; }

@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "vantage/gain/models/credit_rays.hpp"
 #include "vantage/gain/models/metric_cells.hpp"
 #include "vantage/gain/models/metric_rays.hpp"
 #include "vantage/util/parallel.hpp"
@@ -43,6 +44,9 @@ std::vector<ViewGain> all_views_in_bands(const MetricContext& ctx, std::span<con
   struct Marks {
     std::vector<std::uint64_t> credit, seen;
   };
+  // NOTE: the rays that may credit a cell, view by view, where the cells need not be counted.
+  std::vector<std::vector<std::uint8_t>> walked(views.size());
+  const bool masked = ctx.credit_blocks != nullptr && ctx.shadows != nullptr && !ctx.count_cells;
   std::vector<Band> parts(views.size() * bands);
   std::vector<ViewGain> gains(views.size());
   const std::size_t words = (ctx.map.size() + 63) / 64;
@@ -54,13 +58,19 @@ std::vector<ViewGain> all_views_in_bands(const MetricContext& ctx, std::span<con
     for (const auto& [i, x] : log) bits[i >> 6] &= ~(std::uint64_t{1} << (i & 63));
   };
   run_with_threads(num_threads, [&] {
+    if (masked) {
+      tbb::parallel_for(std::size_t{0}, views.size(), [&](std::size_t v) {
+        const RayImage image(ctx.map.spec(), ctx.spacing, ctx.subsample, ctx.coarseness, views[v]);
+        walked[v] = rays_that_may_credit(image, ctx.map.spec(), *ctx.shadows, *ctx.credit_blocks);
+      });
+    }
     tbb::parallel_for(std::size_t{0}, parts.size(), [&](std::size_t task) {
       Marks& m = marks.local();
       Band& part = parts[task];
       Stamp credit{m.credit, &part.credits}, seen{m.seen, &part.seen};
       Metric metric = make_metric<Metric>(ctx);
       view_rays(ctx, views[task / bands], metric, credit, seen, CodeWalk{},
-                static_cast<int>(task % bands), static_cast<int>(bands));
+                static_cast<int>(task % bands), static_cast<int>(bands), walked[task / bands]);
       unmark(m.credit, part.credits);
       unmark(m.seen, part.seen);
     });

@@ -49,42 +49,8 @@ inline constexpr double kCellSpare = 1e-6;
 /// whose rays may pass through the cell `c`; false when none may.
 inline bool rays_through_cell(const RayImage& image, const GridSpec& spec, const Index3& c,
                               int& row_lo, int& row_hi, int& col_lo, int& col_hi) {
-  const Eigen::Vector3d centre = image.R.transpose() * (spec.center(c) - image.origin);
-  const Eigen::Matrix3d half = image.R.transpose() * (0.5 * spec.resolution);
-  double u_lo = std::numeric_limits<double>::infinity(), u_hi = -u_lo, v_lo = u_lo, v_hi = -u_lo;
-  bool behind = false;
-  for (int corner = 0; corner < 8; ++corner) {
-    Eigen::Vector3d q = centre;
-    for (int a = 0; a < 3; ++a) q += ((corner >> a) & 1 ? 1.0 : -1.0) * half.col(a);
-    if (!(q.x() > 0.0)) {
-      behind = true;
-      break;
-    }
-    const double inverse = 1.0 / q.x();
-    u_lo = std::min(u_lo, q.y() * inverse);
-    u_hi = std::max(u_hi, q.y() * inverse);
-    v_lo = std::min(v_lo, q.z() * inverse);
-    v_hi = std::max(v_hi, q.z() * inverse);
-  }
-  // Ray k of an axis lies at -tan + (k + 0.5) pitch: those from the first at or above `lo` to
-  // the last at or below `hi`, widened by kCellSpare of a pitch for the rounding, on the lattice.
-  const auto range = [&](double lo, double hi, double tan, double pitch, int n, int& k_lo,
-                         int& k_hi) {
-    int a = image.first, b = n - 1;
-    if (!behind) {
-      // NOTE: clamped before the cast, which a cell near the image plane would overflow.
-      const double most = 1e8;
-      a = std::max(a, static_cast<int>(std::clamp(std::ceil((lo + tan) / pitch - 0.5 - kCellSpare),
-                                                  -most, most)));
-      b = std::min(b, static_cast<int>(std::clamp(std::floor((hi + tan) / pitch - 0.5 + kCellSpare),
-                                                  -most, most)));
-    }
-    k_lo = image.first + (a - image.first + image.step - 1) / image.step * image.step;
-    k_hi = b;
-    return k_lo <= k_hi;
-  };
-  return range(u_lo, u_hi, image.tan_h, image.su, image.cols, col_lo, col_hi) &&
-         range(v_lo, v_hi, image.tan_v, image.sv, image.rows, row_lo, row_hi);
+  return image.rays_through_box(spec.center(c), Eigen::Vector3d::Constant(0.5 * spec.resolution),
+                                kCellSpare, row_lo, row_hi, col_lo, col_hi);
 }
 
 /// How many cells before a target `blocked_before` looks back along a ray at most.

@@ -183,9 +183,12 @@ struct SnapshotWalk {
 /// metrics at speed"). Without, the reference: every ray, cell by cell. Each ray is walked by
 /// `walk_one` (SnapshotWalk's signature), which must hand the metric what walk_ray hands it. Of
 /// the image's rows, only band `band` of `bands` bands of consecutive rows, as even as they come.
+/// `walked`, empty or one byte a ray of the image's lattice (row * cols + col): the rays marked 0
+/// are not walked (rays_that_may_credit: rays that credit nothing).
 template <typename Metric, typename Walk = SnapshotWalk>
 ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric, Stamp& credit,
-                   Stamp& seen, const Walk& walk_one = {}, int band = 0, int bands = 1) {
+                   Stamp& seen, const Walk& walk_one = {}, int band = 0, int bands = 1,
+                   std::span<const std::uint8_t> walked = {}) {
   const GridSpec& spec = ctx.map.spec();
   const RayImage image(ctx.map.spec(), ctx.spacing, ctx.subsample, ctx.coarseness, view);
   const Eigen::Vector3d& o = image.origin;
@@ -205,8 +208,12 @@ ViewGain view_rays(const MetricContext& ctx, const Frustum& view, Metric& metric
     ViewGain result;
     for (int row = row_lo; row < row_hi; row += image.step) {
       for (int col = col_lo; col < col_hi; col += image.step) {
-        const Eigen::Vector3d dir = image.direction(row, col);
         metric.begin_ray();
+        if (!walked.empty() && walked[static_cast<std::size_t>(row) * image.cols + col] == 0) {
+          metric.end_ray(false, credit);
+          continue;
+        }
+        const Eigen::Vector3d dir = image.direction(row, col);
         const Eigen::Vector3d to = o + image.max_range * dir;
         if (reach.has_value()) {
           const auto [s_in, s_out] = clip_to_box(reach->min(), reach->max(), o, to - o);

@@ -105,6 +105,8 @@ inline bool unknown(const RayCell& c) { return c.value.state == CellState::kUnob
 namespace detail {
 
 /// What the metrics of one evaluation share.
+struct CreditBlocks;
+
 struct MetricContext {
   const GainMap& map;
   const std::vector<float>& near;   // empty when the metric needs no distances
@@ -140,6 +142,10 @@ struct MetricContext {
   /// For such a metric that says kFarAlike, the cubes of unobserved cells beyond D of every
   /// occupied cell, which its walk by codes crosses in one step; nullptr: none.
   const FreeSpace* far_unobserved = nullptr;
+  /// For such a metric when the unobserved cells need not be counted, the blocks of its
+  /// creditable cells (credit_rays.hpp): a few views cast in bands walk only the rays that may
+  /// pass one the shadows leave open; nullptr: every ray is walked.
+  const CreditBlocks* credit_blocks = nullptr;
 };
 
 /// Which cells besides free ones change nothing for a metric after the first of them on a ray.

@@ -109,6 +109,49 @@ struct RayImage {
     col_lo = lattice_up(std::max(0, index(u_lo, tan_h, su) - 1));
     col_hi = std::min(cols, index(u_hi, tan_h, su) + 2);
   }
+  /// The rows [row_lo, row_hi] and columns [col_lo, col_hi] of the lattice (first + j step) whose
+  /// rays may pass through the box centred at `centre` [m] with half edges `half` along the
+  /// world's axes [m], widened by `spare` of a ray on each side for rounding; false when none
+  /// may. Every ray of the lattice when the box reaches behind the image plane.
+  bool rays_through_box(const Eigen::Vector3d& centre_world, const Eigen::Vector3d& half_edges,
+                        double spare, int& row_lo, int& row_hi, int& col_lo, int& col_hi) const {
+    const Eigen::Vector3d centre = R.transpose() * (centre_world - origin);
+    const Eigen::Matrix3d half = R.transpose() * half_edges.asDiagonal();
+    double u_lo = std::numeric_limits<double>::infinity(), u_hi = -u_lo, v_lo = u_lo, v_hi = -u_lo;
+    bool behind = false;
+    for (int corner = 0; corner < 8; ++corner) {
+      Eigen::Vector3d q = centre;
+      for (int a = 0; a < 3; ++a) q += ((corner >> a) & 1 ? 1.0 : -1.0) * half.col(a);
+      if (!(q.x() > 0.0)) {
+        behind = true;
+        break;
+      }
+      const double inverse = 1.0 / q.x();
+      u_lo = std::min(u_lo, q.y() * inverse);
+      u_hi = std::max(u_hi, q.y() * inverse);
+      v_lo = std::min(v_lo, q.z() * inverse);
+      v_hi = std::max(v_hi, q.z() * inverse);
+    }
+    // Ray k of an axis lies at -tan + (k + 0.5) pitch: those from the first at or above `lo` to
+    // the last at or below `hi`, widened by `spare` of a pitch, on the lattice.
+    const auto range = [&](double lo, double hi, double tan, double pitch, int n, int& k_lo,
+                           int& k_hi) {
+      int a = first, b = n - 1;
+      if (!behind) {
+        // NOTE: clamped before the cast, which a box near the image plane would overflow.
+        const double most = 1e8;
+        a = std::max(a, static_cast<int>(
+                            std::clamp(std::ceil((lo + tan) / pitch - 0.5 - spare), -most, most)));
+        b = std::min(b, static_cast<int>(
+                            std::clamp(std::floor((hi + tan) / pitch - 0.5 + spare), -most, most)));
+      }
+      k_lo = first + (a - first + step - 1) / step * step;
+      k_hi = b;
+      return k_lo <= k_hi;
+    };
+    return range(u_lo, u_hi, tan_h, su, cols, col_lo, col_hi) &&
+           range(v_lo, v_hi, tan_v, sv, rows, row_lo, row_hi);
+  }
   Eigen::Vector3d direction(int row, int col) const {
     return (R * Eigen::Vector3d(1.0, -tan_h + (col + 0.5) * su, -tan_v + (row + 0.5) * sv))
         .normalized();
