@@ -64,10 +64,12 @@ constexpr std::size_t kSample = std::size_t{1} << 13;
 /// targets to each finalist's lists (detail::RaceRules::most_new_targets) and evaluates the
 /// finalists left by the metric's own rays: past it, listing a finalist's credits costs about as
 /// much as its rays do. In the default run's ring decisions on tabletop-4 (issue 52) a target
-/// listed cost 0.16-0.26 us of wall time on 2 threads and a finalist's rays 1.5-2.1 ms. Counted by
-/// a view's targets, not the sample's cells, since a narrow view meets a small share of them
-/// (docs/decision.md, "A metric raced cell by cell").
-constexpr double kCellSumMostTargets = 6000.0;
+/// listed cost 0.16-0.26 us of wall time on 2 threads and a finalist's rays 1.5-2.1 ms, when every
+/// ray was walked (6 000 then); since only the rays that may credit a cell are walked
+/// (rays_that_may_credit) a finalist costs less, and 3 000 stops the ring's slowest race a sample
+/// earlier. Counted by a view's targets, not the sample's cells, since a narrow view meets a small
+/// share of them (docs/decision.md, "A metric raced cell by cell").
+constexpr double kCellSumMostTargets = 3000.0;
 /// A race of cell credits counts in the error of each difference a cell its sample may have
 /// missed (RaceRules::unseen): the credits sit on few cells (a cell face to face with a surface is
 /// credited up to its class's rate, 0.6, one 4 cells off 0.03), and a sample that misses the large
