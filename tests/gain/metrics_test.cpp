@@ -561,8 +561,8 @@ TEST(Metrics, RaysThatCanCreditNoCellAreNotWalked) {
                       (c.array() <= Eigen::Array3i(40, 40, 20)).all();
       const bool inside = (c.array() > Eigen::Array3i(20, 20, 4)).all() &&
                           (c.array() < Eigen::Array3i(40, 40, 20)).all();
-      const bool patch = c.x() >= 41 && c.x() <= 42 && c.y() >= 28 && c.y() <= 31 && c.z() >= 8 &&
-                         c.z() <= 11;
+      const bool patch =
+          c.x() >= 41 && c.x() <= 42 && c.y() >= 28 && c.y() <= 31 && c.z() >= 8 && c.z() <= 11;
       grid.set_probability(i, inside || patch ? 0.5 : in ? grid.params().p_max : 0.3);
     }
   }

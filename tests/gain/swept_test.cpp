@@ -123,7 +123,8 @@ TEST(Swept, NoEstimateExceedsItsViewsBound) {
   EXPECT_NEAR(open[0], bounds[0], 1e-8 * bounds[0]);
   EXPECT_LE(open[0], bounds[0]);
   EXPECT_LT(open[1], 0.5 * bounds[1]);  // most of it outside the grid, which is free
-  // Random states (one cell in 200 occupied, 3 in 10 free), and views from inside and outside the grid at several pitches.
+  // Random states (one cell in 200 occupied, 3 in 10 free), and views from inside and outside the
+  // grid at several pitches.
   std::uint64_t state = 7;
   for (std::size_t i = 0; i < grid.size(); ++i) {
     state = state * 6364136223846793005ULL + 1442695040888963407ULL;

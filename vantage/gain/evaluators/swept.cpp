@@ -92,8 +92,7 @@ double view_credit(const ClassMap& map, const FreeSpace& free, const Frustum& vi
   const Eigen::Vector3d o = view.origin();
   double sum = 0.0;
   for_each_pixel_ray(view, config, [&](double omega, const Eigen::Vector3d& d) {
-    sum += omega * ray_credit(map, free, o, d, fov.min_range, fov.max_range, alpha,
-                              config.epsilon);
+    sum += omega * ray_credit(map, free, o, d, fov.min_range, fov.max_range, alpha, config.epsilon);
   });
   const double h = map.spec().resolution;
   return sum / (3.0 * h * h * h);
@@ -131,7 +130,6 @@ std::vector<double> swept_view_counts(const ClassMap& map, std::span<const Frust
   return out;
 }
 
-
 std::vector<double> swept_view_bounds(std::span<const Frustum> views, double resolution,
                                       const SweptConfig& config) {
   check_rays_across(config);
@@ -146,9 +144,8 @@ std::vector<double> swept_view_bounds(std::span<const Frustum> views, double res
     const double lo_t = fov.min_range / fov.max_range;
     const double ray = (1.0 - lo_t * lo_t * lo_t) * fov.max_range * fov.max_range * fov.max_range;
     double sum = 0.0;
-    for_each_pixel_ray(views[v], config, [&](double omega, const Eigen::Vector3d&) {
-      sum += omega * ray;
-    });
+    for_each_pixel_ray(views[v], config,
+                       [&](double omega, const Eigen::Vector3d&) { sum += omega * ray; });
     out[v] = sum / (3.0 * resolution * resolution * resolution) * kSweptBoundSlack;
   }
   return out;

@@ -10,9 +10,7 @@ namespace {
 
 constexpr int kShift = BlockCensus::kShift, kBlock = BlockCensus::kBlock;
 
-Index3 blocks_across(const GridSpec& spec) {
-  return (spec.dims.array() + (kBlock - 1)) / kBlock;
-}
+Index3 blocks_across(const GridSpec& spec) { return (spec.dims.array() + (kBlock - 1)) / kBlock; }
 
 }  // namespace
 
@@ -25,11 +23,11 @@ CreditBlocks credit_blocks(const GridSpec& spec, const OctantShadows& shadows,
   std::vector<std::uint16_t> open(n, 0);
   for (const std::uint32_t i : creditable) {
     const Index3 c = spec.unravel(i);
-    const std::size_t b = static_cast<std::size_t>(c.x() >> kShift) +
-                          static_cast<std::size_t>(across.x()) *
-                              (static_cast<std::size_t>(c.y() >> kShift) +
-                               static_cast<std::size_t>(across.y()) *
-                                   static_cast<std::size_t>(c.z() >> kShift));
+    const std::size_t b =
+        static_cast<std::size_t>(c.x() >> kShift) +
+        static_cast<std::size_t>(across.x()) *
+            (static_cast<std::size_t>(c.y() >> kShift) +
+             static_cast<std::size_t>(across.y()) * static_cast<std::size_t>(c.z() >> kShift));
     open[b] |= static_cast<std::uint16_t>(0x100 | static_cast<std::uint8_t>(~shadows.bits(c)));
   }
   CreditBlocks out;
@@ -44,9 +42,8 @@ CreditBlocks credit_blocks(const GridSpec& spec, const OctantShadows& shadows,
 std::vector<std::uint8_t> rays_that_may_credit(const RayImage& image, const GridSpec& spec,
                                                const OctantShadows& shadows,
                                                const CreditBlocks& blocks) {
-  std::vector<std::uint8_t> out(static_cast<std::size_t>(image.rows) *
-                                    static_cast<std::size_t>(image.cols),
-                                0);
+  std::vector<std::uint8_t> out(
+      static_cast<std::size_t>(image.rows) * static_cast<std::size_t>(image.cols), 0);
   const Index3 across = blocks_across(spec);
   const std::uint8_t open = shadows.open_octants(image.origin);
   for (std::size_t k = 0; k < blocks.blocks.size(); ++k) {
@@ -62,9 +59,9 @@ std::vector<std::uint8_t> rays_that_may_credit(const RayImage& image, const Grid
     const std::uint8_t need = shadows.octants(image.origin, lo, hi);
     if ((need & open) == need && (blocks.open[k] & need) == 0) continue;
     const Eigen::Vector3d low = spec.origin + spec.resolution * lo.cast<double>();
-    const Eigen::Vector3d high = spec.origin + spec.resolution * (hi.array() + 1).cast<double>().matrix();
-    const Eigen::Vector3d half =
-        (0.5 * (high - low)).array() + kCellSpare * spec.resolution;
+    const Eigen::Vector3d high =
+        spec.origin + spec.resolution * (hi.array() + 1).cast<double>().matrix();
+    const Eigen::Vector3d half = (0.5 * (high - low)).array() + kCellSpare * spec.resolution;
     int row_lo, row_hi, col_lo, col_hi;
     if (!image.rays_through_box(0.5 * (low + high), half, kCellSpare, row_lo, row_hi, col_lo,
                                 col_hi)) {
