@@ -549,7 +549,7 @@ TEST(Metrics, ViewsCastInBandsAreTheOnePassBitForBit) {
 // that may pass a block of creditable cells the shadows leave open to the view's origin
 // (rays_that_may_credit): the values are those of every ray walked, bit for bit, on the scene
 // above and on one whose creditable cells lie inside a closed box but for a patch beside it, where
-// most rays are left out.
+// most rays of the views outside are left out, and a view inside it walks them all.
 TEST(Metrics, RaysThatCanCreditNoCellAreNotWalked) {
   SceneLike boxed;
   {
@@ -565,6 +565,11 @@ TEST(Metrics, RaysThatCanCreditNoCellAreNotWalked) {
           c.x() >= 41 && c.x() <= 42 && c.y() >= 28 && c.y() <= 31 && c.z() >= 8 && c.z() <= 11;
       grid.set_probability(i, inside || patch ? 0.5 : in ? grid.params().p_max : 0.3);
     }
+    // A view from inside the box, whose walks start in its shadows: nothing is hidden from it.
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    pose.translation() = grid.spec().center(Index3(27, 30, 12));
+    boxed.views.insert(boxed.views.begin() + 4,
+                       Frustum(pose, SensorFov{deg2rad(70), deg2rad(45), 0.1, 3.0}));
   }
   const SceneLike scene;
   for (const SceneLike* s : std::array<const SceneLike*, 2>{&scene, &boxed}) {
@@ -609,12 +614,20 @@ TEST(Metrics, RaysThatCanCreditNoCellAreNotWalked) {
       const detail::RayImage image(spec, ctx.spacing, ctx.subsample, 1, views[v]);
       const std::vector<std::uint8_t> walked =
           detail::rays_that_may_credit(image, spec, shadows, blocks);
+      std::size_t mine = 0, all_rays = 0;
       for (int row = image.first; row < image.rows; row += image.step) {
-        for (int col = image.first; col < image.cols; col += image.step, ++lattice) {
-          marked += walked[static_cast<std::size_t>(row) * image.cols + col];
+        for (int col = image.first; col < image.cols; col += image.step, ++all_rays) {
+          mine += walked[static_cast<std::size_t>(row) * image.cols + col];
         }
       }
       seeing += surface[v].gain > 0.0;
+      if (s == &boxed && v == 4) {
+        EXPECT_EQ(mine, all_rays) << "the view inside the box";
+        EXPECT_GT(surface[v].gain, 0.0) << "the view inside the box";
+        continue;
+      }
+      lattice += all_rays;
+      marked += mine;
     }
     EXPECT_GE(seeing, 2u) << what;
     if (s == &boxed) {

@@ -25,6 +25,8 @@ Explorer::Explorer(const sim::Scene& scene, const ExplorationConfig& config, Map
   // is made for that view alone, after the decision (greedy_of), when the run's planner asks for
   // it, not for every candidate.
   planner_.greedy_reference = false;
+  // NOTE: the stop on the best predicted gain reads every candidate's, far ones too.
+  planner_.gain_of_every_candidate = config.min_gain > 0.0;
   if (config.auto_alpha && has_observability(planner_.method)) {
     fit_.emplace(config.observability);
     planner_.gain.alpha = fit_->alpha();

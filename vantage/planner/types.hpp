@@ -153,6 +153,11 @@ struct PlannerConfig {
   /// the search reached them, Plan::is_estimate otherwise) and no gain in bits
   /// (Plan::bits_predicted); full_prediction (search.hpp) gives them after, off the robot's loop.
   bool predict_chosen = true;
+  /// Predict every candidate's gain, an estimate at least: none is left at an upper bound because
+  /// its travel puts it out of the choice (the swept search's first round ranked by travel,
+  /// docs/decision.md "The swept search"). A stop on the best predicted gain of any candidate
+  /// (ExplorationConfig::min_gain) reads them all; the choice is the same either way.
+  bool gain_of_every_candidate = false;
   /// Plan a sequence of views and take its tour's first (sequence.hpp) when active (horizon > 1
   /// or a travel weight); survival (ranking by cells) and greedy only. It evaluates every
   /// candidate exactly (or on its own sample, SequenceConfig::sample_bits): no search serves it.

@@ -76,9 +76,10 @@ class MetricEvaluator {
   /// many cells the metric's own rays cross for each the coarser rays cross at its distance
   /// (detail::RayCell::weight).
   /// With `count_cells` false, ViewGain::cells is 0 and the proximity count crosses cubes of
-  /// free cells and unobserved ones beyond D of every occupied cell in one step too, and the
-  /// rear side metrics walk in full only the rays that end on a rear side (found by a probe
-  /// across cubes of blocks with no occupied cell): the same values to the last bit.
+  /// free cells and unobserved ones beyond D of every occupied cell in one step too, the rear
+  /// side metrics walk in full only the rays that end on a rear side (found by a probe across
+  /// cubes of blocks with no occupied cell), and a metric listed cell by cell walks only the
+  /// rays that may credit a cell (models/credit_rays.hpp): the same values to the last bit.
   std::vector<ViewGain> gains(std::span<const Frustum> views, int coarseness = 1,
                               bool count_cells = true) const;
 

@@ -139,6 +139,11 @@ std::vector<double> swept_view_bounds(std::span<const Frustum> views, double res
   std::vector<double> out(views.size(), 0.0);
   for (std::size_t v = 0; v < views.size(); ++v) {
     const SensorFov& fov = views[v].fov();
+    // NOTE: the bound does not depend on the pose: one pass for views of the last one's field.
+    if (v > 0 && fov == views[v - 1].fov()) {
+      out[v] = out[v - 1];
+      continue;
+    }
     // NOTE: ray_credit's own terms: at most 1 - (r_min / r_max)^3 of the parameter's cube, times
     // r_max^3.
     const double lo_t = fov.min_range / fov.max_range;

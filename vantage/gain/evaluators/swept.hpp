@@ -50,8 +50,9 @@ std::vector<double> swept_view_counts(const ClassMap& map, std::span<const Frust
 /// Every view's upper bound on its estimate (swept_view_counts, any quantity, any map) [cells]: the
 /// cells' worth of the volume its rays' cones sweep between the sensor's range limits, each ray's
 /// credit at a visibility of 1 through unobserved cells all the way, scaled up by 10^-9 for the
-/// sums' rounding. An unobstructed frustum in unobserved space comes within its boundary's share
-/// of it. Throws std::invalid_argument for rays across outside [1, 4096] or a resolution <= 0.
+/// sums' rounding. A frustum all in unobserved cells of the grid reaches it, to the rounding.
+/// It depends on the views' fields of view alone, not on their poses. Throws std::invalid_argument
+/// for rays across outside [1, 4096] or a resolution <= 0.
 std::vector<double> swept_view_bounds(std::span<const Frustum> views, double resolution,
                                       const SweptConfig& config);
 

@@ -32,11 +32,13 @@ std::vector<ViewGain> all_views_in_bands(const MetricContext& ctx, std::span<con
                                          int num_threads) {
   static_assert(cell_sum<Metric>());
   // NOTE: at least 16 bands in all, so that both threads stay busy to the end; one band a view
-  // when the views are many, which needs no logs.
+  // when the views are many, which needs no logs unless only some rays are walked.
   constexpr std::size_t kLeastBands = 16, kMostBands = 8;
   const std::size_t bands = std::clamp<std::size_t>(
       (kLeastBands + views.size() - 1) / std::max<std::size_t>(views.size(), 1), 1, kMostBands);
-  if (bands == 1) return all_views<Metric, CodeWalk>(ctx, views, num_threads);
+  // NOTE: the rays that may credit a cell, view by view, where the cells need not be counted.
+  const bool masked = ctx.credit_blocks != nullptr && ctx.shadows != nullptr && !ctx.count_cells;
+  if (bands == 1 && !masked) return all_views<Metric, CodeWalk>(ctx, views, num_threads);
   using Log = std::vector<std::pair<std::uint32_t, double>>;
   struct Band {
     Log credits, seen;
@@ -44,9 +46,7 @@ std::vector<ViewGain> all_views_in_bands(const MetricContext& ctx, std::span<con
   struct Marks {
     std::vector<std::uint64_t> credit, seen;
   };
-  // NOTE: the rays that may credit a cell, view by view, where the cells need not be counted.
   std::vector<std::vector<std::uint8_t>> walked(views.size());
-  const bool masked = ctx.credit_blocks != nullptr && ctx.shadows != nullptr && !ctx.count_cells;
   std::vector<Band> parts(views.size() * bands);
   std::vector<ViewGain> gains(views.size());
   const std::size_t words = (ctx.map.size() + 63) / 64;

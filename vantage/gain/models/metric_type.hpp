@@ -104,9 +104,9 @@ inline bool unknown(const RayCell& c) { return c.value.state == CellState::kUnob
 
 namespace detail {
 
-/// What the metrics of one evaluation share.
-struct CreditBlocks;
+struct CreditBlocks;  // models/credit_rays.hpp
 
+/// What the metrics of one evaluation share.
 struct MetricContext {
   const GainMap& map;
   const std::vector<float>& near;   // empty when the metric needs no distances

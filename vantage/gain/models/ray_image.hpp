@@ -110,9 +110,9 @@ struct RayImage {
     col_hi = std::min(cols, index(u_hi, tan_h, su) + 2);
   }
   /// The rows [row_lo, row_hi] and columns [col_lo, col_hi] of the lattice (first + j step) whose
-  /// rays may pass through the box centred at `centre` [m] with half edges `half` along the
-  /// world's axes [m], widened by `spare` of a ray on each side for rounding; false when none
-  /// may. Every ray of the lattice when the box reaches behind the image plane.
+  /// rays may pass through the box centred at `centre_world` [m] with half edges `half_edges`
+  /// along the world's axes [m], widened by `spare` of a ray on each side for rounding; false when
+  /// none may. Every ray of the lattice when the box reaches behind the image plane.
   bool rays_through_box(const Eigen::Vector3d& centre_world, const Eigen::Vector3d& half_edges,
                         double spare, int& row_lo, int& row_hi, int& col_lo, int& col_hi) const {
     const Eigen::Vector3d centre = R.transpose() * (centre_world - origin);

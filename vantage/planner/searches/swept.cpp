@@ -274,8 +274,8 @@ Plan run_metric(const SearchInput& in) {
 
 /// Candidates `among` estimated by swept rays (swept.rays_across across), into the plan's gains
 /// and scores.
-void estimate(const SearchInput& in, const ClassMap& map, const SweptConfig& swept,
-              const std::vector<std::size_t>& among, Plan& plan) {
+void swept_estimates(const SearchInput& in, const ClassMap& map, const SweptConfig& swept,
+                     const std::vector<std::size_t>& among, Plan& plan) {
   const GainQuantity quantity = in.quantity();
   const CandidateViews subset = in.views.subset(among);
   const std::vector<double> sums =
@@ -297,7 +297,8 @@ void estimate(const SearchInput& in, const ClassMap& map, const SweptConfig& swe
 /// batches. Ranked by travel (Latombe), the views beyond a few metres are proved out: of FR-079's
 /// 1 348 frontier views 192 are cast (a frustum holds 19 570 cells; the 12th best score is about
 /// 2 100 cells, which e^(-0.5/m * d) brings a frustum below past d = 4.5 m); without travel every
-/// bound is alike and every candidate is cast.
+/// bound is alike and every candidate is cast. PlannerConfig::gain_of_every_candidate casts every
+/// one all the same (a stop on the best predicted gain reads them all).
 std::vector<std::size_t> first_round(const SearchInput& in, const ClassMap& map,
                                      const SweptConfig& swept, Plan& plan) {
   const GainQuantity quantity = in.quantity();
@@ -316,10 +317,13 @@ std::vector<std::size_t> first_round(const SearchInput& in, const ClassMap& map,
   for (std::size_t next = 0; next < order.size();) {
     const std::size_t last = std::min(order.size(), next + kBoundBatch);
     // NOTE: strictly below: a candidate whose bound ties the kSecond-th score may tie it.
-    if (best.size() == kSecond && plan.scores[order[next]] < best.back()) break;
+    if (!in.config.gain_of_every_candidate && best.size() == kSecond &&
+        plan.scores[order[next]] < best.back()) {
+      break;
+    }
     const std::vector<std::size_t> batch(order.begin() + static_cast<std::ptrdiff_t>(next),
                                          order.begin() + static_cast<std::ptrdiff_t>(last));
-    estimate(in, map, swept, batch, plan);
+    swept_estimates(in, map, swept, batch, plan);
     for (const std::size_t c : batch) best.push_back(plan.scores[c]);
     std::sort(best.begin(), best.end(), std::greater<>());
     if (best.size() > kSecond) best.resize(kSecond);
@@ -343,10 +347,10 @@ Plan run(const SearchInput& in) {
   swept.num_threads = in.gain.num_threads;
   swept.rays_across = in.config.swept_rays;
   Plan plan = estimates(in);
-  const std::vector<std::size_t> all = first_round(in, map, swept, plan);
-  const std::vector<std::size_t> second = leaders(plan.scores, all, kSecond, 1.0);
+  const std::vector<std::size_t> cast = first_round(in, map, swept, plan);
+  const std::vector<std::size_t> second = leaders(plan.scores, cast, kSecond, 1.0);
   swept.rays_across = std::min(2 * in.config.swept_rays, 4096);
-  estimate(in, map, swept, second, plan);
+  swept_estimates(in, map, swept, second, plan);
   // NOTE: the last round races the leaders on samples of the targets, whose values are exact:
   // the swept estimate is not, it weighs a cell by the part of its volume the rays reach where
   // the exact sum asks whether its centre is reached.
