@@ -184,9 +184,9 @@ struct Plan {
   DecisionSearch search = DecisionSearch::kExhaustive;
   std::vector<ViewGain> gains;  ///< each candidate's predicted gain under the method's model
   /// Per candidate: true where `gains` and `scores` are the search's estimate (swept), upper
-  /// bound (pruned, or swept for a candidate its travel proved out) or, for the rankings that do not rank by a gain (random, Yamauchi's nearest),
-  /// 0 for a candidate they could not choose; not a full evaluation. Empty when every candidate
-  /// was evaluated in full.
+  /// bound (pruned, or swept for a candidate its travel proved out) or, for the rankings that do
+  /// not rank by a gain (random, Yamauchi's nearest), 0 for a candidate they could not choose; not
+  /// a full evaluation. Empty when every candidate was evaluated in full.
   std::vector<bool> estimated;
   std::vector<double> greedy_gains;  ///< each candidate's greedy gain (when requested or used)
   std::vector<double> scores;        ///< what was maximised
