@@ -32,12 +32,7 @@ struct FreeSpace {
 
   bool empty() const { return extent[0].empty(); }
   /// The block that holds `cell`.
-  std::size_t block_of(const Index3& cell) const {
-    return static_cast<std::size_t>(cell.x() >> kShift) +
-           static_cast<std::size_t>(dims.x()) *
-               (static_cast<std::size_t>(cell.y() >> kShift) +
-                static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(cell.z() >> kShift));
-  }
+  std::size_t block_of(const Index3& cell) const { return BlockCensus::block_of(cell, dims); }
   /// The extent, for octant `octant`, of the block that holds `cell`.
   int extent_at(int octant, const Index3& cell) const {
     return extent[static_cast<std::size_t>(octant)][block_of(cell)];

@@ -17,7 +17,7 @@ BlockCensus::BlockCensus(const Index3& cell_dims)
     : cell_dims_(cell_dims),
       by_x_(static_cast<std::uint32_t>(cell_dims.x())),
       by_y_(static_cast<std::uint32_t>(cell_dims.y())),
-      dims_((cell_dims.array() + (kBlock - 1)) / kBlock) {
+      dims_(dims_of(cell_dims)) {
   reset();
 }
 

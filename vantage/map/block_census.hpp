@@ -42,16 +42,24 @@ class BlockCensus {
   /// The census of a grid of `cell_dims` cells, all unobserved.
   explicit BlockCensus(const Index3& cell_dims);
 
+  /// Blocks along each axis of a grid of `cell_dims` cells (a block cut by the far faces counts).
+  static Index3 dims_of(const Index3& cell_dims) {
+    return (cell_dims.array() + (kBlock - 1)) / kBlock;
+  }
+  /// Index of the block that holds `cell` among blocks `dims` along each axis, x fastest: the
+  /// one layout of every per-block array (the census, FreeSpace, the credit blocks).
+  static std::size_t block_of(const Index3& cell, const Index3& dims) {
+    return static_cast<std::size_t>(cell.x() >> kShift) +
+           static_cast<std::size_t>(dims.x()) *
+               (static_cast<std::size_t>(cell.y() >> kShift) +
+                static_cast<std::size_t>(dims.y()) * static_cast<std::size_t>(cell.z() >> kShift));
+  }
+
   /// Blocks along each axis.
   const Index3& dims() const { return dims_; }
   std::size_t size() const { return counts_.size(); }
   /// Index of the block that holds `cell`.
-  std::size_t block_of(const Index3& cell) const {
-    return static_cast<std::size_t>(cell.x() >> kShift) +
-           static_cast<std::size_t>(dims_.x()) *
-               (static_cast<std::size_t>(cell.y() >> kShift) +
-                static_cast<std::size_t>(dims_.y()) * static_cast<std::size_t>(cell.z() >> kShift));
-  }
+  std::size_t block_of(const Index3& cell) const { return block_of(cell, dims_); }
   /// Cells of `state` in block `block` [cells].
   int count(std::size_t block, CellState state) const {
     return counts_[block][static_cast<std::size_t>(state)];

@@ -6,35 +6,27 @@
 #include "vantage/map/block_census.hpp"
 
 namespace vantage::detail {
-namespace {
-
-constexpr int kShift = BlockCensus::kShift, kBlock = BlockCensus::kBlock;
-
-Index3 blocks_across(const GridSpec& spec) { return (spec.dims.array() + (kBlock - 1)) / kBlock; }
-
-}  // namespace
 
 CreditBlocks credit_blocks(const GridSpec& spec, const OctantShadows& shadows,
                            std::span<const std::uint32_t> creditable) {
-  const Index3 across = blocks_across(spec);
-  const auto n = static_cast<std::size_t>(across.x()) * static_cast<std::size_t>(across.y()) *
-                 static_cast<std::size_t>(across.z());
+  const Index3 across = BlockCensus::dims_of(spec.dims);
   // NOTE: bit 0x100 marks a block that holds a creditable cell, whatever its shadows.
-  std::vector<std::uint16_t> open(n, 0);
+  std::vector<std::uint16_t> open(static_cast<std::size_t>(across.prod()), 0);
   for (const std::uint32_t i : creditable) {
     const Index3 c = spec.unravel(i);
-    const std::size_t b =
-        static_cast<std::size_t>(c.x() >> kShift) +
-        static_cast<std::size_t>(across.x()) *
-            (static_cast<std::size_t>(c.y() >> kShift) +
-             static_cast<std::size_t>(across.y()) * static_cast<std::size_t>(c.z() >> kShift));
-    open[b] |= static_cast<std::uint16_t>(0x100 | static_cast<std::uint8_t>(~shadows.bits(c)));
+    open[BlockCensus::block_of(c, across)] |=
+        static_cast<std::uint16_t>(0x100 | static_cast<std::uint8_t>(~shadows.bits(c)));
   }
   CreditBlocks out;
-  for (std::size_t b = 0; b < n; ++b) {
-    if (open[b] == 0) continue;
-    out.blocks.push_back(static_cast<std::uint32_t>(b));
-    out.open.push_back(static_cast<std::uint8_t>(open[b] & 0xff));
+  std::size_t b = 0;
+  for (int z = 0; z < across.z(); ++z) {
+    for (int y = 0; y < across.y(); ++y) {
+      for (int x = 0; x < across.x(); ++x, ++b) {
+        if (open[b] == 0) continue;
+        out.first.push_back(BlockCensus::kBlock * Index3(x, y, z));
+        out.open.push_back(static_cast<std::uint8_t>(open[b] & 0xff));
+      }
+    }
   }
   return out;
 }
@@ -44,16 +36,10 @@ std::vector<std::uint8_t> rays_that_may_credit(const RayImage& image, const Grid
                                                const CreditBlocks& blocks) {
   std::vector<std::uint8_t> out(
       static_cast<std::size_t>(image.rows) * static_cast<std::size_t>(image.cols), 0);
-  const Index3 across = blocks_across(spec);
   const std::uint8_t open = shadows.open_octants(image.origin);
-  for (std::size_t k = 0; k < blocks.blocks.size(); ++k) {
-    std::size_t b = blocks.blocks[k];
-    Index3 lo;
-    lo.x() = static_cast<int>(b % static_cast<std::size_t>(across.x())) << kShift;
-    b /= static_cast<std::size_t>(across.x());
-    lo.y() = static_cast<int>(b % static_cast<std::size_t>(across.y())) << kShift;
-    lo.z() = static_cast<int>(b / static_cast<std::size_t>(across.y())) << kShift;
-    const Index3 hi = (lo.array() + (kBlock - 1)).min(spec.dims.array() - 1);
+  for (std::size_t k = 0; k < blocks.first.size(); ++k) {
+    const Index3& lo = blocks.first[k];
+    const Index3 hi = (lo.array() + (BlockCensus::kBlock - 1)).min(spec.dims.array() - 1);
     // NOTE: every creditable cell of the block hidden (OctantShadows::hides): the octants of the
     // walks to any of its cells, each open at the origin, in none of which one is unshadowed.
     const std::uint8_t need = shadows.octants(image.origin, lo, hi);

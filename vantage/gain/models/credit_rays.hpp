@@ -20,7 +20,7 @@ namespace vantage::detail {
 
 /// The census blocks (BlockCensus::kBlock cells a side) that hold creditable cells.
 struct CreditBlocks {
-  std::vector<std::uint32_t> blocks;  ///< their indices, x fastest (BlockCensus::block_of)
+  std::vector<Index3> first;  ///< each block's first cell, in the blocks' order (block_of)
   /// Per block listed: the octants in which at least one of its creditable cells is not shadowed
   /// (OctantShadows::bits clear); 0 when every one is shadowed in every octant.
   std::vector<std::uint8_t> open;
