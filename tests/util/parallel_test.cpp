@@ -1,6 +1,8 @@
-// run_with_threads: a step inside an arena of as many threads runs in it (a decision's steps in
-// its one arena), a step that asks for another count gets an arena of its own, and a bad count
-// is refused.
+// run_with_threads: a step nested in another runs on the threads it asks for, the same count as
+// the caller's or another (its own arena), its work done whole, and a bad count is refused. That
+// a step of the caller's count runs in the caller's arena rather than a new one of as many
+// threads is not observable through TBB's interface (both give the same concurrency and thread
+// index to the caller), so it is not asserted here; it changes no result.
 
 #include "vantage/util/parallel.hpp"
 
@@ -16,7 +18,7 @@
 namespace vantage {
 namespace {
 
-TEST(RunWithThreads, NestedStepsRunInTheArenaOfTheirThreads) {
+TEST(RunWithThreads, NestedStepsRunOnTheThreadsTheyAskFor) {
   const int threads = std::min(2, tbb::info::default_concurrency());
   int outer = 0, same = 0, one = 0;
   std::atomic<int> sum{0};
