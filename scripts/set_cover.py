@@ -68,23 +68,26 @@ def needed(truth, level):
     return math.ceil(level * truth["visible_cells"] - 1e-9)
 
 
-def greedy_oracle(truth, start):
+def greedy_oracle(truth, start, travel_weight=0.0):
     """The greedy oracle's order of views from `start` on the true hit sets: a list of
-    (view, cells hit so far after it), until no view adds a cell."""
+    (view, cells hit so far after it), until no view adds a cell. With a travel weight λ [1/m],
+    each view's new cells are priced as González-Baños and Latombe price a gain, times
+    e^(-λ travel) from where the last view stood: the oracle under a planner's price of motion."""
     hit = set(truth["starts"][start])
     order = []
     taken = set()
     here = None  # the start
     while True:
-        best, best_gain, best_travel = None, 0, math.inf
+        best, best_score, best_travel = None, 0.0, math.inf
         for v, cells in enumerate(truth["views"]):
             if v in taken:
                 continue
             gain = len(cells - hit)
             travel = (truth["travel_m"]["from_starts"][start][v] if here is None
                       else truth["travel_m"]["views"][here][v])
-            if gain > best_gain or (gain == best_gain and gain > 0 and travel < best_travel):
-                best, best_gain, best_travel = v, gain, travel
+            score = gain * math.exp(-travel_weight * travel) if travel_weight > 0 else gain
+            if score > best_score or (score == best_score and gain > 0 and travel < best_travel):
+                best, best_score, best_travel = v, score, travel
         if best is None:
             return order
         taken.add(best)
