@@ -329,6 +329,47 @@ TEST(Exploration, TakingThePlannersProposalsIsExplore) {
   }
 }
 
+// The stop on the best predicted gain (ExplorationConfig::min_gain) reads every candidate's gain,
+// so the explorer asks the swept search to cast every candidate
+// (PlannerConfig::gain_of_every_candidate): a far candidate proved out by its travel would keep
+// its bound, which never falls below the stop. On the hemisphere after the start's scan, with
+// motion priced high, the proposal's gains are those of the plan that casts every candidate, and
+// the plan that may prove candidates out does so here (else this would hold without the wiring).
+TEST(Exploration, AStopOnTheBestGainHasEveryCandidateCast) {
+  const sim::Scene scene = sim::load_scene(testing::small_scene_path());
+  ExplorationConfig config = stepping_config(scene);
+  config.candidates = "hemisphere";
+  config.planner.method = PlannerMethod::kLatombe;
+  config.planner.search = DecisionSearch::kSwept;
+  config.planner.lambda = 4.0;  // [1/m]: travel prices the far views low enough to prove out
+  config.planner.gain.num_threads = 1;
+  config.min_gain = 1e-9;
+  Mapper mapper(scene.grid, config.mapper);
+  Exploration run(scene, config, mapper);
+  ASSERT_NE(run.step(), nullptr);
+  const ViewProposal proposal = run.propose();
+
+  std::vector<Candidate> open;
+  const std::vector<double> travel = run.travel();
+  for (std::size_t i = 0; i < run.result().candidates.size(); ++i) {
+    if (run.taken()[i]) continue;
+    open.push_back({Frustum(run.result().candidates[i], scene.fov()), travel[i]});
+  }
+  ASSERT_EQ(proposal.considered.size(), open.size());
+  ASSERT_GT(open.size(), 12U);
+  PlannerConfig planner = config.planner;
+  planner.gain_of_every_candidate = true;
+  const Plan every = plan_next_view(run.mapper().grid(), open, planner);
+  planner.gain_of_every_candidate = false;
+  const Plan proving = plan_next_view(run.mapper().grid(), open, planner);
+  std::size_t differ = 0;
+  for (std::size_t j = 0; j < open.size(); ++j) {
+    EXPECT_EQ(proposal.considered[j].predicted_gain, every.gains[j].gain) << j;
+    differ += proving.gains[j].gain != every.gains[j].gain;
+  }
+  EXPECT_GT(differ, 0U) << "no candidate was proved out: the test shows nothing";
+}
+
 TEST(Exploration, RefusesAViewItCannotTake) {
   const sim::Scene scene = sim::load_scene(testing::small_scene_path());
   ExplorationConfig config = stepping_config(scene);
