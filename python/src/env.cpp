@@ -93,6 +93,8 @@ py::dict observation(const Exploration& run) {
   const std::vector<double> travel = run.travel();
   py::dict obs;
   obs["cells"] = grid_array(grid.spec(), states);
+  obs["log_odds"] =
+      grid_array(grid.spec(), std::vector<float>(grid.log_odds().begin(), grid.log_odds().end()));
   obs["pose"] = Eigen::Matrix4d(result.scans.back().T_world_sensor.matrix());
   obs["candidates"] = from_poses(result.candidates);
   obs["taken"] = mask;
@@ -205,6 +207,7 @@ class ExploreRun {
 
   const sim::Scene& scene() const { return scene_; }
   const ExplorationConfig& config() const { return config_; }
+  const SurfaceTruth& truth() const { return *truth_; }
 
  private:
   sim::Scene scene_;
@@ -215,6 +218,26 @@ class ExploreRun {
   std::unique_ptr<Mapper> mapper_;
   std::unique_ptr<Exploration> run_;  // NOTE: after mapper_, which it refers to
 };
+
+/// Cell indices (linear, x fastest, as the grid's) as a uint32 array.
+py::array_t<std::uint32_t> cell_array(const std::vector<std::uint32_t>& cells) {
+  return py::array_t<std::uint32_t>(static_cast<py::ssize_t>(cells.size()), cells.data());
+}
+
+/// The yardstick's truth of the run's scene and candidates (ExploreEnv.truth).
+py::dict truth_dict(const SurfaceTruth& truth) {
+  py::list views, starts;
+  for (const auto& hits : truth.candidate_hits) views.append(cell_array(hits));
+  for (const auto& hits : truth.start_hits) starts.append(cell_array(hits));
+  py::dict out;
+  out["surface"] = cell_array(truth.surface);
+  out["visible"] = cell_array(truth.visible);
+  out["views"] = views;
+  out["starts"] = starts;
+  out["tolerance_cells"] = truth.tolerance.cells;
+  out["tolerance_m"] = truth.tolerance.metres;
+  return out;
+}
 
 /// A Python policy's choice: the index it returned, refused unless an integer (not a bool).
 int policy_view(const py::object& value, const std::string& name) {
@@ -317,7 +340,8 @@ void bind_env(py::module_& m) {
       .def_property_readonly(
           "method",
           [](const ExploreRun& r) { return std::string(to_string(r.config().planner.method)); })
-      .def_property_readonly("run_seed", [](const ExploreRun& r) { return r.config().seed; });
+      .def_property_readonly("run_seed", [](const ExploreRun& r) { return r.config().seed; })
+      .def_property_readonly("truth", [](const ExploreRun& r) { return truth_dict(r.truth()); });
 
   m.def(
       "_bench_policy",

@@ -3,6 +3,7 @@ time with the Gymnasium API, and a Python policy's trials in `vantage bench`'s s
 small test table top (tests/experiment/small_tabletop.yaml), 30 ring views, 32 x 32 x 17 cells."""
 
 import csv
+import json
 import subprocess
 import sys
 
@@ -114,6 +115,27 @@ def test_following_the_reference_is_the_bench_trial_of_that_method(scene, vantag
             assert float(r[column]) == pytest.approx(info[column], rel=1e-12), column
         assert int(r["unobserved"]) == info["unobserved"]
         assert float(r["travel_m"]) == pytest.approx(info["travel_m"], abs=1e-9)
+    # The env's truth is the sweep's yardstick file (docs/yardstick.md), whose hit sets index V.
+    truth = env.truth
+    with open(out / "yardstick" / f"{env.scene.name}.json") as f:
+        written = json.load(f)
+    surface, visible = truth["surface"], truth["visible"]
+    assert (len(surface), len(visible)) == (written["surface_cells"], written["visible_cells"])
+    assert truth["tolerance_cells"] == written["tolerance_cells"]
+    assert np.all(np.diff(surface.astype(np.int64)) > 0) and np.isin(visible, surface).all()
+    position = {int(c): k for k, c in enumerate(visible)}
+    for mine, theirs in ((truth["views"], written["views"]), (truth["starts"], written["starts"])):
+        assert [[position[int(c)] for c in cells] for cells in mine] == theirs
+    every = np.unique(np.concatenate(truth["views"] + truth["starts"]))
+    assert np.array_equal(every, visible)
+    # Surface cells lie on the object: the map's last state has some of them occupied, and the
+    # log-odds say the classes the cells say.
+    cells, log_odds = obs["cells"], obs["log_odds"]
+    assert log_odds.shape == cells.shape and log_odds.dtype == np.float32
+    assert (log_odds[cells == vt.OCCUPIED] > 0).all() and (log_odds[cells == vt.FREE] < 0).all()
+    assert (log_odds[cells == vt.UNOBSERVED] == 0).all()
+    on_surface = cells.ravel(order="F")[surface]
+    assert (on_surface == vt.OCCUPIED).mean() > 0.3
 
 
 def test_the_numpy_greedy_makes_the_builtin_greedys_choices(scene, numpy_greedy):

@@ -100,6 +100,19 @@ class ExploreEnv:
     actual_gain [cells], travel_m [m], plan_seconds [s]: the decision's time, from the
     observation's return to step's call), and stop_reason at the end. The same seed gives the
     same episode for the same actions.
+
+    obs: ``cells`` (each cell's class: UNOBSERVED, FREE, OCCUPIED) and ``log_odds`` (its
+    occupancy log-odds, 0 unknown), both of the grid's shape [i, j, k]; ``pose``, the sensor's
+    believed pose (4 x 4); ``candidates`` (K x 4 x 4); ``taken`` (K bools); ``travel`` to each
+    candidate [m]; ``scan``, the scans so far.
+
+    truth: the yardstick's truth of the scene and candidates, which no observation holds: for
+    labels (what each view would add, as a learned planner's training needs) and for judging
+    choices, never for a policy's decision. A dict of cell indices (linear, x fastest:
+    ``numpy.unravel_index(c, obs["cells"].shape, order="F")`` is the cell's [i, j, k]): ``surface`` (the object surface cells S), ``visible`` (V, the cells
+    of S some candidate or start hits noise-free), ``views`` and ``starts`` (per candidate and per
+    start pose, the cells of V its noise-free scan covers at the tolerance), and the tolerance
+    (``tolerance_cells``, ``tolerance_m``). All ascending uint32 arrays.
     """
 
     metadata = {"render_modes": []}
@@ -125,12 +138,20 @@ class ExploreEnv:
         self._episodes = 0
         self._coverage = 0.0
         self._handed = None  # when the last observation was returned
+        self._truth = None  # the yardstick's truth as a dict, made on first use
         self.candidates = self._run.candidates
         self.action_space = ActionSpace(len(self.candidates), seed)
         self.scene = self._run.scene
         self.grid = self._run.grid
         self.fov = self._run.fov
         self.scans = self._run.scans
+
+    @property
+    def truth(self):
+        """The yardstick's truth (the class's docstring), computed by the constructor."""
+        if self._truth is None:
+            self._truth = self._run.truth
+        return self._truth
 
     @property
     def seed(self):
