@@ -138,6 +138,37 @@ def test_following_the_reference_is_the_bench_trial_of_that_method(scene, vantag
     assert (on_surface == vt.OCCUPIED).mean() > 0.3
 
 
+@pytest.fixture(scope="module")
+def truth_labels(source_dir):
+    """examples/python/truth_labels.py as a module."""
+    sys.path.insert(0, str(source_dir / "examples" / "python"))
+    import truth_labels
+    yield truth_labels
+    sys.path.remove(str(source_dir / "examples" / "python"))
+
+
+def test_following_the_truths_labels_is_the_benchs_greedy_oracle(scene, vantage_bin, tmp_path,
+                                                                 truth_labels):
+    """examples/python/truth_labels.py's labels, each candidate's new true cells, taken largest
+    first (ties to the shorter travel, then the lower index), give the greedy oracle's trial of
+    `vantage bench` view for view, and its own count of new cells for the view taken."""
+    env = vt.ExploreEnv(scene, scans=6, seed=3, start=1)
+    states = truth_labels.episode(
+        env, 1, 3, lambda obs, info, labels: truth_labels.oracle_choice(labels, obs["travel"]))
+    views = [truth_labels.oracle_choice(labels, travel) for _, _, travel, labels in states]
+    out = tmp_path / "bench"
+    subprocess.run([str(vantage_bin), "bench", "tabletop", "--scenes", scene, "--methods",
+                    "greedy-oracle", "--trials", "2", "--scans", "6", "--seed", "3", "--out",
+                    str(out), "--no-plots"], check=True, capture_output=True)
+    rows = [r for r in read_rows(out / "scans.csv") if r["trial"] == "1"][1:]
+    assert [int(r["view"]) for r in rows] == views
+    assert [float(r["predicted_gain"]) for r in rows] == [labels[v] for (_, _, _, labels), v
+                                                          in zip(states, views)]
+    # Taken views are labelled -1, and a label never grows as views are taken.
+    for (_, taken, _, labels), (_, _, _, after) in zip(states, states[1:]):
+        assert (labels[taken] == -1).all() and (after[~taken] <= labels[~taken]).all()
+
+
 def test_the_numpy_greedy_makes_the_builtin_greedys_choices(scene, numpy_greedy):
     """examples/python/greedy_policy.py on the states of two random episodes (12 decisions)."""
     env = vt.ExploreEnv(scene, scans=7, seed=1, reference="greedy")
