@@ -109,10 +109,11 @@ class ExploreEnv:
     truth: the yardstick's truth of the scene and candidates, which no observation holds: for
     labels (what each view would add, as a learned planner's training needs) and for judging
     choices, never for a policy's decision. A dict of cell indices (linear, x fastest:
-    ``numpy.unravel_index(c, obs["cells"].shape, order="F")`` is the cell's [i, j, k]): ``surface`` (the object surface cells S), ``visible`` (V, the cells
-    of S some candidate or start hits noise-free), ``views`` and ``starts`` (per candidate and per
-    start pose, the cells of V its noise-free scan covers at the tolerance), and the tolerance
-    (``tolerance_cells``, ``tolerance_m``). All ascending uint32 arrays.
+    ``numpy.unravel_index(c, obs["cells"].shape, order="F")`` is the cell's [i, j, k]):
+    ``surface`` (the object surface cells S), ``visible`` (V, the cells of S some candidate or
+    start hits noise-free), ``views`` and ``starts`` (per candidate and per start pose, the cells
+    of V its noise-free scan covers at the tolerance), all ascending uint32 arrays, and the
+    tolerance (``tolerance_cells``, ``tolerance_m``).
     """
 
     metadata = {"render_modes": []}
