@@ -86,10 +86,15 @@ def phase(scan):
     return next(k for k, (lo, hi) in enumerate(PHASES) if scan >= lo and (hi is None or scan <= hi))
 
 
+def phase_totals():
+    """Per phase: the chosen and the best views' kinds and new cells, decisions and ranks."""
+    return defaultdict(lambda: {"chosen": Counter(), "best": Counter(), "n": 0, "ranks": [],
+                                "new": Counter()})
+
+
 def decisions(scene, starts, scans, method):
-    """Per phase: the chosen and the best views' kinds, new cells and the best's ranks."""
-    out = defaultdict(lambda: {"chosen": Counter(), "best": Counter(), "n": 0, "ranks": [],
-                               "new": Counter()})
+    """phase_totals() over the decisions of `method`'s runs of `scene`."""
+    out = phase_totals()
     by_travel = method.startswith("latombe")
     for start in range(starts):
         env = vantage.ExploreEnv(scene, candidates="hemisphere", scans=scans, start=start,
@@ -144,8 +149,7 @@ def main():
     p.add_argument("--scans", type=int, default=14)
     p.add_argument("--method", default="latombe+surface")
     a = p.parse_args()
-    phases = defaultdict(lambda: {"chosen": Counter(), "best": Counter(), "n": 0, "ranks": [],
-                                  "new": Counter()})
+    phases = phase_totals()
     with tempfile.TemporaryDirectory() as folder:
         for seed in (int(s) for s in a.seeds.split(",")):
             path = os.path.join(folder, f"pile-{seed}.yaml")

@@ -68,6 +68,12 @@ def needed(truth, level):
     return math.ceil(level * truth["visible_cells"] - 1e-9)
 
 
+def travel_between(truth, start, here, view):
+    """The travel to `view` from view `here`, or from the start when `here` is None [m]."""
+    return (truth["travel_m"]["from_starts"][start][view] if here is None
+            else truth["travel_m"]["views"][here][view])
+
+
 def greedy_oracle(truth, start, travel_weight=0.0):
     """The greedy oracle's order of views from `start` on the true hit sets: a list of
     (view, cells hit so far after it), until no view adds a cell. With a travel weight λ [1/m],
@@ -83,9 +89,8 @@ def greedy_oracle(truth, start, travel_weight=0.0):
             if v in taken:
                 continue
             gain = len(cells - hit)
-            travel = (truth["travel_m"]["from_starts"][start][v] if here is None
-                      else truth["travel_m"]["views"][here][v])
-            score = gain * math.exp(-travel_weight * travel) if travel_weight > 0 else gain
+            travel = travel_between(truth, start, here, v)
+            score = gain * math.exp(-travel_weight * travel)
             if score > best_score or (score == best_score and gain > 0 and travel < best_travel):
                 best, best_score, best_travel = v, score, travel
         if best is None:

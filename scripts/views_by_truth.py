@@ -44,12 +44,8 @@ def curve(truth, start, views):
 
 def travel(truth, start, views):
     """The travel from the start through `views` in order, under the yardstick's rule [m]."""
-    total, here = 0.0, None
-    for v in views:
-        total += (truth["travel_m"]["from_starts"][start][v] if here is None
-                  else truth["travel_m"]["views"][here][v])
-        here = v
-    return total
+    return sum(set_cover.travel_between(truth, start, here, v)
+               for here, v in zip([None] + list(views[:-1]), views))
 
 
 def scans_to(cov, level, budget):
