@@ -2,11 +2,14 @@
 /// @file
 /// The parts of the `vantage._vantage` module, one per binding file.
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <cstdint>
 #include <string>
 
 namespace vantage {
+class OccupancyGrid;
 struct MapperConfig;
 struct PlannerConfig;
 }  // namespace vantage
@@ -15,6 +18,10 @@ namespace vantage::python {
 
 /// GridSpec, SensorFov, OccupancyGrid and its integration and OctoMap files.
 void bind_map(pybind11::module_& m);
+/// Each cell's class (CellState) as uint8, [i, j, k] (OccupancyGrid.states; ExploreEnv's cells).
+pybind11::array_t<std::uint8_t> state_array(const OccupancyGrid& grid);
+/// Each cell's stored log-odds as float32, [i, j, k] (OccupancyGrid.log_odds; ExploreEnv's).
+pybind11::array_t<float> log_odds_array(const OccupancyGrid& grid);
 /// The ray model and view gains.
 void bind_gain(pybind11::module_& m);
 /// PlannerConfig, the decision's settings.

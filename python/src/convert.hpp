@@ -49,17 +49,16 @@ py::array_t<double> from_poses(const std::vector<Eigen::Isometry3d>& poses);
 /// A vector of 3 numbers; throws std::invalid_argument naming `what` otherwise.
 Eigen::Vector3d to_vector3(const DoubleArray& values, const char* what);
 
-/// Values per cell (linear index, x fastest) as an array of shape `spec.dims`, indexed [i, j, k].
+/// An array of shape `spec.dims`, indexed [i, j, k], whose data holds one value per cell in
+/// the grid's linear order (x fastest), to be filled.
 template <typename T>
-py::array_t<T> grid_array(const GridSpec& spec, const std::vector<T>& values) {
+py::array_t<T> grid_shaped(const GridSpec& spec) {
   const auto nx = static_cast<py::ssize_t>(spec.dims.x());
   const auto ny = static_cast<py::ssize_t>(spec.dims.y());
   const auto nz = static_cast<py::ssize_t>(spec.dims.z());
   const auto s = static_cast<py::ssize_t>(sizeof(T));
   // NOTE: x runs fastest in memory, so the [i, j, k] array is Fortran-ordered: no reordering.
-  py::array_t<T> out({nx, ny, nz}, {s, s * nx, s * nx * ny});
-  std::copy(values.begin(), values.end(), out.mutable_data());
-  return out;
+  return py::array_t<T>({nx, ny, nz}, {s, s * nx, s * nx * ny});
 }
 
 /// Raises the Python error a file's std::runtime_error stands for, with `message`:

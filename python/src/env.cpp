@@ -83,18 +83,13 @@ void object_defaults(ExplorationConfig& config, const RunSettings& s) {
 py::dict observation(const Exploration& run) {
   const ExplorationResult& result = run.result();
   const OccupancyGrid& grid = run.mapper().grid();
-  std::vector<std::uint8_t> states(grid.spec().num_cells());
-  for (std::size_t i = 0; i < states.size(); ++i) {
-    states[i] = static_cast<std::uint8_t>(grid.state(i));
-  }
   const std::vector<bool>& taken = run.taken();
   py::array_t<bool> mask(static_cast<py::ssize_t>(taken.size()));
   for (std::size_t i = 0; i < taken.size(); ++i) mask.mutable_at(i) = taken[i];
   const std::vector<double> travel = run.travel();
   py::dict obs;
-  obs["cells"] = grid_array(grid.spec(), states);
-  obs["log_odds"] =
-      grid_array(grid.spec(), std::vector<float>(grid.log_odds().begin(), grid.log_odds().end()));
+  obs["cells"] = state_array(grid);
+  obs["log_odds"] = log_odds_array(grid);
   obs["pose"] = Eigen::Matrix4d(result.scans.back().T_world_sensor.matrix());
   obs["candidates"] = from_poses(result.candidates);
   obs["taken"] = mask;

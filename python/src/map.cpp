@@ -55,9 +55,10 @@ py::tuple shape_of(const GridSpec& spec) {
 /// Per-cell values of a grid as a [i, j, k] array.
 template <typename T, typename F>
 py::array_t<T> per_cell(const OccupancyGrid& grid, F&& value) {
-  std::vector<T> values(grid.size());
-  for (std::size_t i = 0; i < grid.size(); ++i) values[i] = value(i);
-  return grid_array(grid.spec(), values);
+  py::array_t<T> out = grid_shaped<T>(grid.spec());
+  T* data = out.mutable_data();
+  for (std::size_t i = 0; i < grid.size(); ++i) data[i] = value(i);
+  return out;
 }
 
 /// Sets every cell from a [i, j, k] array of probabilities; checks all before changing any.
@@ -132,15 +133,6 @@ OccupancyGrid make_grid(const GridSpec& spec, double p_hit, double p_miss, doubl
 
 py::array_t<double> probabilities(const OccupancyGrid& g) {
   return per_cell<double>(g, [&](std::size_t i) { return g.probability(i); });
-}
-
-py::array_t<float> log_odds(const OccupancyGrid& g) {
-  return per_cell<float>(g, [&](std::size_t i) { return g.log_odds(i); });
-}
-
-py::array_t<std::uint8_t> states(const OccupancyGrid& g) {
-  return per_cell<std::uint8_t>(
-      g, [&](std::size_t i) { return static_cast<std::uint8_t>(g.state(i)); });
 }
 
 py::dict counts_of(const OccupancyGrid& g) {
@@ -244,8 +236,8 @@ void def_occupancy_grid(py::module_& m) {
           "shape", [](const OccupancyGrid& g) { return shape_of(g.spec()); }, "(nx, ny, nz).")
       .def("probabilities", &probabilities,
            "Occupancy probability of every cell, float64 [i, j, k].")
-      .def("log_odds", &log_odds, "Stored log-odds of every cell, float32 [i, j, k].")
-      .def("states", &states,
+      .def("log_odds", &log_odds_array, "Stored log-odds of every cell, float32 [i, j, k].")
+      .def("states", &state_array,
            "Class of every cell, uint8 [i, j, k]: UNOBSERVED (0.4 < p < 0.6), FREE (p <= 0.4) or "
            "OCCUPIED (p >= 0.6).")
       .def("counts", &counts_of, "Cells in each class: {'unobserved', 'free', 'occupied'}.")
@@ -283,6 +275,15 @@ void def_occupancy_grid(py::module_& m) {
 }
 
 }  // namespace
+
+py::array_t<std::uint8_t> state_array(const OccupancyGrid& grid) {
+  return per_cell<std::uint8_t>(
+      grid, [&](std::size_t i) { return static_cast<std::uint8_t>(grid.state(i)); });
+}
+
+py::array_t<float> log_odds_array(const OccupancyGrid& grid) {
+  return per_cell<float>(grid, [&](std::size_t i) { return grid.log_odds(i); });
+}
 
 void bind_map(py::module_& m) {
   m.attr("UNOBSERVED") = static_cast<int>(CellState::kUnobserved);
