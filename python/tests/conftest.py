@@ -1,5 +1,7 @@
 """Shared fixtures: the CLI binary and the source tree, as ctest passes them in the environment."""
 
+import contextlib
+import importlib
 import json
 import os
 import pathlib
@@ -53,10 +55,19 @@ def own_scans(tmp_path_factory, vantage_bin, source_dir):
     return folder, json.loads(run.stdout), out
 
 
+@contextlib.contextmanager
+def tree_modules(folder, *names):
+    """The modules `names` of one of the tree's folders (scripts/, examples/python/), imported
+    with the folder on the path while in the block (a script imports its neighbours so)."""
+    sys.path.insert(0, str(folder))
+    try:
+        yield tuple(importlib.import_module(name) for name in names)
+    finally:
+        sys.path.remove(str(folder))
+
+
 @pytest.fixture(scope="module")
 def plot_bench(source_dir):
     """scripts/plot_bench.py as a module (the summaries' tests)."""
-    sys.path.insert(0, str(source_dir / "scripts"))
-    import plot_bench
-    yield plot_bench
-    sys.path.remove(str(source_dir / "scripts"))
+    with tree_modules(source_dir / "scripts", "plot_bench") as (module,):
+        yield module

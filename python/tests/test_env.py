@@ -12,6 +12,8 @@ import pytest
 
 import vantage as vt
 
+from conftest import tree_modules
+
 TIMES = {"plan_seconds", "register_seconds", "segment_seconds", "integrate_seconds",
          "reference_seconds"}
 
@@ -24,10 +26,8 @@ def scene(source_dir):
 @pytest.fixture(scope="module")
 def numpy_greedy(source_dir):
     """examples/python/greedy_policy.py as a module."""
-    sys.path.insert(0, str(source_dir / "examples" / "python"))
-    import greedy_policy
-    yield greedy_policy
-    sys.path.remove(str(source_dir / "examples" / "python"))
+    with tree_modules(source_dir / "examples" / "python", "greedy_policy") as (module,):
+        yield module
 
 
 def read_rows(path):
@@ -141,10 +141,8 @@ def test_following_the_reference_is_the_bench_trial_of_that_method(scene, vantag
 @pytest.fixture(scope="module")
 def truth_labels(source_dir):
     """examples/python/truth_labels.py as a module."""
-    sys.path.insert(0, str(source_dir / "examples" / "python"))
-    import truth_labels
-    yield truth_labels
-    sys.path.remove(str(source_dir / "examples" / "python"))
+    with tree_modules(source_dir / "examples" / "python", "truth_labels") as (module,):
+        yield module
 
 
 def test_following_the_truths_labels_is_the_benchs_greedy_oracle(scene, vantage_bin, tmp_path,

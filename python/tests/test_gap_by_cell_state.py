@@ -3,20 +3,19 @@ cells of each view and the greedy oracle's pick with its ties, each cell's kind 
 state, log-odds and Chebyshev distance, the planner's rank of a view, and the scan groups."""
 
 import math
-import sys
 
 import numpy as np
 import pytest
+
+from conftest import tree_modules
 
 UNOBSERVED, FREE, OCCUPIED = 0, 1, 2
 
 
 @pytest.fixture(scope="module")
 def gap(source_dir):
-    sys.path.insert(0, str(source_dir / "scripts"))
-    import gap_by_cell_state
-    yield gap_by_cell_state
-    sys.path.remove(str(source_dir / "scripts"))
+    with tree_modules(source_dir / "scripts", "gap_by_cell_state") as (module,):
+        yield module
 
 
 def test_the_best_view_has_most_new_cells_then_the_shorter_travel_then_the_lower_index(gap):

@@ -5,7 +5,6 @@ import csv
 import json
 import math
 import pathlib
-import sys
 
 import matplotlib
 import pytest
@@ -14,14 +13,13 @@ matplotlib.use("Agg")
 import matplotlib.figure  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
+from conftest import tree_modules
+
 
 @pytest.fixture(scope="module")
 def scripts(source_dir):
-    sys.path.insert(0, str(source_dir / "scripts"))
-    import plot_ray
-    import plot_run
-    yield plot_run, plot_ray
-    sys.path.remove(str(source_dir / "scripts"))
+    with tree_modules(source_dir / "scripts", "plot_run", "plot_ray") as modules:
+        yield modules
 
 
 @pytest.fixture

@@ -9,17 +9,16 @@ import itertools
 import json
 import math
 import random
-import sys
 
 import pytest
+
+from conftest import tree_modules
 
 
 @pytest.fixture(scope="module")
 def set_cover(source_dir):
-    sys.path.insert(0, str(source_dir / "scripts"))
-    import set_cover
-    yield set_cover
-    sys.path.remove(str(source_dir / "scripts"))
+    with tree_modules(source_dir / "scripts", "set_cover") as (module,):
+        yield module
 
 
 def write_truth(folder, scene, views, starts, positions, start_positions):

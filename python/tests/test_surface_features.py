@@ -3,20 +3,19 @@ counts: each feature worked out by hand, a class's rate with its prior, and a he
 likelihood that is higher for the feature that separates the outcomes."""
 
 import math
-import sys
 
 import numpy as np
 import pytest
+
+from conftest import tree_modules
 
 UNOBSERVED, FREE, OCCUPIED = 0, 1, 2
 
 
 @pytest.fixture(scope="module")
 def sf(source_dir):
-    sys.path.insert(0, str(source_dir / "scripts"))
-    import surface_features
-    yield surface_features
-    sys.path.remove(str(source_dir / "scripts"))
+    with tree_modules(source_dir / "scripts", "surface_features") as (module,):
+        yield module
 
 
 def test_each_feature_of_a_hand_made_grid(sf):

@@ -3,19 +3,16 @@ the true coverage curve of a trial's views worked out by hand, the greedy oracle
 same hit sets, which can need more scans to a level than another order, and that oracle priced
 by travel, which takes a nearer view first where the price of motion says so."""
 
-import sys
-
 import pytest
 
+from conftest import tree_modules
 from test_set_cover import write_truth
 
 
 @pytest.fixture
 def views_by_truth(source_dir):
-    sys.path.insert(0, str(source_dir / "scripts"))
-    import views_by_truth
-    yield views_by_truth
-    sys.path.remove(str(source_dir / "scripts"))
+    with tree_modules(source_dir / "scripts", "views_by_truth") as (module,):
+        yield module
 
 
 def test_a_better_order_than_the_greedy_oracles_is_found_out(tmp_path, views_by_truth, capsys):
